@@ -1,0 +1,63 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace oscilab::analysis {
+
+/// How a term enters the energy balance: an elastic force has a potential U(z) (energy stored and
+/// returned), a dissipative force turns work into heat (∮ D dz > 0 over a cycle).
+enum class TermKind { Elastic, Dissipative };
+
+/// Partial derivatives of a term's force F(z, ż) at one point; used by implicit solvers, harmonic
+/// balance (analytic Jacobian) and the variational equation for stability.
+struct TermPartials {
+  double d_dz = 0.0;      // ∂F/∂z
+  double d_dz_dot = 0.0;  // ∂F/∂ż
+};
+
+/// One named contribution to the restoring surface R(z, ż) of eq. (1): m z̈ + Σ F_i(z, ż, s_i) = f.
+///
+/// A term may carry an internal state s (for hysteresis: Dahl, Maxwell slip) whose rate is
+/// ds/dt = state_rate(z, ż, s); stateless terms keep the defaults. Terms compose: a model is a
+/// mass and a list of terms, and every solver (time integration, harmonic balance) reaches the
+/// physics only through this interface.
+///
+/// Thread-safety: all const methods are safe to call concurrently.
+class ModelTerm {
+ public:
+  virtual ~ModelTerm() = default;
+
+  /// JSON `type` of the term, e.g. "polynomial-stiffness".
+  virtual std::string type() const = 0;
+  virtual TermKind kind() const = 0;
+
+  /// Force of the term on the left-hand side of eq. (1), in N. `state` points at state_size()
+  /// values (nullptr allowed when state_size() == 0).
+  virtual double force(double z_m, double z_dot_m_s, const double* state) const = 0;
+  virtual TermPartials partials(double z_m, double z_dot_m_s, const double* state) const = 0;
+
+  /// Internal state: size, value at rest at position z, and rate ds/dt.
+  virtual int state_size() const { return 0; }
+  virtual void initial_state(double /*z_m*/, double* /*state*/) const {}
+  virtual void state_rate(double /*z_m*/, double /*z_dot_m_s*/, const double* /*state*/,
+                          double* /*rate*/) const {}
+
+  /// Potential energy U(z) in J of an elastic term (U' = F at rest); 0 for dissipative terms.
+  virtual double potential_j(double /*z_m*/) const { return 0.0; }
+
+  /// Named parameters (SI, names carry units as in the JSON keys), for fits and sensitivity.
+  virtual std::vector<std::string> parameter_names() const = 0;
+  virtual double parameter(const std::string& name) const = 0;
+  /// Throws InputError for an unknown name or a value outside the term's domain.
+  virtual void set_parameter(const std::string& name, double value) = 0;
+
+  /// {"type": type(), <parameters>}; term_from_json() reads it back.
+  virtual nlohmann::json to_json() const = 0;
+  virtual std::unique_ptr<ModelTerm> clone() const = 0;
+};
+
+}  // namespace oscilab::analysis

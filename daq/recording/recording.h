@@ -1,0 +1,39 @@
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "daq/recording/sidecar.h"
+
+namespace oscilab::daq {
+
+/// A recording in memory: its sidecar and its samples in physical SI units (calibration and unit
+/// conversion applied), one column per sidecar channel, one row per sample.
+struct Recording {
+  Sidecar sidecar;
+  Eigen::MatrixXd samples_si;  // rows: samples at sidecar.sample_rate_hz; cols: channels
+  std::string source_path;     // where it was read from (empty when made in memory)
+
+  Eigen::Index sample_count() const { return samples_si.rows(); }
+  double duration_s() const;
+  /// Index of the first channel with `role`, or -1.
+  int channel_index(ChannelRole role) const;
+  /// Index of the channel named `name`, or -1.
+  int channel_index(const std::string& name) const;
+};
+
+/// Reads a recording: a libsndfile container (WAV, FLAC, W64, RF64, AIFF, CAF, ...) or a CSV, with
+/// its JSON sidecar of the same stem. Every problem (missing or malformed sidecar, unknown unit or
+/// role, channel count or rate mismatch, truncated or empty data, NaN/Inf, non-monotonic CSV
+/// time, ...) throws one oscilab::InputError naming the file and the problem.
+Recording read_recording(const std::string& path);
+
+/// Writes samples and sidecar; the container follows the extension (.wav, .flac, .w64, .rf64,
+/// .aiff, .caf, .csv). Stored value = (SI value / unit factor − offset) / scale, so a round trip
+/// returns the same SI samples (exactly for float64 containers and CSV at full precision; to the
+/// channel's scale for integer containers such as FLAC). Throws InputError when the file cannot
+/// be written or the data cannot be represented.
+void write_recording(const Recording& recording, const std::string& path);
+
+}  // namespace oscilab::daq

@@ -1,0 +1,81 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace oscilab::daq {
+
+/// What a channel measures, contract §1 `role`.
+enum class ChannelRole { Base, Mass, Relative, Force };
+/// Physical quantity of a channel, contract §1 `quantity`.
+enum class Quantity { Acceleration, Velocity, Displacement, Force };
+
+std::string to_string(ChannelRole role);
+std::string to_string(Quantity quantity);
+
+/// One channel of a recording as the sidecar describes it. Physical value in `unit` is
+/// scale × stored + offset; the readers then convert `unit` to SI.
+struct ChannelInfo {
+  std::string name;
+  ChannelRole role = ChannelRole::Base;
+  Quantity quantity = Quantity::Acceleration;
+  std::string unit = "m/s^2";
+  double scale = 1.0;
+  double offset = 0.0;
+  std::string sensor;
+  int column = -1;  // CSV only: 0-based column in the file; -1: matched by name in the header
+};
+
+/// One stepped-sine level: forcing amplitude and the steady part of its hold.
+struct ExcitationLevel {
+  double f0_n = 0.0;
+  double start_s = 0.0;
+  double end_s = 0.0;
+};
+
+/// Excitation metadata (optional and possibly partial, contract §1).
+struct Excitation {
+  std::string type;                     // "stepped-sine", "random", ...
+  std::optional<double> frequency_hz;   // stepped sine
+  std::vector<ExcitationLevel> levels;  // stepped sine
+  nlohmann::json extra = nlohmann::json::object();  // other keys, kept as they are
+};
+
+/// How a CSV file is laid out (sidecar key "csv").
+struct CsvLayout {
+  bool header = true;
+  char delimiter = ',';
+};
+
+/// The JSON sidecar of a recording, contract §1. Unknown keys are kept in `extra` and written
+/// back, so a round trip loses nothing.
+struct Sidecar {
+  double sample_rate_hz = 0.0;
+  std::optional<double> mass_kg;
+  std::vector<ChannelInfo> channels;
+  std::optional<Excitation> excitation;
+  std::string notes;
+  std::optional<CsvLayout> csv;
+  nlohmann::json extra = nlohmann::json::object();
+};
+
+/// Parses and validates a sidecar. `file_name` prefixes every error message, e.g.
+/// `run1.json: channels[1].unit: unknown unit "mps"`. Throws oscilab::InputError.
+Sidecar parse_sidecar(const nlohmann::json& json, const std::string& file_name);
+nlohmann::json sidecar_to_json(const Sidecar& sidecar);
+
+/// The sidecar path of a recording: same stem, `.json`.
+std::string sidecar_path_for(const std::string& recording_path);
+Sidecar read_sidecar(const std::string& sidecar_path);
+void write_sidecar(const Sidecar& sidecar, const std::string& sidecar_path);
+
+/// Factor that turns a value in `unit` into SI for `quantity` (e.g. "mm" → 1e-3, "g" → 9.80665).
+/// "V" is accepted for every quantity with factor 1: the channel's scale is then the sensor
+/// sensitivity in SI units per volt. Throws InputError naming `where` for an unknown unit or one
+/// that does not fit the quantity.
+double unit_to_si(const std::string& unit, Quantity quantity, const std::string& where);
+
+}  // namespace oscilab::daq
