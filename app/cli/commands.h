@@ -1,0 +1,13 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace oscilab::cli {
+
+// Each subcommand lives in its own file and registers itself here (contract §2). A command's
+// callback throws oscilab::InputError for bad input; main() prints it as one line and exits 2.
+void add_model_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
+void add_info_command(CLI::App& app);
+
+}  // namespace oscilab::cli
