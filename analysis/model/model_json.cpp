@@ -5,6 +5,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/model/polynomial_stiffness.h"
+#include "analysis/model/reference_models.h"
 #include "analysis/model/position_dependent_friction.h"
 #include "analysis/model/viscous_damping.h"
 
@@ -115,6 +116,31 @@ void save_model(const Model& model, const std::string& path) {
   if (!out) throw InputError(path + ": cannot write model file");
   out << model.to_json().dump(2) << '\n';
   if (!out) throw InputError(path + ": write failed");
+}
+
+}  // namespace oscilab::analysis
+
+namespace oscilab::analysis {
+
+Model model_from_spec(const std::string& spec) {
+  if (spec == "paper") return paper_model();
+  if (spec == "illustrative") return illustrative_model();
+  return load_model(spec);
+}
+
+nlohmann::json model_summary(const Model& model) {
+  nlohmann::json equilibria = nlohmann::json::array();
+  for (const Equilibrium& e : model.equilibria()) {
+    equilibria.push_back({{"z_m", e.z_m},
+                          {"stable", e.stable},
+                          {"stiffness_n_m", e.stiffness_n_m},
+                          {"linear_frequency_hz", e.stable ? nlohmann::json(e.linear_frequency_hz)
+                                                           : nlohmann::json(nullptr)}});
+  }
+  return {{"name", model.name()},
+          {"mass_kg", model.mass_kg()},
+          {"equilibria", equilibria},
+          {"terms", model.to_json()["terms"]}};
 }
 
 }  // namespace oscilab::analysis

@@ -22,3 +22,15 @@ Model load_model(const std::string& path);
 void save_model(const Model& model, const std::string& path);
 
 }  // namespace oscilab::analysis
+
+namespace oscilab::analysis {
+
+/// A model named on a command line: "paper" (eq. (7), Tables 1 and 3), "illustrative" (eq. (14),
+/// Table 2), or the path of a model JSON file.
+Model model_from_spec(const std::string& spec);
+
+/// {"name", "mass_kg", "equilibria": [{"z_m", "stable", "linear_frequency_hz"}], "terms"}: the
+/// model summary of contract §2, with linear_frequency_hz null at an unstable equilibrium.
+nlohmann::json model_summary(const Model& model);
+
+}  // namespace oscilab::analysis

@@ -1,0 +1,31 @@
+#include "daq/rig/sensor_models.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace oscilab::daq {
+
+double quantise(double value, double lsb) {
+  return lsb > 0.0 ? std::round(value / lsb) * lsb : value;
+}
+
+TableCreep::TableCreep(const TableCreepSpec& spec, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> log_period(std::log(spec.min_period_s),
+                                                    std::log(spec.max_period_s));
+  std::uniform_real_distribution<double> phase(0.0, 2.0 * std::numbers::pi);
+  for (int i = 0; i < 3; ++i) {
+    amplitude_m_[i] = spec.amplitude_m;
+    omega_[i] = 2.0 * std::numbers::pi / std::exp(log_period(rng));
+    phase_[i] = phase(rng);
+  }
+}
+
+double TableCreep::at(double t_s) const {
+  double c = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    c += amplitude_m_[i] * (std::sin(omega_[i] * t_s + phase_[i]) - std::sin(phase_[i]));
+  }
+  return c;
+}
+
+}  // namespace oscilab::daq
