@@ -1,0 +1,450 @@
+#include "analysis/hbm/continuation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <string>
+
+#include <Eigen/LU>
+
+#include "analysis/common/input_error.h"
+
+namespace oscilab::analysis {
+
+void ContinuationOptions::validate() const {
+  auto fail = [](const std::string& what) { throw InputError("continuation: " + what); };
+  if (!std::isfinite(start) || !std::isfinite(end) || start == end) {
+    fail("start and end must be finite and differ");
+  }
+  if (parameter == BranchParameter::ForcingAmplitude && (start < 0.0 || end < 0.0)) {
+    fail("forcing amplitudes must not be negative");
+  }
+  if (parameter == BranchParameter::Frequency && (start <= 0.0 || end <= 0.0 || !(f0_n > 0.0))) {
+    fail("frequencies and the fixed f0 must be positive");
+  }
+  if (parameter == BranchParameter::ForcingAmplitude && !(freq_hz > 0.0)) {
+    fail("frequency must be positive");
+  }
+  if (!(min_step > 0.0) || !(initial_step >= min_step) || !(max_step >= initial_step)) {
+    fail("steps must satisfy 0 < min_step <= initial_step <= max_step");
+  }
+  if (max_corrector_iterations < 1 || target_iterations < 1) fail("iteration counts must be >= 1");
+  if (!(max_turn_rad > 0.0) || !(residual_tolerance > 0.0) || max_points < 2) {
+    fail("max_turn_rad, residual_tolerance must be positive and max_points >= 2");
+  }
+}
+
+namespace {
+
+// Scaled unknowns y = [x / z_ref; p / p_ref] and residual G(y) = r(x, p) / f_ref: with these all
+// entries of y move by O(1) along the branch, so that an arc-length step weighs the response and
+// the parameter alike (without scaling, x in metres would be invisible next to f0 in newtons and
+// the "arc length" would be the parameter step, which cannot turn at a fold).
+class Continuer {
+ public:
+  Continuer(const Model& model, const ContinuationOptions& options)
+      : options_(options),
+        hbm_(model,
+             options.parameter == BranchParameter::Frequency ? options.start : options.freq_hz,
+             options.hbm),
+        floquet_(options.floquet),
+        n_(hbm_.size()) {
+    const Equilibrium well = model.well(options.positive_well);
+    z_star_ = well.z_m;
+    p_ref_ = std::max(std::abs(options.start), std::abs(options.end));
+    f_ref_ = amplitude() ? p_ref_ : options.f0_n;
+    z_ref_ = options.displacement_scale_m > 0.0 ? options.displacement_scale_m
+                                                : f_ref_ / well.stiffness_n_m;
+    f0_ = options.f0_n;
+    r_.resize(n_);
+    dr_dp_.resize(n_);
+    jacobian_.resize(n_, n_);
+    g_.resize(n_);
+    g_y_.resize(n_, n_ + 1);
+  }
+
+  Branch run(const ProgressFn& progress, const CancelToken& cancel);
+
+ private:
+  struct Solved {
+    bool ok = false;
+    Eigen::VectorXd y;
+    Eigen::MatrixXd g_y;  // ∂G/∂y at y
+    int iterations = 0;
+    double residual_norm = 0.0;  // ‖G‖ (scaled)
+    std::string message;
+  };
+
+  bool amplitude() const { return options_.parameter == BranchParameter::ForcingAmplitude; }
+  double parameter_of(const Eigen::VectorXd& y) const { return y[n_] * p_ref_; }
+  void set_parameter(double p) {
+    if (amplitude()) {
+      f0_ = p;
+    } else {
+      hbm_.set_frequency(p);
+    }
+  }
+  Eigen::VectorXd x_of(const Eigen::VectorXd& y) const { return y.head(n_) * z_ref_; }
+  Eigen::VectorXd y_of(const Eigen::VectorXd& x, double p) const {
+    Eigen::VectorXd y(n_ + 1);
+    y.head(n_) = x / z_ref_;
+    y[n_] = p / p_ref_;
+    return y;
+  }
+
+  // G(y) and ∂G/∂y into g_ and g_y_.
+  void evaluate(const Eigen::VectorXd& y) {
+    set_parameter(parameter_of(y));
+    const Eigen::VectorXd x = x_of(y);
+    hbm_.residual_and_jacobian(x, f0_, r_, jacobian_);
+    if (amplitude()) {
+      hbm_.d_residual_d_f0(dr_dp_);
+    } else {
+      hbm_.d_residual_d_omega(x, dr_dp_);
+      dr_dp_ *= 2.0 * std::numbers::pi;  // per Hz
+    }
+    g_ = r_ / f_ref_;
+    g_y_.leftCols(n_) = jacobian_ * (z_ref_ / f_ref_);
+    g_y_.col(n_) = dr_dp_ * (p_ref_ / f_ref_);
+  }
+
+  // Unit tangent of the branch at a point with Jacobian g_y, oriented along `previous`:
+  //   [ G_y ; previousᵀ ] t = [ 0 ; 1 ],  t ← t / ‖t‖.
+  // previousᵀ t = 1 > 0 keeps the direction of travel through folds (where the parameter
+  // component of t changes sign) without any sign bookkeeping.
+  Eigen::VectorXd tangent(const Eigen::MatrixXd& g_y, const Eigen::VectorXd& previous) const {
+    Eigen::MatrixXd bordered(n_ + 1, n_ + 1);
+    bordered.topRows(n_) = g_y;
+    bordered.row(n_) = previous.transpose();
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_ + 1);
+    rhs[n_] = 1.0;
+    Eigen::VectorXd t = bordered.partialPivLu().solve(rhs);
+    return t / t.norm();
+  }
+
+  // Corrector: Newton on  G(y) = 0,  directionᵀ (y − predicted) = 0  from `predicted`. With the
+  // tangent as `direction` this is the pseudo-arclength corrector (the point on the hyperplane
+  // through the predictor orthogonal to the tangent); with e_p it is a solve at fixed parameter.
+  Solved correct(const Eigen::VectorXd& predicted, const Eigen::VectorXd& direction) {
+    Solved out;
+    out.y = predicted;
+    Eigen::MatrixXd bordered(n_ + 1, n_ + 1);
+    Eigen::VectorXd rhs(n_ + 1);
+    for (out.iterations = 0;; ++out.iterations) {
+      evaluate(out.y);
+      out.residual_norm = g_.norm();
+      const double constraint = direction.dot(out.y - predicted);
+      if (!std::isfinite(out.residual_norm)) {
+        out.message = "residual not finite";
+        return out;
+      }
+      if (out.residual_norm <= options_.residual_tolerance && std::abs(constraint) <= 1e-12) {
+        out.ok = true;
+        out.g_y = g_y_;
+        return out;
+      }
+      if (out.iterations >= options_.max_corrector_iterations) {
+        out.message =
+            "corrector: no convergence in " + std::to_string(out.iterations) + " iterations";
+        return out;
+      }
+      bordered.topRows(n_) = g_y_;
+      bordered.row(n_) = direction.transpose();
+      rhs.head(n_) = -g_;
+      rhs[n_] = -constraint;
+      const Eigen::VectorXd delta = bordered.partialPivLu().solve(rhs);
+      if (!delta.allFinite() || delta.norm() > 1e3) {
+        out.message = "corrector: singular or diverging";
+        return out;
+      }
+      out.y += delta;
+    }
+  }
+
+  BranchPoint make_point(const Eigen::VectorXd& y, const Solved& solved, const Eigen::VectorXd& t,
+                         PointMarker marker, double arclength) {
+    BranchPoint point;
+    const double p = parameter_of(y);
+    set_parameter(p);
+    point.f0_n = f0_;
+    point.freq_hz = hbm_.frequency_hz();
+    point.coefficients = x_of(y);
+    point.measures = hbm_.measure(point.coefficients, f0_);
+    if (options_.stability) {
+      point.floquet = floquet_.analyse(hbm_, point.coefficients);
+      point.stability_known = true;
+    }
+    point.marker = marker;
+    point.newton_iterations = solved.iterations;
+    point.residual_norm_n = solved.residual_norm * f_ref_;
+    point.arclength = arclength;
+    point.tangent_parameter = t[n_];
+    return point;
+  }
+
+  double flip_test(const Eigen::VectorXd& y) {
+    set_parameter(parameter_of(y));
+    return floquet_.analyse(hbm_, x_of(y)).flip_test;
+  }
+  double fold_test(const Eigen::VectorXd& y) {
+    set_parameter(parameter_of(y));
+    return floquet_.analyse(hbm_, x_of(y)).fold_test;
+  }
+
+  struct Located {
+    bool ok = false;
+    double sigma = 0.0;
+    Solved solved;
+    Eigen::VectorXd t;
+  };
+  // A zero of test(σ) for the point corrected from y + σ t on σ ∈ (0, ds), where the test
+  // changes sign between σ = 0 (value g0) and σ = ds (g1): the Illinois variant of regula falsi
+  // (Dowell & Jarratt 1971), superlinear and always bracketed.
+  Located locate(const Eigen::VectorXd& y, const Eigen::VectorXd& t, double ds, double g0,
+                 double g1,
+                 const std::function<double(const Eigen::VectorXd&, const Solved&)>& test) {
+    Located out;
+    double a = 0.0, fa = g0, b = ds, fb = g1;
+    for (int iteration = 0; iteration < 60; ++iteration) {
+      const double c = (a * fb - b * fa) / (fb - fa);
+      Solved s = correct(y + c * t, t);
+      if (!s.ok) return out;
+      const double fc = test(s.y, s);
+      out.ok = true;
+      out.sigma = c;
+      out.solved = s;
+      if (fc == 0.0 || std::abs(b - a) <= 1e-12 * ds) break;
+      if ((fc > 0.0) != (fb > 0.0)) {
+        a = b;
+        fa = fb;
+      } else {
+        fa *= 0.5;
+      }
+      b = c;
+      fb = fc;
+      if (std::abs(b - a) <= 1e-10 * std::max(ds, 1e-3)) break;
+    }
+    out.t = tangent(out.solved.g_y, t);
+    return out;
+  }
+
+  ContinuationOptions options_;
+  HarmonicBalance hbm_;
+  FloquetAnalysis floquet_;
+  int n_;
+  double z_star_ = 0.0, p_ref_ = 1.0, f_ref_ = 1.0, z_ref_ = 1.0, f0_ = 0.0;
+  Eigen::VectorXd r_, dr_dp_, g_;
+  Eigen::MatrixXd jacobian_, g_y_;
+};
+
+Branch Continuer::run(const ProgressFn& progress, const CancelToken& cancel) {
+  Branch branch;
+  branch.parameter = options_.parameter;
+  branch.hbm = options_.hbm;
+  branch.samples = hbm_.samples();
+  branch.positive_well = options_.positive_well;
+
+  const double direction = options_.end > options_.start ? 1.0 : -1.0;
+  const double lambda_start = options_.start / p_ref_, lambda_end = options_.end / p_ref_;
+  Eigen::VectorXd e_p = Eigen::VectorXd::Zero(n_ + 1);
+  e_p[n_] = 1.0;
+
+  // Starting point: the given coefficients or the linear response about the well, corrected at
+  // the fixed start value. From rest (f0 = 0) the equilibrium itself is the exact solution.
+  set_parameter(options_.start);
+  Eigen::VectorXd x0 = options_.initial_coefficients.size() == n_
+                           ? options_.initial_coefficients
+                           : hbm_.linear_guess(z_star_, amplitude() ? options_.start : f0_);
+  Solved solved = correct(y_of(x0, options_.start), e_p);
+  if (!solved.ok && amplitude() && options_.start > 0.0 &&
+      options_.initial_coefficients.size() != n_) {
+    // Grow the response from rest instead: a continuation from f0 = 0 to the start.
+    ContinuationOptions pre = options_;
+    pre.start = 0.0;
+    pre.end = options_.start;
+    pre.stability = false;
+    pre.locate_events = false;
+    pre.landing.clear();
+    pre.displacement_scale_m = z_ref_;
+    const Branch lead = continue_branch(hbm_.model(), pre, {}, cancel);
+    if (lead.status == JobStatus::Ok && !lead.points.empty()) {
+      solved = correct(y_of(lead.points.back().coefficients, options_.start), e_p);
+    }
+  }
+  if (!solved.ok) {
+    branch.status = JobStatus::NoConvergence;
+    branch.message = "no solution at the start value: " + solved.message;
+    return branch;
+  }
+  Eigen::VectorXd y = solved.y;
+  Eigen::VectorXd t = tangent(solved.g_y, direction * e_p);
+  double arclength = 0.0;
+  branch.points.push_back(make_point(y, solved, t, PointMarker::Start, arclength));
+  branch.newton_iterations += solved.iterations;
+
+  std::vector<double> landing;
+  for (double value : options_.landing) {
+    const double l = value / p_ref_;
+    if ((l - lambda_start) * direction > 0.0 && (lambda_end - l) * direction > 0.0) {
+      landing.push_back(l);
+    }
+  }
+
+  double ds = options_.initial_step;
+  double progress_done = 0.0;
+  const double cos_max_turn = std::cos(options_.max_turn_rad);
+  while (true) {
+    if (cancel.cancelled()) {
+      branch.status = JobStatus::Cancelled;
+      branch.message = "cancelled";
+      return branch;
+    }
+    if (static_cast<int>(branch.points.size()) >= options_.max_points) {
+      branch.status = JobStatus::NoConvergence;
+      branch.message = "stopped at max_points = " + std::to_string(options_.max_points);
+      return branch;
+    }
+    // Predictor along the tangent, corrector orthogonal to it.
+    Solved next = correct(y + ds * t, t);
+    Eigen::VectorXd t_next;
+    bool accept = next.ok;
+    if (accept) {
+      t_next = tangent(next.g_y, t);
+      accept = t_next.dot(t) >= cos_max_turn;
+    }
+    branch.newton_iterations += next.iterations;
+    if (!accept) {
+      ++branch.steps_rejected;
+      ds *= 0.5;
+      if (ds < options_.min_step) {
+        branch.status = JobStatus::NoConvergence;
+        branch.message = "step size fell below min_step at " + std::to_string(parameter_of(y)) +
+                         (amplitude() ? " N" : " Hz") + (next.ok ? "" : ": " + next.message);
+        return branch;
+      }
+      continue;
+    }
+    ++branch.steps_accepted;
+
+    // Points to insert between y and the new point: landings, located events, the end.
+    struct Insert {
+      double sigma;
+      double lambda;
+      BranchPoint point;
+    };
+    std::vector<Insert> inserts;
+    const double lambda0 = y[n_], lambda1 = next.y[n_];
+    const bool passes_end = (lambda1 - lambda_end) * direction >= 0.0;
+    auto land = [&](double l, PointMarker marker) {
+      const double fraction = (l - lambda0) / (lambda1 - lambda0);
+      Eigen::VectorXd guess = y + fraction * (next.y - y);
+      guess[n_] = l;
+      const Solved s = correct(guess, e_p);
+      if (s.ok) {
+        inserts.push_back(
+            {fraction * ds, s.y[n_],
+             make_point(s.y, s, tangent(s.g_y, t), marker, arclength + fraction * ds)});
+      }
+      return s.ok;
+    };
+    for (double l : landing) {
+      if ((l - lambda0) * (l - lambda1) < 0.0) land(l, PointMarker::Landing);
+    }
+    BranchPoint next_point = make_point(next.y, next, t_next, PointMarker::None, arclength + ds);
+    const BranchPoint& here = branch.points.back();
+    if (options_.locate_events) {
+      auto within = [&](const Located& located) {
+        return located.ok && (located.solved.y[n_] - lambda_end) * direction <= 0.0;
+      };
+      if ((t[n_] > 0.0) != (t_next[n_] > 0.0)) {
+        const Located fold =
+            locate(y, t, ds, t[n_], t_next[n_],
+                   [&](const Eigen::VectorXd&, const Solved& s) { return tangent(s.g_y, t)[n_]; });
+        if (within(fold)) {
+          inserts.push_back({fold.sigma, fold.solved.y[n_],
+                             make_point(fold.solved.y, fold.solved, fold.t, PointMarker::Fold,
+                                        arclength + fold.sigma)});
+        }
+      } else if (options_.stability &&
+                 (here.floquet.fold_test > 0.0) != (next_point.floquet.fold_test > 0.0)) {
+        const Located bp =
+            locate(y, t, ds, here.floquet.fold_test, next_point.floquet.fold_test,
+                   [&](const Eigen::VectorXd& yy, const Solved&) { return fold_test(yy); });
+        if (within(bp)) {
+          inserts.push_back({bp.sigma, bp.solved.y[n_],
+                             make_point(bp.solved.y, bp.solved, bp.t, PointMarker::BranchPoint,
+                                        arclength + bp.sigma)});
+        }
+      }
+      if (options_.stability &&
+          (here.floquet.flip_test > 0.0) != (next_point.floquet.flip_test > 0.0)) {
+        const Located pd =
+            locate(y, t, ds, here.floquet.flip_test, next_point.floquet.flip_test,
+                   [&](const Eigen::VectorXd& yy, const Solved&) { return flip_test(yy); });
+        if (within(pd)) {
+          inserts.push_back({pd.sigma, pd.solved.y[n_],
+                             make_point(pd.solved.y, pd.solved, pd.t, PointMarker::PeriodDoubling,
+                                        arclength + pd.sigma)});
+        }
+      }
+    }
+    if (passes_end && !land(lambda_end, PointMarker::End)) {
+      branch.status = JobStatus::NoConvergence;
+      branch.message = "could not land on the end value";
+      return branch;
+    }
+    std::sort(inserts.begin(), inserts.end(),
+              [](const Insert& a, const Insert& b) { return a.sigma < b.sigma; });
+    for (Insert& insert : inserts) {
+      // Beyond the end only the end point itself is kept.
+      if (insert.point.marker != PointMarker::End && passes_end &&
+          (insert.lambda - lambda_end) * direction > 0.0) {
+        continue;
+      }
+      if (insert.point.marker == PointMarker::Fold ||
+          insert.point.marker == PointMarker::PeriodDoubling ||
+          insert.point.marker == PointMarker::BranchPoint) {
+        branch.events.push_back({insert.point.marker, insert.point.f0_n, insert.point.freq_hz,
+                                 insert.point.measures.amp_m, branch.points.size()});
+      }
+      branch.points.push_back(std::move(insert.point));
+    }
+    if (passes_end) break;
+
+    // Step control: grow when the corrector converged fast and the branch turned little.
+    const double turn = std::acos(std::clamp(t_next.dot(t), -1.0, 1.0));
+    branch.points.push_back(std::move(next_point));
+    arclength += ds;
+    y = next.y;
+    t = t_next;
+    double factor = 1.0;
+    if (next.iterations < options_.target_iterations) factor = 1.5;
+    if (next.iterations > options_.target_iterations) factor = 0.7;
+    if (turn > 0.5 * options_.max_turn_rad) factor = std::min(factor, 1.0);
+    ds = std::clamp(ds * factor, options_.min_step, options_.max_step);
+
+    if ((y[n_] - lambda_start) * direction < -1e-12) {
+      branch.message = "the branch turned back past the start value";
+      break;
+    }
+    const double done = std::clamp((y[n_] - lambda_start) / (lambda_end - lambda_start), 0.0, 1.0);
+    if (progress && done > progress_done) {
+      progress_done = done;
+      progress(done);
+    }
+  }
+  if (progress) progress(1.0);
+  return branch;
+}
+
+}  // namespace
+
+Branch continue_branch(const Model& model, const ContinuationOptions& options,
+                       const ProgressFn& progress, const CancelToken& cancel) {
+  options.validate();
+  Continuer continuer(model, options);
+  return continuer.run(progress, cancel);
+}
+
+}  // namespace oscilab::analysis

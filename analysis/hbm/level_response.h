@@ -1,0 +1,37 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "analysis/common/job.h"
+#include "analysis/hbm/harmonic_balance.h"
+#include "analysis/model/model.h"
+
+namespace oscilab::analysis {
+
+/// The model's steady response at the levels of a stepped-sine test (§4.2): what an
+/// identification compares with the measured EDCs, one call per well and candidate θ.
+struct LevelResponse {
+  JobStatus status = JobStatus::Ok;
+  std::string message;
+  std::vector<double> f0_n;
+  std::vector<double> edc_j;  // eq. (13), our sign (docs/conventions.md)
+  std::vector<double> amp_m;
+  std::vector<Eigen::VectorXd> coefficients;
+  int newton_iterations = 0;
+  bool used_arclength = false;  // the fast path failed and a full continuation was run
+};
+
+/// Responses at increasing levels, as a sweep up from rest would find them: each level is solved
+/// by Newton from the extrapolation of the previous two (natural continuation, cheap and, since
+/// the levels increase, on the branch a sweep up follows). If a solve fails, or the sign of
+/// det ∂r/∂x flips (the step crossed a fold onto the unstable part), the whole set is computed
+/// instead by pseudo-arclength continuation from rest with a landing at every level, taking each
+/// level's first crossing. Throws InputError for decreasing or negative levels or a model that
+/// harmonic balance cannot handle.
+LevelResponse level_response(const Model& model, double freq_hz, bool positive_well,
+                             const std::vector<double>& levels_n, const HbmOptions& hbm = {});
+
+}  // namespace oscilab::analysis
