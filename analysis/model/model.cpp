@@ -51,7 +51,8 @@ void Model::index_states() {
 std::vector<double> Model::initial_state(double z_m) const {
   std::vector<double> state(static_cast<std::size_t>(state_size_), 0.0);
   for (std::size_t i = 0; i < terms_.size(); ++i) {
-    if (terms_[i]->state_size() > 0) terms_[i]->initial_state(z_m, state.data() + state_offsets_[i]);
+    if (terms_[i]->state_size() > 0)
+      terms_[i]->initial_state(z_m, state.data() + state_offsets_[i]);
   }
   return state;
 }
@@ -129,7 +130,8 @@ std::vector<Equilibrium> Model::equilibria() const {
   const PolynomialStiffness total(coefficients);
   const int degree = static_cast<int>(coefficients.size()) - 1;
   Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(degree, degree);
-  for (int i = 0; i < degree; ++i) companion(0, i) = -coefficients[degree - 1 - i] / coefficients[degree];
+  for (int i = 0; i < degree; ++i)
+    companion(0, i) = -coefficients[degree - 1 - i] / coefficients[degree];
   for (int i = 1; i < degree; ++i) companion(i, i - 1) = 1.0;
   const Eigen::VectorXcd roots = companion.eigenvalues();
 

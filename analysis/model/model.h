@@ -13,8 +13,8 @@ namespace oscilab::analysis {
 /// A static equilibrium z* of the model at rest (K(z*) = 0) and its linearised motion.
 struct Equilibrium {
   double z_m = 0.0;
-  double stiffness_n_m = 0.0;  // U''(z*) = dK/dz at z*
-  bool stable = false;         // U'' > 0: a well
+  double stiffness_n_m = 0.0;        // U''(z*) = dK/dz at z*
+  bool stable = false;               // U'' > 0: a well
   double linear_frequency_hz = 0.0;  // eq. (4): √(U''/m) / 2π; 0 when unstable
 };
 

@@ -5,8 +5,8 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/model/polynomial_stiffness.h"
-#include "analysis/model/reference_models.h"
 #include "analysis/model/position_dependent_friction.h"
+#include "analysis/model/reference_models.h"
 #include "analysis/model/viscous_damping.h"
 
 namespace oscilab::analysis {

@@ -42,10 +42,10 @@ PolynomialStiffness PolynomialStiffness::from_paper(double k3_n_m3, double k2_n_
   return PolynomialStiffness({k0_n, -k1_n_m, k2_n_m2, k3_n_m3});
 }
 
-double PolynomialStiffness::force(double z_m, double /*z_dot_m_s*/,
-                                  const double* /*state*/) const {
+double PolynomialStiffness::force(double z_m, double /*z_dot_m_s*/, const double* /*state*/) const {
   double value = 0.0;  // Horner
-  for (auto it = coefficients_.rbegin(); it != coefficients_.rend(); ++it) value = value * z_m + *it;
+  for (auto it = coefficients_.rbegin(); it != coefficients_.rend(); ++it)
+    value = value * z_m + *it;
   return value;
 }
 

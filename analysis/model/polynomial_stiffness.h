@@ -19,8 +19,7 @@ class PolynomialStiffness final : public ModelTerm {
   explicit PolynomialStiffness(std::vector<double> coefficients);
 
   /// From the paper's eq. (2) parameters.
-  static PolynomialStiffness from_paper(double k3_n_m3, double k2_n_m2, double k1_n_m,
-                                        double k0_n);
+  static PolynomialStiffness from_paper(double k3_n_m3, double k2_n_m2, double k1_n_m, double k0_n);
 
   const std::vector<double>& coefficients() const { return coefficients_; }
 

@@ -121,8 +121,12 @@ void PositionDependentFriction::set_parameter(const std::string& name, double va
 
 nlohmann::json PositionDependentFriction::to_json() const {
   const Parameters& p = parameters_;
-  return {{"type", type()},      {"alpha_n_m2", p.alpha_n_m2}, {"beta_n_m", p.beta_n_m},
-          {"gamma_n", p.gamma_n}, {"ks", p.ks},                 {"vt_m_s", p.vt_m_s}};
+  return {{"type", type()},
+          {"alpha_n_m2", p.alpha_n_m2},
+          {"beta_n_m", p.beta_n_m},
+          {"gamma_n", p.gamma_n},
+          {"ks", p.ks},
+          {"vt_m_s", p.vt_m_s}};
 }
 
 std::unique_ptr<ModelTerm> PositionDependentFriction::clone() const {

@@ -26,10 +26,10 @@ Model paper_model(const PaperFriction& friction) {
 
   std::vector<std::unique_ptr<ModelTerm>> terms;
   terms.push_back(paper_stiffness().clone());
-  terms.push_back(std::make_unique<PositionDependentFriction>(
-      PositionDependentFriction::from_three_points(z_minus, friction.fd_zminus_n,
-                                                   friction.fd_zero_n, z_plus, friction.fd_zplus_n,
-                                                   friction.ks, friction.vt_m_s)));
+  terms.push_back(
+      std::make_unique<PositionDependentFriction>(PositionDependentFriction::from_three_points(
+          z_minus, friction.fd_zminus_n, friction.fd_zero_n, z_plus, friction.fd_zplus_n,
+          friction.ks, friction.vt_m_s)));
   terms.push_back(std::make_unique<ViscousDamping>(friction.c_ns_m));
   return Model(kPaperMassKg, std::move(terms), "paper");
 }

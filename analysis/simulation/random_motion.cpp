@@ -18,9 +18,9 @@ namespace {
 // (FFTW's c2r convention, see docs/conventions.md).
 std::vector<double> inverse_real_dft(std::vector<std::complex<double>> spectrum, std::size_t n) {
   std::vector<double> out(n);
-  fftw_plan plan = fftw_plan_dft_c2r_1d(static_cast<int>(n),
-                                        reinterpret_cast<fftw_complex*>(spectrum.data()),
-                                        out.data(), FFTW_ESTIMATE);
+  fftw_plan plan =
+      fftw_plan_dft_c2r_1d(static_cast<int>(n), reinterpret_cast<fftw_complex*>(spectrum.data()),
+                           out.data(), FFTW_ESTIMATE);
   fftw_execute(plan);
   fftw_destroy_plan(plan);
   return out;

@@ -50,7 +50,8 @@ SteppedSineMotion::SteppedSineMotion(SteppedSineSchedule schedule, double mass_k
   if (s.levels_n.empty()) throw InputError("stepped sine: levels: no level given");
   for (double f0 : s.levels_n) {
     if (!std::isfinite(f0) || f0 < 0.0) {
-      throw InputError("stepped sine: levels: " + std::to_string(f0) + " N is not a valid amplitude");
+      throw InputError("stepped sine: levels: " + std::to_string(f0) +
+                       " N is not a valid amplitude");
     }
   }
 }

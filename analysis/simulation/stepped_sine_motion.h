@@ -14,8 +14,8 @@ namespace oscilab::analysis {
 struct SteppedSineSchedule {
   double frequency_hz = 9.0;  // ν of §3.2
   std::vector<double> levels_n;
-  double hold_s = 10.0;   // per level, ramp included
-  double ramp_s = 0.5;    // amplitude ramp at the start of each hold
+  double hold_s = 10.0;    // per level, ramp included
+  double ramp_s = 0.5;     // amplitude ramp at the start of each hold
   double lead_in_s = 2.5;  // rest before the first level (lets the analysis see the sensor floor)
 
   double duration_s() const;

@@ -4,9 +4,10 @@
 
 namespace oscilab::analysis {
 
-SteppedSineRun simulate_stepped_sine(const TimeSimulator& simulator, const SteppedSineMotion& motion,
-                                     double z0_m, double sample_rate_hz,
-                                     const ProgressFn& progress, const CancelToken& cancel) {
+SteppedSineRun simulate_stepped_sine(const TimeSimulator& simulator,
+                                     const SteppedSineMotion& motion, double z0_m,
+                                     double sample_rate_hz, const ProgressFn& progress,
+                                     const CancelToken& cancel) {
   const SteppedSineSchedule& schedule = motion.schedule();
   TimeSimulator::Run run;
   run.z0_m = z0_m;
@@ -41,8 +42,8 @@ SteppedSineRun simulate_stepped_sine(const TimeSimulator& simulator, const Stepp
       level.cycles = 0;
       continue;
     }
-    level.edc_j = (out.samples.probe_dissipated_j[p + 1] - out.samples.probe_dissipated_j[p]) /
-                  level.cycles;
+    level.edc_j =
+        (out.samples.probe_dissipated_j[p + 1] - out.samples.probe_dissipated_j[p]) / level.cycles;
     p += 2;
   }
   return out;

@@ -27,9 +27,9 @@ struct SteppedSineRun {
 /// level's true EDC. The EDC uses the whole cycles of the second half of each level's steady
 /// part: the first half is left for the transient to die out (the slowest decay of the paper's
 /// model, c/2m ≈ 3.9 s⁻¹ plus friction, has fallen by e⁻¹⁸ after 4.75 s).
-SteppedSineRun simulate_stepped_sine(const TimeSimulator& simulator, const SteppedSineMotion& motion,
-                                     double z0_m, double sample_rate_hz,
-                                     const ProgressFn& progress = {},
+SteppedSineRun simulate_stepped_sine(const TimeSimulator& simulator,
+                                     const SteppedSineMotion& motion, double z0_m,
+                                     double sample_rate_hz, const ProgressFn& progress = {},
                                      const CancelToken& cancel = {});
 
 }  // namespace oscilab::analysis

@@ -49,11 +49,11 @@ class TimeSimulator {
     Status status = Status::Ok;
     std::string message;
     Eigen::VectorXd t_s, z_m, z_dot_m_s, z_ddot_m_s2;
-    Eigen::VectorXd f_n;                  // −m b̈
-    Eigen::VectorXd restoring_force_n;    // R = K + D
-    Eigen::VectorXd damping_force_n;      // D
-    Eigen::VectorXd work_in_j;            // ∫₀ᵗ f ż dt
-    Eigen::VectorXd dissipated_j;         // ∫₀ᵗ D ż dt
+    Eigen::VectorXd f_n;                // −m b̈
+    Eigen::VectorXd restoring_force_n;  // R = K + D
+    Eigen::VectorXd damping_force_n;    // D
+    Eigen::VectorXd work_in_j;          // ∫₀ᵗ f ż dt
+    Eigen::VectorXd dissipated_j;       // ∫₀ᵗ D ż dt
     /// At each probe time: W_in, W_diss and E_mech = ½ m ż² + U(z).
     Eigen::VectorXd probe_t_s, probe_work_in_j, probe_dissipated_j, probe_mechanical_j;
     long rhs_evaluations = 0;

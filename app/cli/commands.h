@@ -9,5 +9,6 @@ namespace oscilab::cli {
 void add_model_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_info_command(CLI::App& app);
+void add_analyze_command(CLI::App& app);
 
 }  // namespace oscilab::cli

@@ -48,8 +48,9 @@ void run(const ModelOptions& options) {
 void add_model_command(CLI::App& app) {
   auto options = std::make_shared<ModelOptions>();
   CLI::App* command = app.add_subcommand(
-      "model", "Show a model (the paper's eq. (7) with Tables 1 and 3, the illustrative eq. (14) "
-               "with Table 2, or a model JSON file), its equilibria and linear frequencies");
+      "model",
+      "Show a model (the paper's eq. (7) with Tables 1 and 3, the illustrative eq. (14) "
+      "with Table 2, or a model JSON file), its equilibria and linear frequencies");
   command->add_option("model", options->spec, "paper | illustrative | MODEL.json")->required();
   command->add_option("--out", options->out_path, "write the model as JSON (oscilab-model/1)");
   command->add_option("--summary", options->summary_path,

@@ -136,10 +136,12 @@ void run(const SimulateOptions& options) {
 
 void add_simulate_command(CLI::App& app) {
   auto o = std::make_shared<SimulateOptions>();
-  CLI::App* command = app.add_subcommand(
-      "simulate", "Virtual rig: simulate a model on the shaking table and write what the "
-                  "accelerometer and the laser vibrometer record (recording + sidecar)");
-  command->add_option("--model", o->model, "paper | illustrative | MODEL.json")->capture_default_str();
+  CLI::App* command =
+      app.add_subcommand("simulate",
+                         "Virtual rig: simulate a model on the shaking table and write what the "
+                         "accelerometer and the laser vibrometer record (recording + sidecar)");
+  command->add_option("--model", o->model, "paper | illustrative | MODEL.json")
+      ->capture_default_str();
   command->add_option("--test", o->test, "stepped-sine | random")
       ->check(CLI::IsMember({"stepped-sine", "random"}))
       ->capture_default_str();
@@ -148,7 +150,9 @@ void add_simulate_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--freq", o->freq_hz, "stepped sine: excitation frequency [Hz]")
       ->capture_default_str();
-  command->add_option("--levels", o->levels, "stepped sine: force amplitudes f0 [N], A:STEP:B or A,B,...")
+  command
+      ->add_option("--levels", o->levels,
+                   "stepped sine: force amplitudes f0 [N], A:STEP:B or A,B,...")
       ->capture_default_str();
   command->add_option("--hold", o->hold_s, "stepped sine: time per level, ramp included [s]")
       ->capture_default_str();
@@ -157,7 +161,8 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--lead-in", o->lead_in_s, "rest before the first level [s]")
       ->capture_default_str();
   command->add_option("--rms", o->rms_n, "random: force rms [N]")->capture_default_str();
-  command->add_option("--band", o->band_hz, "random: force band LOW:HIGH [Hz]")->capture_default_str();
+  command->add_option("--band", o->band_hz, "random: force band LOW:HIGH [Hz]")
+      ->capture_default_str();
   command->add_option("--duration", o->duration_s, "random: length [s]")->capture_default_str();
   command->add_option("--rate", o->rate_hz, "DAQ sample rate [Hz]")->capture_default_str();
   command->add_option("--seed", o->seed, "seed of noise, creep and random excitation")

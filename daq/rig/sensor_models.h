@@ -7,9 +7,9 @@ namespace oscilab::daq {
 
 /// Piezo accelerometer on the table, sampled by a 24-bit DAQ: bias, white noise and quantisation.
 struct AccelerometerSpec {
-  double bias_m_s2 = 4e-3;        // a few mm/s² of offset (thermal, mounting, DAQ offset)
-  double noise_rms_m_s2 = 2e-3;   // white, over the sampled band
-  double lsb_m_s2 = 3e-5;         // ±250 m/s² over 24 bits
+  double bias_m_s2 = 4e-3;       // a few mm/s² of offset (thermal, mounting, DAQ offset)
+  double noise_rms_m_s2 = 2e-3;  // white, over the sampled band
+  double lsb_m_s2 = 3e-5;        // ±250 m/s² over 24 bits
 };
 
 /// Laser vibrometer (displacement output) on the moving mass: white noise and quantisation.
@@ -21,7 +21,7 @@ struct VibrometerSpec {
 /// Slow creep of the table, seen by the vibrometer (y includes it) but not by the accelerometer
 /// (its acceleration is ~1e-9 m/s², far below the accelerometer's noise).
 struct TableCreepSpec {
-  double amplitude_m = 3e-6;     // peak of each of the three slow components
+  double amplitude_m = 3e-6;  // peak of each of the three slow components
   double min_period_s = 30.0;
   double max_period_s = 300.0;
 };

@@ -40,7 +40,9 @@ Sidecar rig_sidecar(const analysis::Model& model, const RigSpec& spec) {
       {"well", spec.positive_well ? "positive" : "negative"},
       {"seed", spec.seed},
       {"accelerometer",
-       {{"bias_m_s2", a.bias_m_s2}, {"noise_rms_m_s2", a.noise_rms_m_s2}, {"lsb_m_s2", a.lsb_m_s2}}},
+       {{"bias_m_s2", a.bias_m_s2},
+        {"noise_rms_m_s2", a.noise_rms_m_s2},
+        {"lsb_m_s2", a.lsb_m_s2}}},
       {"vibrometer", {{"noise_rms_m", v.noise_rms_m}, {"lsb_m", v.lsb_m}}},
       {"creep_amplitude_m", spec.sensors.creep.amplitude_m}};
   return sidecar;
@@ -61,7 +63,8 @@ void measure(const analysis::TableMotion& motion, const RigSpec& spec, std::mt19
     const analysis::TableState table = motion.at(t[k]);
     rig.b_m[k] = table.b_m;
     const double acc = table.b_ddot_m_s2 + a.bias_m_s2 + a.noise_rms_m_s2 * unit_normal(rng);
-    const double y = rig.truth.z_m[k] + table.b_m + creep.at(t[k]) + v.noise_rms_m * unit_normal(rng);
+    const double y =
+        rig.truth.z_m[k] + table.b_m + creep.at(t[k]) + v.noise_rms_m * unit_normal(rng);
     rig.recording.samples_si(k, 0) = quantise(acc, a.lsb_m_s2);
     rig.recording.samples_si(k, 1) = quantise(y, v.lsb_m);
   }
@@ -111,9 +114,9 @@ RigRecording record_stepped_sine(const analysis::Model& model,
   return rig;
 }
 
-RigRecording record_random(const analysis::Model& model, const analysis::RandomMotionSpec& motion_spec,
-                           const RigSpec& spec, const ProgressFn& progress,
-                           const CancelToken& cancel) {
+RigRecording record_random(const analysis::Model& model,
+                           const analysis::RandomMotionSpec& motion_spec, const RigSpec& spec,
+                           const ProgressFn& progress, const CancelToken& cancel) {
   check(spec);
   analysis::RandomMotionSpec seeded = motion_spec;
   seeded.seed = spec.seed;
@@ -135,9 +138,9 @@ RigRecording record_random(const analysis::Model& model, const analysis::RandomM
   excitation.extra["force_rms_n"] = seeded.force_rms_n;
   excitation.extra["fade_s"] = seeded.fade_s;
   rig.recording.sidecar.excitation = excitation;
-  rig.recording.sidecar.notes = "virtual rig: band-limited random, model \"" + model.name() +
-                                "\", start in the " + (spec.positive_well ? "positive" : "negative") +
-                                " well, seed " + std::to_string(spec.seed);
+  rig.recording.sidecar.notes =
+      "virtual rig: band-limited random, model \"" + model.name() + "\", start in the " +
+      (spec.positive_well ? "positive" : "negative") + " well, seed " + std::to_string(spec.seed);
   // A different stream from the excitation's phases (seeded with the same number).
   std::mt19937_64 rng(spec.seed ^ 0x9E3779B97F4A7C15ULL);
   measure(motion, spec, rng, rig);
@@ -151,8 +154,7 @@ void write_truth(const RigRecording& rig, const analysis::Model& model,
   const std::string csv_path = stem + ".truth.csv";
   std::FILE* csv = std::fopen(csv_path.c_str(), "w");
   if (!csv) throw InputError(csv_path + ": cannot write");
-  std::fprintf(csv,
-               "t_s,z_m,z_dot_m_s,z_ddot_m_s2,b_m,f_n,restoring_force_n,damping_force_n\n");
+  std::fprintf(csv, "t_s,z_m,z_dot_m_s,z_ddot_m_s2,b_m,f_n,restoring_force_n,damping_force_n\n");
   const auto& s = rig.truth;
   for (Eigen::Index k = 0; k < s.t_s.size(); ++k) {
     std::fprintf(csv, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t_s[k], s.z_m[k],
@@ -173,8 +175,9 @@ void write_truth(const RigRecording& rig, const analysis::Model& model,
   const nlohmann::json truth = {
       {"model", model.to_json()},
       {"well", rig.recording.sidecar.extra["virtual_rig"]["well"]},
-      {"note", "edc_true_j: exact ∫D ż dt of the simulation over the whole forcing cycles of the "
-               "second half of each level's steady hold, per cycle"},
+      {"note",
+       "edc_true_j: exact ∫D ż dt of the simulation over the whole forcing cycles of the "
+       "second half of each level's steady hold, per cycle"},
       {"levels", levels}};
   const std::string json_path = stem + ".truth.json";
   std::ofstream out(json_path);

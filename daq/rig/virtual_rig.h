@@ -27,9 +27,9 @@ struct RigSpec {
 
 /// A recording as the real rig makes it, plus the truth behind it (for tests and validation).
 struct RigRecording {
-  Recording recording;                  // base_acc [m/s²] and y [m], sidecar with excitation
-  analysis::TimeSimulator::Result truth;  // z, ż, z̈, f, R, D at the sample times
-  Eigen::VectorXd b_m;                  // true table displacement at the sample times
+  Recording recording;                        // base_acc [m/s²] and y [m], sidecar with excitation
+  analysis::TimeSimulator::Result truth;      // z, ż, z̈, f, R, D at the sample times
+  Eigen::VectorXd b_m;                        // true table displacement at the sample times
   std::vector<analysis::LevelEnergy> levels;  // stepped sine: true steady EDC per level
   analysis::TimeSimulator::Status status = analysis::TimeSimulator::Status::Ok;
   std::string message;
@@ -39,9 +39,8 @@ struct RigRecording {
 /// vibrometer on the mass. The table moves so that the model feels f = −m b̈; the accelerometer
 /// reads b̈ + bias + noise, the vibrometer y = z + b + creep + noise, both quantised.
 RigRecording record_stepped_sine(const analysis::Model& model,
-                                 const analysis::SteppedSineSchedule& schedule,
-                                 const RigSpec& spec, const ProgressFn& progress = {},
-                                 const CancelToken& cancel = {});
+                                 const analysis::SteppedSineSchedule& schedule, const RigSpec& spec,
+                                 const ProgressFn& progress = {}, const CancelToken& cancel = {});
 RigRecording record_random(const analysis::Model& model, const analysis::RandomMotionSpec& motion,
                            const RigSpec& spec, const ProgressFn& progress = {},
                            const CancelToken& cancel = {});

@@ -19,9 +19,9 @@ std::vector<double> cubic_roots_closed_form(double a, double b, double c, double
   const double q = (2 * b * b * b - 9 * a * b * c + 27 * a * a * d) / (27 * a * a * a);
   std::vector<double> roots;
   for (int k = 0; k < 3; ++k) {
-    const double t = 2 * std::sqrt(-p / 3) *
-                     std::cos(std::acos(3 * q / (2 * p) * std::sqrt(-3 / p)) / 3 -
-                              2 * std::numbers::pi * k / 3);
+    const double t =
+        2 * std::sqrt(-p / 3) *
+        std::cos(std::acos(3 * q / (2 * p) * std::sqrt(-3 / p)) / 3 - 2 * std::numbers::pi * k / 3);
     roots.push_back(t - b / (3 * a));
   }
   std::sort(roots.begin(), roots.end());
@@ -72,10 +72,12 @@ TEST(Model, PartialsMatchCentralDifferences) {
     for (double v : {-0.2, -0.01, -0.001, 0.0, 0.004, 0.05, 0.3}) {
       const TermPartials p = model.partials(z, v, nullptr);
       const double hz = 1e-7, hv = 1e-8;
-      const double d_dz = (model.restoring_force(z + hz, v, nullptr) -
-                           model.restoring_force(z - hz, v, nullptr)) / (2 * hz);
-      const double d_dv = (model.restoring_force(z, v + hv, nullptr) -
-                           model.restoring_force(z, v - hv, nullptr)) / (2 * hv);
+      const double d_dz =
+          (model.restoring_force(z + hz, v, nullptr) - model.restoring_force(z - hz, v, nullptr)) /
+          (2 * hz);
+      const double d_dv =
+          (model.restoring_force(z, v + hv, nullptr) - model.restoring_force(z, v - hv, nullptr)) /
+          (2 * hv);
       // Central differences: truncation ∝ h² times the third derivative, plus rounding ~ε F/h;
       // 1e-5 relative (with a floor) covers both at these steps.
       EXPECT_NEAR(p.d_dz, d_dz, 1e-5 * std::max(1.0, std::abs(d_dz))) << z << " " << v;

@@ -10,7 +10,8 @@ namespace oscilab::analysis {
 namespace {
 
 TEST(PositionDependentFriction, ParabolaThroughThreePointsHitsThem) {
-  const auto p = PositionDependentFriction::from_three_points(-0.03, 0.3, 0.7, 0.025, 0.6, 1.1, 0.01);
+  const auto p =
+      PositionDependentFriction::from_three_points(-0.03, 0.3, 0.7, 0.025, 0.6, 1.1, 0.01);
   const PositionDependentFriction friction(p);
   EXPECT_NEAR(friction.dynamic_friction_n(-0.03), 0.3, 1e-12);
   EXPECT_NEAR(friction.dynamic_friction_n(0.0), 0.7, 1e-12);

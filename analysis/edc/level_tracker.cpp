@@ -1,0 +1,217 @@
+#include "analysis/edc/level_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace oscilab::analysis {
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  if (values.size() % 2 == 1) return *mid;
+  const double upper = *mid;
+  const double lower = *std::max_element(values.begin(), mid);
+  return 0.5 * (lower + upper);
+}
+
+// 1.4826 · median absolute deviation: σ of Gaussian data, robust to outliers.
+double robust_sigma(const std::vector<double>& values, double centre) {
+  std::vector<double> deviations;
+  deviations.reserve(values.size());
+  for (double v : values) deviations.push_back(std::abs(v - centre));
+  return 1.4826 * median(deviations);
+}
+
+// First index from which every value stays within the band around the final value.
+std::size_t steady_start(const std::vector<double>& x, double rel_tol) {
+  if (x.size() < 3) return 0;
+  const std::vector<double> tail(x.end() - static_cast<std::ptrdiff_t>(x.size() / 3), x.end());
+  const double final_value = median(tail);
+  const double band = 4.0 * robust_sigma(tail, final_value) + rel_tol * std::abs(final_value);
+  std::size_t start = x.size();
+  while (start > 0 && std::abs(x[start - 1] - final_value) <= band) --start;
+  return start;
+}
+
+// Relative change of the first three harmonics between consecutive cycles.
+double harmonic_change(const CycleFit& a, const CycleFit& b) {
+  double diff = 0.0, norm = 0.0;
+  const std::size_t n = std::min<std::size_t>({3, a.z_h.size(), b.z_h.size()});
+  for (std::size_t h = 0; h < n; ++h) {
+    diff += std::norm(a.z_h[h] - b.z_h[h]);
+    norm += std::norm(b.z_h[h]);
+  }
+  return norm > 0 ? std::sqrt(diff / norm) : 0.0;
+}
+
+}  // namespace
+
+std::string LevelResult::flags() const {
+  std::string text;
+  const auto add = [&](const char* flag) {
+    if (!text.empty()) text += ';';
+    text += flag;
+  };
+  if (!period1) add("not-period-1");
+  if (cross_well) add("cross-well");
+  if (few_cycles) add("few-cycles");
+  return text;
+}
+
+LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOptions& options) {
+  LevelResult level;
+  if (cycles.empty()) return level;
+  // Cycles at the end of a detected level may already belong to the ramp to the next one: drop
+  // trailing cycles whose force amplitude is off the level's by more than 0.5 % or 5 σ.
+  std::vector<double> f0_all;
+  for (const CycleFit& c : cycles) f0_all.push_back(c.f0_n);
+  const double f0_level = median(f0_all);
+  const double f0_band = std::max(5e-3 * f0_level, 5.0 * robust_sigma(f0_all, f0_level));
+  std::size_t end = cycles.size();
+  while (end > 0 && std::abs(cycles[end - 1].f0_n - f0_level) > f0_band) --end;
+  const std::vector<CycleFit> all(cycles.begin(),
+                                  cycles.begin() + static_cast<std::ptrdiff_t>(end));
+  if (all.empty()) return level;
+  std::vector<double> edc;
+  edc.reserve(all.size());
+  for (const CycleFit& c : all) edc.push_back(c.edc_j);
+  const std::size_t first = steady_start(edc, options.steady_rel_tol);
+  const std::vector<CycleFit> steady(all.begin() + static_cast<std::ptrdiff_t>(first), all.end());
+  level.transient_cycles = static_cast<int>(first);
+  level.cycles = static_cast<int>(steady.size());
+  level.few_cycles = level.cycles < options.min_steady_cycles;
+  if (steady.empty()) return level;
+
+  const double n = static_cast<double>(steady.size());
+  double sum = 0, sum2 = 0, eq13 = 0, trapz = 0, f0 = 0, z1 = 0, lag = 0, z_mean = 0;
+  level.z_min_m = steady.front().z_min_m;
+  level.z_max_m = steady.front().z_max_m;
+  std::vector<double> mass_residuals, base_residuals, samples, changes;
+  for (std::size_t i = 0; i < steady.size(); ++i) {
+    const CycleFit& c = steady[i];
+    sum += c.edc_j;
+    sum2 += c.edc_j * c.edc_j;
+    eq13 += c.edc_eq13_j;
+    trapz += c.edc_trapz_j;
+    f0 += c.f0_n;
+    z1 += std::abs(c.z_h.front());
+    lag += c.lag_rad;
+    z_mean += c.z_mean_m;
+    level.z_min_m = std::min(level.z_min_m, c.z_min_m);
+    level.z_max_m = std::max(level.z_max_m, c.z_max_m);
+    level.cross_well = level.cross_well ||
+                       (c.z_min_m < options.well_boundary_m && c.z_max_m > options.well_boundary_m);
+    mass_residuals.push_back(c.mass_residual_rms);
+    base_residuals.push_back(c.base_residual_rms);
+    samples.push_back(c.samples);
+    if (i > 0) changes.push_back(harmonic_change(steady[i - 1], c));
+  }
+  level.edc_mean_j = sum / n;
+  level.edc_std_j = n > 1 ? std::sqrt(std::max(0.0, (sum2 - sum * sum / n) / (n - 1))) : 0.0;
+  level.edc_eq13_mean_j = eq13 / n;
+  level.edc_trapz_mean_j = trapz / n;
+  level.f0_n = f0 / n;
+  level.z1_abs_m = z1 / n;
+  level.lag_rad = lag / n;
+  level.z_mean_m = z_mean / n;
+  level.start_s = steady.front().start_s;
+  level.end_s = steady.back().end_s;
+
+  // Noise floor of the mean EDC from the sensor noise (the fits' residual rms; at high levels
+  // this also holds harmonics above H, so the floor errs on the high side there). Per cycle the
+  // quadrature part of Z1 has σ = √(2/N)·σ_z, with σ_z the displacement noise of y − b, and
+  // S₁ = π f0 |Z1| sin θ1 moves by π f0 σ; the mean of n independent cycles divides by √n.
+  const double omega = 2.0 * std::numbers::pi * options.freq_hz;
+  const double mass_noise =
+      median(mass_residuals) / std::pow(omega, derivative_order(options.mass_quantity));
+  const double base_noise =
+      median(base_residuals) / std::pow(omega, derivative_order(options.base_quantity));
+  const double sigma_z = std::hypot(mass_noise, base_noise) * std::sqrt(2.0 / median(samples));
+  level.edc_noise_floor_j = std::numbers::pi * level.f0_n * sigma_z / std::sqrt(n);
+
+  // Period 1: the harmonics repeat from cycle to cycle within their noise. The noise of the
+  // relative change of three harmonics is about √(2·6/N)·σ_z/|Z|; demand 3× that plus 2 %.
+  if (!changes.empty()) {
+    level.period1_change = median(changes);
+    const double noise_change = std::sqrt(12.0 / median(samples)) *
+                                std::hypot(mass_noise, base_noise) /
+                                std::max(level.z1_abs_m, 1e-300);
+    level.period1 = level.period1_change <= 3.0 * noise_change + 0.02;
+  }
+
+  if (level.cross_well) {
+    level.well = "cross-well";
+  } else if (std::isfinite(level.z_mean_m) &&
+             options.mass_quantity == MotionQuantity::Displacement) {
+    level.well = level.z_mean_m > options.well_boundary_m ? "positive" : "negative";
+  } else if (options.well_hint_positive) {
+    level.well = *options.well_hint_positive ? "positive" : "negative";
+  } else {
+    level.well = "unknown";
+  }
+  return level;
+}
+
+LevelTracker::LevelTracker(LevelOptions options) : options_(std::move(options)) {}
+
+int LevelTracker::window_of(const CycleFit& cycle) const {
+  for (std::size_t w = 0; w < options_.windows.size(); ++w) {
+    const LevelWindow& window = options_.windows[w];
+    // A little tolerance: a cycle may end a rounding error past the window's end.
+    if (cycle.start_s >= window.start_s - 1e-9 && cycle.end_s <= window.end_s + 1e-6) {
+      return static_cast<int>(w);
+    }
+  }
+  return -1;
+}
+
+bool LevelTracker::starts_new_level(const CycleFit& cycle) const {
+  if (level_cycles_.empty()) return false;
+  std::vector<double> f0;
+  for (const CycleFit& c : level_cycles_) f0.push_back(c.f0_n);
+  const double reference = median(f0);
+  const double sigma = f0.size() > 4 ? robust_sigma(f0, reference) : 0.0;
+  return std::abs(cycle.f0_n - reference) >
+         std::max(options_.level_change_rel * reference, 5.0 * sigma);
+}
+
+void LevelTracker::close_level(std::vector<LevelResult>& finished) {
+  // A sidecar level is always reported (flagged when it is short); a detected one needs enough
+  // steady cycles to be a level at all, not a ramp between two.
+  const bool from_window = level_window_ >= 0;
+  if (from_window || static_cast<int>(level_cycles_.size()) >= options_.min_steady_cycles) {
+    LevelResult level = summarise_level(level_cycles_, options_);
+    if (from_window || !level.few_cycles) finished.push_back(level);
+  }
+  level_cycles_.clear();
+  level_window_ = -1;
+}
+
+void LevelTracker::push(const std::vector<CycleFit>& cycles, std::vector<LevelResult>& finished) {
+  for (const CycleFit& cycle : cycles) {
+    if (!options_.windows.empty()) {
+      const int window = window_of(cycle);
+      if (window != level_window_ && !level_cycles_.empty()) close_level(finished);
+      if (window < 0) continue;  // ramps and gaps between the sidecar's levels
+      level_window_ = window;
+      level_cycles_.push_back(cycle);
+    } else {
+      if (starts_new_level(cycle)) close_level(finished);
+      level_cycles_.push_back(cycle);
+    }
+  }
+}
+
+void LevelTracker::finish(std::vector<LevelResult>& finished) {
+  if (!level_cycles_.empty()) close_level(finished);
+}
+
+std::optional<LevelResult> LevelTracker::current() const {
+  if (level_cycles_.empty()) return std::nullopt;
+  return summarise_level(level_cycles_, options_);
+}
+
+}  // namespace oscilab::analysis

@@ -1,0 +1,88 @@
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/edc/cycle_fit.h"
+
+namespace oscilab::analysis {
+
+/// A stepped-sine level as the sidecar's excitation gives it: the steady part of a hold.
+struct LevelWindow {
+  double start_s = 0.0;
+  double end_s = 0.0;
+  double f0_nominal_n = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// How cycles are grouped into levels and judged.
+struct LevelOptions {
+  std::vector<LevelWindow> windows;  // empty: levels are found from the cycles' force amplitude
+  double freq_hz = 0.0;
+  MotionQuantity base_quantity = MotionQuantity::Acceleration;
+  MotionQuantity mass_quantity = MotionQuantity::Displacement;
+  /// z between the wells: the paper's zero of y is the rods' horizontal configuration (§2),
+  /// between z₋* and z₊*. A cycle whose z range contains it crosses wells.
+  double well_boundary_m = 0.0;
+  std::optional<bool> well_hint_positive;  // when z's mean is unknown (velocity channel)
+  int min_steady_cycles = 5;
+  /// Without windows: a cycle whose f0 differs from the level's median by more than this
+  /// fraction (or 5 noise σ) starts a new level.
+  double level_change_rel = 0.03;
+  /// Steady-state test: a cycle is steady when it and every later cycle of the level lie within
+  /// 4 robust σ + steady_rel_tol·|value| of the level's final value (median of its last third).
+  double steady_rel_tol = 2e-4;
+};
+
+/// One row of the EDC table (contract §2 names) with what backs it.
+struct LevelResult {
+  std::string well;  // positive | negative | cross-well | unknown
+  double f0_n = 0.0;
+  double edc_mean_j = 0.0;         // ∮ f dz, mean over steady cycles
+  double edc_std_j = 0.0;          // standard deviation over steady cycles
+  int cycles = 0;                  // steady cycles used
+  double edc_eq13_mean_j = 0.0;    // eq. (13) first-harmonic estimate
+  double edc_trapz_mean_j = 0.0;   // trapezoidal loop area
+  double edc_noise_floor_j = 0.0;  // σ of edc_mean_j predicted from the sensor noise
+  double z1_abs_m = 0.0;
+  double lag_rad = 0.0;
+  double z_mean_m = 0.0;
+  double z_min_m = 0.0;
+  double z_max_m = 0.0;
+  double start_s = 0.0;         // first steady cycle start
+  double end_s = 0.0;           // last cycle end
+  int transient_cycles = 0;     // cycles dropped by the steady-state test
+  double period1_change = 0.0;  // median relative change of the harmonics between cycles
+  bool period1 = true;          // false: sub-harmonic or non-periodic motion (Fig. 17)
+  bool cross_well = false;
+  bool usable() const { return period1 && !cross_well && cycles > 0; }
+  std::string flags() const;  // "" or e.g. "not-period-1;cross-well;few-cycles"
+  bool few_cycles = false;
+};
+
+/// Groups fitted cycles into stepped-sine levels, finds each level's steady part, and reduces it
+/// to a LevelResult. Streaming: push() cycles as they come, finish() at the end. The offline
+/// analysis feeds all cycles at once, so live and offline give the same levels.
+class LevelTracker {
+ public:
+  explicit LevelTracker(LevelOptions options);
+  void push(const std::vector<CycleFit>& cycles, std::vector<LevelResult>& finished);
+  void finish(std::vector<LevelResult>& finished);
+  /// The level being filled, summarised so far (live display); empty when there is none.
+  std::optional<LevelResult> current() const;
+
+ private:
+  void close_level(std::vector<LevelResult>& finished);
+  bool starts_new_level(const CycleFit& cycle) const;
+  int window_of(const CycleFit& cycle) const;
+
+  LevelOptions options_;
+  std::vector<CycleFit> level_cycles_;
+  int level_window_ = -1;
+};
+
+/// Reduces one level's cycles (in time order, transient included) to its result.
+LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOptions& options);
+
+}  // namespace oscilab::analysis

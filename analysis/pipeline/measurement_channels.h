@@ -1,0 +1,31 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "analysis/edc/level_tracker.h"
+#include "analysis/signal/motion_quantity.h"
+
+namespace oscilab::analysis {
+
+/// The analysis's view of one recording: the two motion channels in SI, and what the sidecar
+/// says about the excitation. Built from a recording by daq/ (measurement_channels()).
+struct MeasurementChannels {
+  std::string name;  // for messages and tables, e.g. the file name
+  double sample_rate_hz = 0.0;
+  std::optional<double> mass_kg;  // unknown: energies are reported per unit mass
+  Eigen::VectorXd base;           // table motion
+  MotionQuantity base_quantity = MotionQuantity::Acceleration;
+  Eigen::VectorXd mass;  // mass motion (absolute y), or z itself when mass_is_relative
+  MotionQuantity mass_quantity = MotionQuantity::Displacement;
+  bool mass_is_relative = false;
+  std::string excitation_type;  // "stepped-sine", "random", or "" (unknown: detect)
+  std::optional<double> excitation_freq_hz;
+  std::vector<LevelWindow> level_windows;  // steady parts of the holds, when the sidecar has them
+  std::optional<bool> well_hint_positive;
+};
+
+}  // namespace oscilab::analysis

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "analysis/edc/cycle_analyzer.h"
+#include "analysis/edc/level_tracker.h"
+#include "analysis/pipeline/pipeline_settings.h"
+#include "analysis/pipeline/sample_block.h"
+
+namespace oscilab::analysis {
+
+/// What the pipeline needs to know about a stream before the first sample.
+struct StreamSetup {
+  double sample_rate_hz = 512.0;
+  double mass_kg = 1.0;  // 1 with energies per unit mass when the mass is unknown
+  MotionQuantity base_quantity = MotionQuantity::Acceleration;
+  MotionQuantity mass_quantity = MotionQuantity::Displacement;
+  bool mass_is_relative = false;
+  double excitation_freq_hz = 0.0;         // required: given, or detected offline beforehand
+  std::vector<LevelWindow> level_windows;  // from the sidecar; empty: detect levels
+  std::optional<bool> well_hint_positive;
+  double t0_s = 0.0;  // first cycle start
+};
+
+/// The one measurement engine (§4.1): SampleBlocks in, per-cycle fits and per-level EDC out.
+/// Live work pushes blocks as they arrive; offline work pushes a whole record as one block and
+/// calls finish(). Both run the same code, so their results agree (a test replays a record in
+/// odd block sizes). Not thread-safe: owned by the pipeline thread.
+class MeasurementPipeline {
+ public:
+  MeasurementPipeline(const PipelineSettings& settings, const StreamSetup& setup);
+
+  void push(const SampleBlock& block);
+  /// Ends the stream: closes the level being filled.
+  void finish();
+
+  const std::vector<CycleFit>& cycles() const { return cycles_; }
+  const std::vector<LevelResult>& levels() const { return levels_; }
+  /// The level being filled, summarised so far (for a live display).
+  std::optional<LevelResult> current_level() const { return tracker_.current(); }
+  const StreamSetup& setup() const { return setup_; }
+
+ private:
+  StreamSetup setup_;
+  CycleAnalyzer analyzer_;
+  LevelTracker tracker_;
+  std::vector<CycleFit> cycles_;
+  std::vector<CycleFit> completed_;  // scratch, reused between pushes
+  std::vector<double> t_scratch_;
+  std::vector<LevelResult> levels_;
+};
+
+}  // namespace oscilab::analysis

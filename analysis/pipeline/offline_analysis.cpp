@@ -1,0 +1,191 @@
+#include "analysis/pipeline/offline_analysis.h"
+
+#include <cmath>
+
+#include "analysis/common/input_error.h"
+
+namespace oscilab::analysis {
+namespace {
+
+// A record is a sine test when one tone holds most of the base channel's power.
+constexpr double kSineToneFraction = 0.5;
+
+// Real roots of the fitted cubic where K' > 0 (stable equilibria), for the damping slices.
+std::vector<double> stable_zeros(const PolynomialFit& fit, double lo, double hi) {
+  std::vector<double> zeros;
+  constexpr int kSteps = 2000;
+  double previous = fit.value(lo);
+  for (int i = 1; i <= kSteps; ++i) {
+    const double z = lo + (hi - lo) * i / kSteps;
+    const double value = fit.value(z);
+    if (previous < 0.0 && value >= 0.0) {  // K rising through zero: stable
+      double a = z - (hi - lo) / kSteps, b = z;
+      for (int k = 0; k < 60; ++k) {
+        const double m = 0.5 * (a + b);
+        (fit.value(m) < 0.0 ? a : b) = m;
+      }
+      zeros.push_back(0.5 * (a + b));
+    }
+    previous = value;
+  }
+  return zeros;
+}
+
+}  // namespace
+
+RecordAnalysis analyze_record(const MeasurementChannels& channels,
+                              const PipelineSettings& settings) {
+  if (channels.base.size() != channels.mass.size() || channels.base.size() < 16) {
+    throw InputError(channels.name + ": base and mass channels need the same, non-trivial length");
+  }
+  RecordAnalysis out;
+  out.name = channels.name;
+  out.per_unit_mass = !channels.mass_kg.has_value();
+  const double mass = channels.mass_kg.value_or(1.0);
+  if (out.per_unit_mass) {
+    out.notes.push_back(
+        "no mass_kg in the sidecar: forces are per unit mass (N/kg) and energies "
+        "per unit mass (J/kg)");
+  }
+
+  StreamSetup setup;
+  setup.sample_rate_hz = channels.sample_rate_hz;
+  setup.mass_kg = mass;
+  setup.base_quantity = channels.base_quantity;
+  setup.mass_quantity = channels.mass_quantity;
+  setup.mass_is_relative = channels.mass_is_relative;
+  setup.level_windows = channels.level_windows;
+  setup.well_hint_positive = channels.well_hint_positive;
+
+  out.tone = dominant_tone(channels.base, channels.sample_rate_hz);
+  if (channels.excitation_freq_hz) {
+    setup.excitation_freq_hz = *channels.excitation_freq_hz;
+  } else {
+    setup.excitation_freq_hz = out.tone.freq_hz;
+    out.frequency_detected = true;
+  }
+  out.stepped_sine =
+      channels.excitation_type == "stepped-sine" ||
+      (channels.excitation_type.empty() && out.tone.power_fraction >= kSineToneFraction);
+  if (out.frequency_detected && out.stepped_sine) {
+    out.notes.push_back("excitation frequency detected from the base channel: " +
+                        std::to_string(setup.excitation_freq_hz) + " Hz");
+  }
+  if (out.stepped_sine && channels.level_windows.empty()) {
+    out.notes.push_back("levels detected from the force amplitude (no levels in the sidecar)");
+  }
+  out.setup = setup;
+
+  if (out.stepped_sine && setup.excitation_freq_hz > 0) {
+    MeasurementPipeline pipeline(settings, setup);
+    SampleBlock block;
+    block.samples.resize(channels.base.size(), 2);
+    block.samples.col(0) = channels.base;
+    block.samples.col(1) = channels.mass;
+    pipeline.push(block);
+    pipeline.finish();
+    out.cycles = pipeline.cycles();
+    out.levels = pipeline.levels();
+  }
+  out.signals = motion_signals(channels, settings, mass);
+  return out;
+}
+
+CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
+                                  const PipelineSettings& settings, const ProgressFn& progress,
+                                  const CancelToken& cancel) {
+  CampaignAnalysis campaign;
+  campaign.settings = settings;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (cancel.cancelled()) {
+      campaign.status = JobStatus::Cancelled;
+      return campaign;
+    }
+    campaign.records.push_back(analyze_record(records[i], settings));
+    if (progress) progress(static_cast<double>(i + 1) / static_cast<double>(records.size() + 1));
+  }
+  std::vector<const MotionSignals*> signals;
+  for (const RecordAnalysis& r : campaign.records) {
+    if (r.signals.z_absolute) signals.push_back(&r.signals);
+  }
+  if (signals.empty()) {
+    campaign.rfs_message = "no record measures the mass position (z's mean is unknown)";
+  } else {
+    try {
+      campaign.stiffness = stiffness_slice(signals, settings);
+      for (double z : stable_zeros(campaign.stiffness->fit, campaign.stiffness->z_min_m,
+                                   campaign.stiffness->z_max_m)) {
+        campaign.damping.push_back(damping_slice(signals, *campaign.stiffness, z, settings));
+      }
+    } catch (const InputError& error) {
+      campaign.rfs_message = error.what();
+    }
+  }
+  if (progress) progress(1.0);
+  return campaign;
+}
+
+nlohmann::json campaign_summary(const CampaignAnalysis& campaign) {
+  using nlohmann::json;
+  json summary;
+  summary["settings"] = campaign.settings.to_json();
+  json records = json::array();
+  for (const RecordAnalysis& r : campaign.records) {
+    json levels = json::array();
+    for (const LevelResult& level : r.levels) {
+      levels.push_back({{"well", level.well},
+                        {"f0_n", level.f0_n},
+                        {"edc_mean_j", level.edc_mean_j},
+                        {"edc_std_j", level.edc_std_j},
+                        {"edc_noise_floor_j", level.edc_noise_floor_j},
+                        {"cycles", level.cycles},
+                        {"transient_cycles", level.transient_cycles},
+                        {"flags", level.flags()}});
+    }
+    records.push_back({{"name", r.name},
+                       {"sample_rate_hz", r.setup.sample_rate_hz},
+                       {"excitation_freq_hz", r.setup.excitation_freq_hz},
+                       {"frequency_detected", r.frequency_detected},
+                       {"tone_power_fraction", r.tone.power_fraction},
+                       {"stepped_sine", r.stepped_sine},
+                       {"per_unit_mass", r.per_unit_mass},
+                       {"cycles", r.cycles.size()},
+                       {"levels", levels},
+                       {"notes", r.notes}});
+  }
+  summary["records"] = records;
+  if (campaign.stiffness) {
+    const StiffnessSlice& s = *campaign.stiffness;
+    const auto c = [&](int i) {
+      return i < s.fit.coefficients.size() ? s.fit.coefficients[i] : 0.0;
+    };
+    const auto e = [&](int i) { return i < s.fit.std_errors.size() ? s.fit.std_errors[i] : 0.0; };
+    // Eq. (2): K(z) = k3 z³ + k2 z² − k1 z + k0.
+    summary["stiffness_fit"] = {{"k3_n_m3", c(3)},
+                                {"k3_n_m3_std", e(3)},
+                                {"k2_n_m2", c(2)},
+                                {"k2_n_m2_std", e(2)},
+                                {"k1_n_m", -c(1)},
+                                {"k1_n_m_std", e(1)},
+                                {"k0_n", c(0)},
+                                {"k0_n_std", e(0)},
+                                {"residual_rms_n", s.fit.residual_rms},
+                                {"samples", s.fit.samples},
+                                {"velocity_band_m_s", s.velocity_band_m_s},
+                                {"z_min_m", s.z_min_m},
+                                {"z_max_m", s.z_max_m}};
+    json damping = json::array();
+    for (const DampingSlice& d : campaign.damping) {
+      damping.push_back({{"z_center_m", d.z_center_m},
+                         {"position_band_m", d.position_band_m},
+                         {"bins", d.bins.size()}});
+    }
+    summary["damping_slices"] = damping;
+  } else {
+    summary["stiffness_fit"] = nullptr;
+    summary["rfs_message"] = campaign.rfs_message;
+  }
+  return summary;
+}
+
+}  // namespace oscilab::analysis

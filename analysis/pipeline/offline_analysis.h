@@ -1,0 +1,56 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/common/job.h"
+#include "analysis/pipeline/measurement_channels.h"
+#include "analysis/pipeline/measurement_pipeline.h"
+#include "analysis/rfs/motion_signals.h"
+#include "analysis/rfs/restoring_force_slices.h"
+#include "analysis/signal/frequency_estimator.h"
+
+namespace oscilab::analysis {
+
+/// Everything the offline analysis learns from one record.
+struct RecordAnalysis {
+  std::string name;
+  StreamSetup setup;  // as the pipeline ran (frequency given or detected)
+  bool frequency_detected = false;
+  DominantTone tone;           // of the base channel
+  bool stepped_sine = false;   // EDC levels were computed
+  bool per_unit_mass = false;  // no mass_kg: forces in N/kg and energies in J/kg
+  std::vector<CycleFit> cycles;
+  std::vector<LevelResult> levels;
+  MotionSignals signals;
+  std::vector<std::string> notes;  // what a reader should know (detections, exclusions)
+};
+
+/// Several records analysed together: per-record EDC and one restoring surface over all.
+struct CampaignAnalysis {
+  PipelineSettings settings;
+  std::vector<RecordAnalysis> records;
+  std::optional<StiffnessSlice> stiffness;
+  std::vector<DampingSlice> damping;  // at the stable zeros of the fitted K(z)
+  std::string rfs_message;            // why there is no stiffness slice, when there is none
+  JobStatus status = JobStatus::Ok;
+};
+
+/// The offline analysis of one record: detect the excitation when the sidecar does not say it,
+/// run the measurement pipeline over the whole record as one block, and compute the time
+/// signals of the restoring surface.
+RecordAnalysis analyze_record(const MeasurementChannels& channels,
+                              const PipelineSettings& settings);
+
+/// analyze_record for each, then the stiffness and damping slices over all of them.
+CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
+                                  const PipelineSettings& settings, const ProgressFn& progress = {},
+                                  const CancelToken& cancel = {});
+
+/// Summary JSON (contract §2 `stiffness_fit`, plus settings, per-record detections, noise).
+nlohmann::json campaign_summary(const CampaignAnalysis& campaign);
+
+}  // namespace oscilab::analysis

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <Eigen/Core>
+
+namespace oscilab::analysis {
+
+/// Zero-phase integration and differentiation in the frequency domain (FFTW), for offline work.
+///
+/// A record is extended by its mirror image (even extension, length 2N) so that the periodic
+/// signal the DFT sees has no jump at the ends, transformed, multiplied by (iω)^order and by a
+/// real, zero-phase band window, and transformed back (conventions: docs/conventions.md).
+///
+/// Integration (order < 0) divides by (iω)^|order|, which blows up towards DC: below
+/// `highpass_hz` the window is 0 and it rises to 1 by 2·highpass_hz along a raised cosine, so a
+/// sensor bias, its slow drift and the integration constants never enter. Differentiation
+/// (order > 0) multiplies by (iω)^order, which amplifies noise: above `lowpass_hz` the window
+/// falls to 0 by 1.25·lowpass_hz along a raised cosine. The window is real and even, so no phase
+/// is added at any frequency: a 9 Hz sine integrates to exactly −1/ω² times itself.
+struct SpectralOptions {
+  double highpass_hz = 0.0;  // 0: keep all but DC (DC is always dropped when integrating)
+  double lowpass_hz = 0.0;   // 0: no low-pass
+};
+
+/// Returns d^order x / dt^order (order > 0) or the order-fold integral (order < 0) of a record
+/// sampled at `sample_rate_hz`. order == 0 only filters.
+Eigen::VectorXd spectral_derivative(const Eigen::VectorXd& x, double sample_rate_hz, int order,
+                                    const SpectralOptions& options);
+
+/// The band window of SpectralOptions at frequency f (for documentation plots and tests).
+double spectral_window(double f_hz, const SpectralOptions& options, bool integrating);
+
+}  // namespace oscilab::analysis

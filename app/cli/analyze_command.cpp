@@ -1,0 +1,198 @@
+// oscilab-cli analyze REC... --edc EDC.csv [--rfs RFS.csv] [--summary S.json] (contract §2)
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "analysis/common/input_error.h"
+#include "analysis/pipeline/offline_analysis.h"
+#include "app/cli/commands.h"
+#include "app/cli/progress_bar.h"
+#include "daq/recording/measurement_mapping.h"
+
+namespace oscilab::cli {
+namespace {
+
+struct AnalyzeOptions {
+  std::vector<std::string> recordings;
+  std::string edc_path;
+  std::string rfs_path;
+  std::string damping_path;
+  std::string cycles_path;
+  std::string summary_path;
+  double freq_hz = 0.0;
+  std::string well;
+  bool detect_levels = false;
+  analysis::PipelineSettings settings;
+};
+
+std::FILE* open_output(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (!file) throw InputError(path + ": cannot write");
+  return file;
+}
+
+void close_output(std::FILE* file, const std::string& path) {
+  const bool failed = std::ferror(file) != 0;
+  if (std::fclose(file) != 0 || failed) throw InputError(path + ": write failed");
+}
+
+void write_edc(const analysis::CampaignAnalysis& campaign, const std::string& path) {
+  std::FILE* out = open_output(path);
+  std::fprintf(out,
+               "well,f0_n,edc_mean_j,edc_std_j,cycles,record,edc_noise_floor_j,edc_eq13_mean_j,"
+               "edc_trapz_mean_j,z1_abs_m,lag_rad,z_mean_m,start_s,end_s,transient_cycles,"
+               "period1_change,usable,flags\n");
+  for (const auto& record : campaign.records) {
+    for (const auto& l : record.levels) {
+      std::fprintf(
+          out, "%s,%.6g,%.9g,%.6g,%d,%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6f,%.6f,%d,%.6g,%d,%s\n",
+          l.well.c_str(), l.f0_n, l.edc_mean_j, l.edc_std_j, l.cycles, record.name.c_str(),
+          l.edc_noise_floor_j, l.edc_eq13_mean_j, l.edc_trapz_mean_j, l.z1_abs_m, l.lag_rad,
+          l.z_mean_m, l.start_s, l.end_s, l.transient_cycles, l.period1_change, l.usable() ? 1 : 0,
+          l.flags().c_str());
+    }
+  }
+  close_output(out, path);
+}
+
+void write_cycles(const analysis::CampaignAnalysis& campaign, const std::string& path) {
+  std::FILE* out = open_output(path);
+  std::fprintf(out,
+               "record,start_s,end_s,f0_n,edc_j,edc_eq13_j,edc_trapz_j,z1_abs_m,lag_rad,"
+               "z_mean_m,z_min_m,z_max_m\n");
+  for (const auto& record : campaign.records) {
+    for (const auto& c : record.cycles) {
+      std::fprintf(out, "%s,%.6f,%.6f,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+                   record.name.c_str(), c.start_s, c.end_s, c.f0_n, c.edc_j, c.edc_eq13_j,
+                   c.edc_trapz_j, std::abs(c.z_h.front()), c.lag_rad, c.z_mean_m, c.z_min_m,
+                   c.z_max_m);
+    }
+  }
+  close_output(out, path);
+}
+
+void write_rfs(const analysis::CampaignAnalysis& campaign, const std::string& path) {
+  if (!campaign.stiffness) throw InputError("--rfs: no stiffness slice: " + campaign.rfs_message);
+  std::FILE* out = open_output(path);
+  std::fprintf(out, "z_m,restoring_force_n,samples\n");
+  for (const auto& bin : campaign.stiffness->bins) {
+    std::fprintf(out, "%.9g,%.9g,%d\n", bin.x, bin.force_n, bin.samples);
+  }
+  close_output(out, path);
+}
+
+void write_damping(const analysis::CampaignAnalysis& campaign, const std::string& path) {
+  std::FILE* out = open_output(path);
+  std::fprintf(out, "z_center_m,z_dot_m_s,damping_force_n,samples\n");
+  for (const auto& slice : campaign.damping) {
+    for (const auto& bin : slice.bins) {
+      std::fprintf(out, "%.9g,%.9g,%.9g,%d\n", slice.z_center_m, bin.x, bin.force_n, bin.samples);
+    }
+  }
+  close_output(out, path);
+}
+
+void print_report(const analysis::CampaignAnalysis& campaign) {
+  for (const auto& record : campaign.records) {
+    std::printf("%s: %s, excitation %.4f Hz%s%s\n", record.name.c_str(),
+                record.stepped_sine ? "stepped sine" : "not a sine test (no EDC levels)",
+                record.setup.excitation_freq_hz, record.frequency_detected ? " (detected)" : "",
+                record.per_unit_mass ? ", per unit mass" : "");
+    for (const auto& note : record.notes) std::printf("  note: %s\n", note.c_str());
+    if (record.levels.empty()) continue;
+    std::printf("  %-10s %7s %12s %11s %12s %6s  %s\n", "well", "f0 [N]", "EDC [J]", "std [J]",
+                "floor [J]", "cycles", "flags");
+    for (const auto& l : record.levels) {
+      std::printf("  %-10s %7.3f %12.5g %11.3g %12.3g %6d  %s\n", l.well.c_str(), l.f0_n,
+                  l.edc_mean_j, l.edc_std_j, l.edc_noise_floor_j, l.cycles, l.flags().c_str());
+    }
+  }
+  if (campaign.stiffness) {
+    const auto& c = campaign.stiffness->fit.coefficients;
+    const auto& e = campaign.stiffness->fit.std_errors;
+    std::printf(
+        "stiffness K(z) = k3 z^3 + k2 z^2 - k1 z + k0 (eq. (2)) from %ld samples with "
+        "|z_dot| < %.3g m/s:\n  k3 = %.4g ± %.2g N/m^3, k2 = %.4g ± %.2g N/m^2, "
+        "k1 = %.4g ± %.2g N/m, k0 = %.4g ± %.2g N\n",
+        static_cast<long>(campaign.stiffness->fit.samples), campaign.stiffness->velocity_band_m_s,
+        c[3], e[3], c[2], e[2], -c[1], e[1], c[0], e[0]);
+  } else {
+    std::printf("no stiffness slice: %s\n", campaign.rfs_message.c_str());
+  }
+}
+
+void run(const AnalyzeOptions& options) {
+  std::vector<analysis::MeasurementChannels> records;
+  daq::MappingOverrides overrides;
+  if (options.freq_hz > 0) overrides.excitation_freq_hz = options.freq_hz;
+  if (!options.well.empty()) overrides.well_positive = options.well == "positive";
+  overrides.ignore_sidecar_levels = options.detect_levels;
+  for (const auto& path : options.recordings) {
+    records.push_back(daq::measurement_channels(daq::read_recording(path), overrides));
+  }
+  analysis::CampaignAnalysis campaign;
+  {
+    ProgressBar bar("analyze");
+    campaign = analysis::analyze_campaign(records, options.settings, bar.callback());
+  }
+  print_report(campaign);
+  if (!options.edc_path.empty()) write_edc(campaign, options.edc_path);
+  if (!options.cycles_path.empty()) write_cycles(campaign, options.cycles_path);
+  if (!options.rfs_path.empty()) write_rfs(campaign, options.rfs_path);
+  if (!options.damping_path.empty()) write_damping(campaign, options.damping_path);
+  if (!options.summary_path.empty()) {
+    std::ofstream out(options.summary_path);
+    out << analysis::campaign_summary(campaign).dump(2) << '\n';
+    if (!out) throw InputError(options.summary_path + ": write failed");
+  }
+}
+
+}  // namespace
+
+void add_analyze_command(CLI::App& app) {
+  auto o = std::make_shared<AnalyzeOptions>();
+  CLI::App* command = app.add_subcommand(
+      "analyze",
+      "Measurement analysis (§3, §4.1): per-level energy dissipated per cycle of "
+      "stepped-sine records and the restoring-force surface of all records");
+  command->add_option("recordings", o->recordings, "recordings (each with its JSON sidecar)")
+      ->required();
+  command->add_option("--edc", o->edc_path,
+                      "EDC table (CSV): well,f0_n,edc_mean_j,edc_std_j,cycles,... per level");
+  command->add_option("--rfs", o->rfs_path,
+                      "stiffness slice (CSV): z_m,restoring_force_n,samples (|z_dot| small)");
+  command->add_option("--damping", o->damping_path,
+                      "damping slices at the stable equilibria (CSV): z_center_m,z_dot_m_s,"
+                      "damping_force_n,samples");
+  command->add_option("--cycles", o->cycles_path, "every fitted cycle (CSV)");
+  command->add_option("--summary", o->summary_path,
+                      "summary (JSON): settings, detections, stiffness_fit with standard errors");
+  command->add_option("--freq", o->freq_hz,
+                      "excitation frequency [Hz] (default: sidecar, else detected)");
+  command->add_option("--well", o->well, "well of the records when the mass channel cannot tell")
+      ->check(CLI::IsMember({"positive", "negative"}));
+  command->add_flag("--detect-levels", o->detect_levels,
+                    "find levels from the force amplitude even when the sidecar lists them");
+  command->add_option("--harmonics", o->settings.harmonics, "harmonics per cycle fit")
+      ->capture_default_str();
+  command
+      ->add_option("--highpass", o->settings.integration_highpass_hz,
+                   "cut-off of the zero-phase double integration [Hz]")
+      ->capture_default_str();
+  command
+      ->add_option("--lowpass", o->settings.derivative_lowpass_hz,
+                   "cut-off of the spectral differentiation [Hz]")
+      ->capture_default_str();
+  command
+      ->add_option("--well-boundary", o->settings.well_boundary_m,
+                   "z between the wells [m] (cross-well detection)")
+      ->capture_default_str();
+  command->callback([o] {
+    if (o->edc_path.empty() && o->rfs_path.empty() && o->summary_path.empty()) {
+      throw InputError("analyze: nothing to write: give --edc, --rfs or --summary");
+    }
+    run(*o);
+  });
+}
+
+}  // namespace oscilab::cli

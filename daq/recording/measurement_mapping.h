@@ -1,0 +1,25 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "analysis/pipeline/measurement_channels.h"
+#include "daq/recording/recording.h"
+
+namespace oscilab::daq {
+
+/// Choices a person can make on the command line where the sidecar is silent or wrong.
+struct MappingOverrides {
+  std::optional<double> excitation_freq_hz;
+  std::optional<bool> well_positive;
+  bool ignore_sidecar_levels = false;  // detect levels from the signals instead
+};
+
+/// The analysis's view of a recording: the base channel (role "base"), the mass channel (role
+/// "mass", or "relative" for z measured directly), their quantities, and the excitation
+/// metadata. Throws InputError naming the file when a needed channel is missing or has a
+/// quantity the analysis cannot use.
+analysis::MeasurementChannels measurement_channels(const Recording& recording,
+                                                   const MappingOverrides& overrides = {});
+
+}  // namespace oscilab::daq
