@@ -64,9 +64,40 @@ class Continuer {
     g_y_.resize(n_, n_ + 1);
   }
 
-  Branch run(const ProgressFn& progress, const CancelToken& cancel);
+  Branch run(const ProgressFn& progress, const CancelToken& cancel) {
+    Branch branch = run_steps(progress, cancel);
+    attribute_crossings_to_folds(branch);
+    return branch;
+  }
 
  private:
+  Branch run_steps(const ProgressFn& progress, const CancelToken& cancel);
+
+  // The Floquet multiplier of a truncated HBM orbit reaches +1 a little away from the HBM fold
+  // (the orbit is not exactly periodic; at H = 7 on eq. (14) it is 1.017 at the fold, 1.0003 at
+  // H = 21), so a +1 crossing can fall in the step next to the fold's. Such a crossing belongs to
+  // the fold, not to a bifurcation: drop branch points within two points of a fold.
+  static void attribute_crossings_to_folds(Branch& branch) {
+    std::vector<BranchEvent> kept;
+    for (const BranchEvent& event : branch.events) {
+      bool near_fold = false;
+      if (event.kind == PointMarker::BranchPoint) {
+        for (const BranchEvent& fold : branch.events) {
+          near_fold |=
+              fold.kind == PointMarker::Fold &&
+              (fold.point_index > event.point_index ? fold.point_index - event.point_index
+                                                    : event.point_index - fold.point_index) <= 2;
+        }
+      }
+      if (near_fold) {
+        branch.points[event.point_index].marker = PointMarker::None;
+      } else {
+        kept.push_back(event);
+      }
+    }
+    branch.events = kept;
+  }
+
   struct Solved {
     bool ok = false;
     Eigen::VectorXd y;
@@ -238,7 +269,7 @@ class Continuer {
   Eigen::MatrixXd jacobian_, g_y_;
 };
 
-Branch Continuer::run(const ProgressFn& progress, const CancelToken& cancel) {
+Branch Continuer::run_steps(const ProgressFn& progress, const CancelToken& cancel) {
   Branch branch;
   branch.parameter = options_.parameter;
   branch.hbm = options_.hbm;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/LU>
+
 #include "analysis/common/input_error.h"
 
 namespace oscilab::analysis {

@@ -27,7 +27,7 @@ namespace oscilab::analysis {
 /// Markers: a real multiplier crosses +1 where det(Φ − I) changes sign (a fold of the branch), and
 /// −1 where det(Φ + I) changes sign (period doubling).
 struct FloquetOptions {
-  int steps_per_forcing_period = 512;
+  int steps_per_forcing_period = 1024;
 };
 
 struct FloquetResult {

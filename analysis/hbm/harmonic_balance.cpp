@@ -39,7 +39,7 @@ double mean_product(const std::vector<std::complex<double>>& w, int n, Trig u, i
 }  // namespace
 
 int HbmOptions::default_samples(int harmonics, int subharmonic) {
-  return std::max(32, next_power_of_two(8 * harmonics * subharmonic + 1));
+  return std::max(32, next_power_of_two(16 * harmonics * subharmonic));
 }
 
 int HbmOptions::resolved_samples() const {
@@ -284,10 +284,15 @@ double HarmonicBalance::half_peak_to_peak(const Eigen::VectorXd& x) {
 
 void HarmonicBalance::sample(const Eigen::VectorXd& x, int count, Eigen::VectorXd& z_m,
                              Eigen::VectorXd& z_dot_m_s) {
-  if (!sampler_ || sampler_->samples() != count) {
-    sampler_ = std::make_unique<FourierGrid>(grid_.harmonics(), count);
+  FourierGrid* grid = nullptr;
+  for (const auto& g : samplers_) {
+    if (g->samples() == count) grid = g.get();
   }
-  sampler_->synthesise(x, z_m, z_dot_m_s);
+  if (!grid) {
+    samplers_.push_back(std::make_unique<FourierGrid>(grid_.harmonics(), count));
+    grid = samplers_.back().get();
+  }
+  grid->synthesise(x, z_m, z_dot_m_s);
   z_dot_m_s *= base_omega();
 }
 

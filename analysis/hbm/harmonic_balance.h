@@ -142,7 +142,7 @@ class HarmonicBalance {
   HbmOptions options_;
   double freq_hz_ = 0.0;
   FourierGrid grid_;
-  std::unique_ptr<FourierGrid> sampler_;  // grid of the last sample() count
+  std::vector<std::unique_ptr<FourierGrid>> samplers_;  // one grid per sample() count used
   // Work buffers sized once.
   Eigen::VectorXd amp_z_, amp_z_dot_;
   Eigen::VectorXd z_, z_tau_, z_dot_, force_, force_coefficients_, stiffness_, damping_;
