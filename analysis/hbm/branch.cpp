@@ -42,9 +42,9 @@ void write_branch_csv(const Branch& branch, std::ostream& out) {
   out.precision(10);
   for (const BranchPoint& p : branch.points) {
     const HbmMeasures& m = p.measures;
-    out << p.f0_n << ',' << m.amp_m << ',' << std::abs(m.z1_m) << ',' << std::arg(m.z1_m) << ','
-        << m.edc_j << ',' << (p.stability_known && p.floquet.stable ? 1 : 0) << ',' << p.freq_hz
-        << ',' << m.edc_dissipation_j << ',';
+    out << p.f0_n << ',' << m.amp_m << ',' << std::abs(m.z1_m) << ',' << std::arg(m.z1_m) + 0.0
+        << ',' << m.edc_j + 0.0 << ',' << (p.stability_known && p.floquet.stable ? 1 : 0) << ','
+        << p.freq_hz << ',' << m.edc_dissipation_j << ',';
     if (p.stability_known) {
       const auto& mu = p.floquet.multipliers;
       out << std::abs(mu[0]) << ',' << std::abs(mu[1]) << ',' << mu[0].real() << ',' << mu[0].imag()
