@@ -14,6 +14,7 @@ struct Recording {
   Sidecar sidecar;
   Eigen::MatrixXd samples_si;  // rows: samples at sidecar.sample_rate_hz; cols: channels
   std::string source_path;     // where it was read from (empty when made in memory)
+  std::string container;       // e.g. "WAV (Microsoft), 64 bit float" or "CSV"; set by the reader
 
   Eigen::Index sample_count() const { return samples_si.rows(); }
   double duration_s() const;
@@ -27,13 +28,24 @@ struct Recording {
 /// its JSON sidecar of the same stem. Every problem (missing or malformed sidecar, unknown unit or
 /// role, channel count or rate mismatch, truncated or empty data, NaN/Inf, non-monotonic CSV
 /// time, ...) throws one oscilab::InputError naming the file and the problem.
+///
+/// Sound containers store an integer sample rate: the sidecar's rate (which may be fractional, a
+/// measured clock) must round to it. CSV files may carry a time column (`t_s` in the header, or
+/// the sidecar's csv.time_column): it must increase strictly and stay within half a sample of
+/// t0 + i / sample_rate_hz.
 Recording read_recording(const std::string& path);
+
+/// Reads the samples of `path` with a sidecar given in memory instead of the file beside it (for
+/// a CSV whose channels the command line describes). The sidecar is validated first.
+Recording read_recording(const std::string& path, const Sidecar& sidecar);
 
 /// Writes samples and sidecar; the container follows the extension (.wav, .flac, .w64, .rf64,
 /// .aiff, .caf, .csv). Stored value = (SI value / unit factor − offset) / scale, so a round trip
-/// returns the same SI samples (exactly for float64 containers and CSV at full precision; to the
-/// channel's scale for integer containers such as FLAC). Throws InputError when the file cannot
-/// be written or the data cannot be represented.
+/// returns the same SI samples (to floating-point rounding of that calibration for float64
+/// containers and CSV at full precision; to half the channel's scale for integer containers such
+/// as FLAC, 24-bit). Throws InputError when the file cannot be written or the data cannot be
+/// represented. Both files are written beside their targets under temporary names and renamed
+/// into place, so a failure leaves no half-written recording.
 void write_recording(const Recording& recording, const std::string& path);
 
 }  // namespace oscilab::daq

@@ -1,0 +1,580 @@
+#include "daq/recording/sidecar.h"
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "analysis/common/input_error.h"
+
+namespace oscilab::daq {
+namespace {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+// A sidecar is a few kilobytes; anything this large is not one, and reading it whole would only
+// waste memory before failing.
+constexpr std::uintmax_t kMaxSidecarBytes = 64u << 20;  // bytes
+
+// Largest CSV column index a sidecar may name; far beyond any instrument, small enough for int.
+constexpr std::int64_t kMaxColumn = 1'000'000;
+constexpr std::int64_t kMaxSkipLines = 1'000'000;
+
+// A JSON value as it appears in a message, shortened so that a huge value cannot flood it.
+std::string show(const json& value) {
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) {
+    return "a number out of range";
+  }
+  std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+  constexpr std::size_t kMaxShown = 60;  // characters
+  if (text.size() > kMaxShown) text = text.substr(0, kMaxShown) + "...";
+  return text;
+}
+
+std::string in_quotes(const std::string& text) { return show(json(text)); }
+
+// Where a value sits: the file and the JSON path inside it, "run1.json: channels[1].unit".
+class Field {
+ public:
+  Field(const std::string& file, std::string path) : file_(file), path_(std::move(path)) {}
+
+  Field operator/(const std::string& key) const {
+    return Field(file_, path_.empty() ? key : path_ + "." + key);
+  }
+  Field operator[](std::size_t index) const {
+    return Field(file_, path_ + "[" + std::to_string(index) + "]");
+  }
+  const std::string& path() const { return path_; }
+  std::string where() const { return path_.empty() ? file_ : file_ + ": " + path_; }
+
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw InputError(file_ + ": " + (path_.empty() ? "" : path_ + ": ") + problem);
+  }
+
+ private:
+  const std::string& file_;
+  std::string path_;
+};
+
+const json* find(const json& object, const std::string& key) {
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+const json& require(const json& object, const std::string& key, const Field& field) {
+  const json* value = find(object, key);
+  if (value == nullptr) (field / key).fail("missing required field");
+  return *value;
+}
+
+double finite_number(const json& value, const Field& field) {
+  if (!value.is_number()) field.fail("expected a number, got " + show(value));
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) field.fail("expected a finite number, got " + show(value));
+  return x;
+}
+
+double positive_number(const json& value, const Field& field) {
+  const double x = finite_number(value, field);
+  if (!(x > 0.0)) field.fail("expected a positive number, got " + show(value));
+  return x;
+}
+
+std::string string_value(const json& value, const Field& field) {
+  if (!value.is_string()) field.fail("expected a string, got " + show(value));
+  return value.get<std::string>();
+}
+
+int bounded_int(const json& value, std::int64_t max, const Field& field) {
+  if (!value.is_number_integer()) field.fail("expected a whole number, got " + show(value));
+  const bool negative = value.is_number_unsigned() ? false : value.get<std::int64_t>() < 0;
+  if (negative || value.get<std::uint64_t>() > static_cast<std::uint64_t>(max)) {
+    field.fail("expected a whole number from 0 to " + std::to_string(max) + ", got " + show(value));
+  }
+  return static_cast<int>(value.get<std::int64_t>());
+}
+
+const json& object_value(const json& value, const Field& field) {
+  if (!value.is_object()) field.fail("expected an object, got " + show(value));
+  return value;
+}
+
+ChannelRole parse_role(const json& value, const Field& field) {
+  const std::string text = string_value(value, field);
+  if (text == "base") return ChannelRole::Base;
+  if (text == "mass") return ChannelRole::Mass;
+  if (text == "relative") return ChannelRole::Relative;
+  if (text == "force") return ChannelRole::Force;
+  field.fail("unknown role " + in_quotes(text) + " (expected base, mass, relative or force)");
+}
+
+Quantity parse_quantity(const json& value, const Field& field) {
+  const std::string text = string_value(value, field);
+  if (text == "acceleration") return Quantity::Acceleration;
+  if (text == "velocity") return Quantity::Velocity;
+  if (text == "displacement") return Quantity::Displacement;
+  if (text == "force") return Quantity::Force;
+  field.fail("unknown quantity " + in_quotes(text) +
+             " (expected acceleration, velocity, displacement or force)");
+}
+
+bool has_control_character(const std::string& text) {
+  for (const char c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return true;
+  }
+  return false;
+}
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+ChannelInfo parse_channel(const json& value, const Field& field) {
+  const json& object = object_value(value, field);
+  ChannelInfo channel;
+  channel.name = string_value(require(object, "name", field), field / "name");
+  if (channel.name.empty()) (field / "name").fail("must not be empty");
+  if (has_control_character(channel.name) || is_blank(channel.name.front()) ||
+      is_blank(channel.name.back())) {
+    (field / "name")
+        .fail("invalid name " + in_quotes(channel.name) +
+              " (no control characters, no leading or trailing spaces)");
+  }
+  if (channel.name == "t_s") {
+    (field / "name").fail("\"t_s\" is reserved for the CSV time column");
+  }
+  channel.role = parse_role(require(object, "role", field), field / "role");
+  channel.quantity = parse_quantity(require(object, "quantity", field), field / "quantity");
+  if ((channel.role == ChannelRole::Force) != (channel.quantity == Quantity::Force)) {
+    (field / "quantity")
+        .fail("quantity " + in_quotes(to_string(channel.quantity)) + " does not fit role " +
+              in_quotes(to_string(channel.role)) +
+              " (a force channel measures a force, and only force channels do)");
+  }
+  channel.unit = string_value(require(object, "unit", field), field / "unit");
+  unit_to_si(channel.unit, channel.quantity, (field / "unit").where());
+  channel.scale = finite_number(require(object, "scale", field), field / "scale");
+  if (channel.scale == 0.0) (field / "scale").fail("must not be zero");
+  if (const json* offset = find(object, "offset")) {
+    channel.offset = finite_number(*offset, field / "offset");
+  }
+  if (const json* sensor = find(object, "sensor")) {
+    channel.sensor = string_value(*sensor, field / "sensor");
+  }
+  if (const json* column = find(object, "column")) {
+    channel.column = bounded_int(*column, kMaxColumn, field / "column");
+  }
+  for (const auto& [key, item] : object.items()) {
+    if (key != "name" && key != "role" && key != "quantity" && key != "unit" && key != "scale" &&
+        key != "offset" && key != "sensor" && key != "column") {
+      channel.extra[key] = item;
+    }
+  }
+  return channel;
+}
+
+CsvLayout parse_csv(const json& value, const Field& field) {
+  const json& object = object_value(value, field);
+  CsvLayout layout;
+  for (const auto& [key, item] : object.items()) {
+    const Field here = field / key;
+    if (key == "header") {
+      if (!item.is_boolean()) here.fail("expected true or false, got " + show(item));
+      layout.header = item.get<bool>();
+    } else if (key == "delimiter") {
+      const std::string text = string_value(item, here);
+      if (text.size() != 1) here.fail("expected one character, got " + show(item));
+      const char c = text[0];
+      if (std::strchr("0123456789.+-eE\"\r\n", c) != nullptr || c == '\0') {
+        here.fail("cannot split numbers on " + show(item));
+      }
+      layout.delimiter = c;
+    } else if (key == "skip_lines") {
+      layout.skip_lines = bounded_int(item, kMaxSkipLines, here);
+    } else if (key == "time_column") {
+      layout.time_column = bounded_int(item, kMaxColumn, here);
+    } else {
+      here.fail("unknown key (expected header, delimiter, skip_lines or time_column)");
+    }
+  }
+  return layout;
+}
+
+ExcitationLevel parse_level(const json& value, const Field& field) {
+  const json& object = object_value(value, field);
+  ExcitationLevel level;
+  level.f0_n = finite_number(require(object, "f0_n", field), field / "f0_n");
+  if (level.f0_n < 0.0)
+    (field / "f0_n").fail("expected a non-negative amplitude, got " + show(object["f0_n"]));
+  level.start_s = finite_number(require(object, "start_s", field), field / "start_s");
+  level.end_s = finite_number(require(object, "end_s", field), field / "end_s");
+  if (!(level.start_s < level.end_s)) {
+    (field / "end_s")
+        .fail("must come after start_s (" + show(object["start_s"]) + "), got " +
+              show(object["end_s"]));
+  }
+  for (const auto& [key, item] : object.items()) {
+    if (key != "f0_n" && key != "start_s" && key != "end_s") level.extra[key] = item;
+  }
+  return level;
+}
+
+Excitation parse_excitation(const json& value, const Field& field) {
+  const json& object = object_value(value, field);
+  Excitation excitation;
+  if (const json* type = find(object, "type")) {
+    excitation.type = string_value(*type, field / "type");
+  }
+  if (const json* frequency = find(object, "frequency_hz"); frequency && !frequency->is_null()) {
+    excitation.frequency_hz = positive_number(*frequency, field / "frequency_hz");
+  }
+  if (const json* levels = find(object, "levels")) {
+    if (!levels->is_array()) (field / "levels").fail("expected an array, got " + show(*levels));
+    for (std::size_t i = 0; i < levels->size(); ++i) {
+      const Field here = (field / "levels")[i];
+      ExcitationLevel level = parse_level((*levels)[i], here);
+      if (!excitation.levels.empty() && level.start_s < excitation.levels.back().end_s) {
+        (here / "start_s")
+            .fail("levels must follow each other in time; " + show((*levels)[i]["start_s"]) +
+                  " is before the end of the previous level");
+      }
+      excitation.levels.push_back(std::move(level));
+    }
+  }
+  for (const auto& [key, item] : object.items()) {
+    if (key != "type" && key != "frequency_hz" && key != "levels") excitation.extra[key] = item;
+  }
+  return excitation;
+}
+
+struct UnitEntry {
+  const char* name;
+  Quantity quantity;
+  double factor;  // SI per unit
+};
+
+// Standard gravity, 9.80665 m/s² exactly (CGPM 1901).
+constexpr double kStandardGravity = 9.80665;  // m/s² per g
+
+constexpr UnitEntry kUnits[] = {
+    {"m/s^2", Quantity::Acceleration, 1.0},
+    {"m/s2", Quantity::Acceleration, 1.0},
+    {"mm/s^2", Quantity::Acceleration, 1e-3},
+    {"g", Quantity::Acceleration, kStandardGravity},
+    {"m/s", Quantity::Velocity, 1.0},
+    {"mm/s", Quantity::Velocity, 1e-3},
+    {"um/s", Quantity::Velocity, 1e-6},
+    {"\u00b5m/s", Quantity::Velocity, 1e-6},
+    {"m", Quantity::Displacement, 1.0},
+    {"mm", Quantity::Displacement, 1e-3},
+    {"um", Quantity::Displacement, 1e-6},
+    {"\u00b5m", Quantity::Displacement, 1e-6},
+    {"N", Quantity::Force, 1.0},
+    {"kN", Quantity::Force, 1e3},
+};
+
+std::string units_for(Quantity quantity) {
+  std::string list;
+  for (const UnitEntry& entry : kUnits) {
+    if (entry.quantity != quantity) continue;
+    list += entry.name;
+    list += ", ";
+  }
+  return list + "V";
+}
+
+// Writes `text` to `path` through a temporary file beside it and a rename, so that the target is
+// either the old file or the complete new one.
+void write_text_atomically(const std::string& text, const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  const std::string temporary =
+      path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1));
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw InputError(path + ": cannot write: " + std::strerror(errno));
+    }
+    out << text;
+    out.flush();
+    if (!out) {
+      const std::string reason = std::strerror(errno);
+      out.close();
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw InputError(path + ": cannot write: " + reason);
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw InputError(path + ": cannot write: " + error.message());
+  }
+}
+
+ordered_json channel_to_json(const ChannelInfo& channel) {
+  ordered_json out;
+  out["name"] = channel.name;
+  out["role"] = to_string(channel.role);
+  out["quantity"] = to_string(channel.quantity);
+  out["unit"] = channel.unit;
+  out["scale"] = channel.scale;
+  out["offset"] = channel.offset;
+  if (!channel.sensor.empty()) out["sensor"] = channel.sensor;
+  if (channel.column >= 0) out["column"] = channel.column;
+  if (channel.extra.is_object()) {
+    for (const auto& [key, item] : channel.extra.items()) {
+      if (!out.contains(key)) out[key] = item;
+    }
+  }
+  return out;
+}
+
+ordered_json excitation_to_json(const Excitation& excitation) {
+  ordered_json out = ordered_json::object();
+  if (!excitation.type.empty()) out["type"] = excitation.type;
+  if (excitation.frequency_hz) out["frequency_hz"] = *excitation.frequency_hz;
+  if (!excitation.levels.empty()) {
+    ordered_json levels = ordered_json::array();
+    for (const ExcitationLevel& level : excitation.levels) {
+      ordered_json item;
+      item["f0_n"] = level.f0_n;
+      item["start_s"] = level.start_s;
+      item["end_s"] = level.end_s;
+      if (level.extra.is_object()) {
+        for (const auto& [key, value] : level.extra.items()) {
+          if (!item.contains(key)) item[key] = value;
+        }
+      }
+      levels.push_back(std::move(item));
+    }
+    out["levels"] = std::move(levels);
+  }
+  if (excitation.extra.is_object()) {
+    for (const auto& [key, item] : excitation.extra.items()) {
+      if (!out.contains(key)) out[key] = item;
+    }
+  }
+  return out;
+}
+
+// The sidecar with its keys in the contract's order, so that written files read well.
+ordered_json to_ordered_json(const Sidecar& sidecar) {
+  ordered_json out;
+  out["format"] = kSidecarFormat;
+  out["sample_rate_hz"] = sidecar.sample_rate_hz;
+  if (sidecar.mass_kg) out["mass_kg"] = *sidecar.mass_kg;
+  ordered_json channels = ordered_json::array();
+  for (const ChannelInfo& channel : sidecar.channels) channels.push_back(channel_to_json(channel));
+  out["channels"] = std::move(channels);
+  if (sidecar.csv) {
+    ordered_json csv;
+    csv["header"] = sidecar.csv->header;
+    csv["delimiter"] = std::string(1, sidecar.csv->delimiter);
+    if (sidecar.csv->skip_lines != 0) csv["skip_lines"] = sidecar.csv->skip_lines;
+    if (sidecar.csv->time_column >= 0) csv["time_column"] = sidecar.csv->time_column;
+    out["csv"] = std::move(csv);
+  }
+  if (sidecar.excitation) out["excitation"] = excitation_to_json(*sidecar.excitation);
+  if (!sidecar.notes.empty()) out["notes"] = sidecar.notes;
+  if (sidecar.extra.is_object()) {
+    for (const auto& [key, item] : sidecar.extra.items()) {
+      if (!out.contains(key)) out[key] = item;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string to_string(ChannelRole role) {
+  switch (role) {
+    case ChannelRole::Base:
+      return "base";
+    case ChannelRole::Mass:
+      return "mass";
+    case ChannelRole::Relative:
+      return "relative";
+    case ChannelRole::Force:
+      return "force";
+  }
+  return "unknown";
+}
+
+std::string to_string(Quantity quantity) {
+  switch (quantity) {
+    case Quantity::Acceleration:
+      return "acceleration";
+    case Quantity::Velocity:
+      return "velocity";
+    case Quantity::Displacement:
+      return "displacement";
+    case Quantity::Force:
+      return "force";
+  }
+  return "unknown";
+}
+
+std::string si_unit(Quantity quantity) {
+  switch (quantity) {
+    case Quantity::Acceleration:
+      return "m/s^2";
+    case Quantity::Velocity:
+      return "m/s";
+    case Quantity::Displacement:
+      return "m";
+    case Quantity::Force:
+      return "N";
+  }
+  return "?";
+}
+
+double unit_to_si(const std::string& unit, Quantity quantity, const std::string& where) {
+  if (unit == "V") return 1.0;  // scale is the sensitivity in SI units per volt
+  const UnitEntry* known = nullptr;
+  for (const UnitEntry& entry : kUnits) {
+    if (unit == entry.name) {
+      known = &entry;
+      if (entry.quantity == quantity) return entry.factor;
+    }
+  }
+  const std::string prefix = where.empty() ? "" : where + ": ";
+  if (known == nullptr) {
+    throw InputError(prefix + "unknown unit " + in_quotes(unit) + " (known for " +
+                     to_string(quantity) + ": " + units_for(quantity) + ")");
+  }
+  throw InputError(prefix + "unit " + in_quotes(unit) + " is a " + to_string(known->quantity) +
+                   " unit, not one of " + to_string(quantity) + " (" + units_for(quantity) + ")");
+}
+
+Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
+  const Field root(file_name, "");
+  if (!json_value.is_object()) root.fail("expected a JSON object, got " + show(json_value));
+  Sidecar sidecar;
+
+  if (const json* format = find(json_value, "format")) {
+    if (!format->is_string() || format->get<std::string>() != kSidecarFormat) {
+      (root / "format")
+          .fail(std::string("expected \"") + kSidecarFormat + "\", got " + show(*format));
+    }
+  }
+
+  sidecar.sample_rate_hz =
+      positive_number(require(json_value, "sample_rate_hz", root), root / "sample_rate_hz");
+
+  if (const json* mass = find(json_value, "mass_kg"); mass && !mass->is_null()) {
+    sidecar.mass_kg = positive_number(*mass, root / "mass_kg");
+  }
+
+  const json& channels = require(json_value, "channels", root);
+  if (!channels.is_array()) (root / "channels").fail("expected an array, got " + show(channels));
+  if (channels.empty()) (root / "channels").fail("must list at least one channel");
+  std::map<std::string, std::size_t> names;
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    const Field here = (root / "channels")[i];
+    ChannelInfo channel = parse_channel(channels[i], here);
+    const auto [it, inserted] = names.emplace(channel.name, i);
+    if (!inserted) {
+      (here / "name")
+          .fail("duplicate name " + in_quotes(channel.name) + " (also channels[" +
+                std::to_string(it->second) + "])");
+    }
+    sidecar.channels.push_back(std::move(channel));
+  }
+
+  if (const json* csv = find(json_value, "csv"); csv && !csv->is_null()) {
+    sidecar.csv = parse_csv(*csv, root / "csv");
+    std::map<int, std::size_t> used;
+    for (std::size_t i = 0; i < sidecar.channels.size(); ++i) {
+      const int column = sidecar.channels[i].column;
+      const Field here = (root / "channels")[i] / "column";
+      if (column < 0) {
+        if (!sidecar.csv->header) here.fail("missing required field (csv.header is false)");
+        continue;
+      }
+      if (column == sidecar.csv->time_column) {
+        here.fail(std::to_string(column) + " is csv.time_column");
+      }
+      const auto [it, inserted] = used.emplace(column, i);
+      if (!inserted) {
+        here.fail(std::to_string(column) + " is also the column of channels[" +
+                  std::to_string(it->second) + "]");
+      }
+    }
+  }
+
+  if (const json* excitation = find(json_value, "excitation");
+      excitation && !excitation->is_null()) {
+    sidecar.excitation = parse_excitation(*excitation, root / "excitation");
+  }
+
+  if (const json* notes = find(json_value, "notes")) {
+    sidecar.notes = string_value(*notes, root / "notes");
+  }
+
+  for (const auto& [key, item] : json_value.items()) {
+    if (key != "format" && key != "sample_rate_hz" && key != "mass_kg" && key != "channels" &&
+        key != "csv" && key != "excitation" && key != "notes") {
+      sidecar.extra[key] = item;
+    }
+  }
+  return sidecar;
+}
+
+json sidecar_to_json(const Sidecar& sidecar) { return json(to_ordered_json(sidecar)); }
+
+std::string sidecar_path_for(const std::string& recording_path) {
+  return std::filesystem::path(recording_path).replace_extension(".json").string();
+}
+
+Sidecar read_sidecar(const std::string& sidecar_path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(sidecar_path, error);
+  if (!fs::exists(status)) throw InputError(sidecar_path + ": file not found");
+  if (!fs::is_regular_file(status)) throw InputError(sidecar_path + ": not a regular file");
+  const std::uintmax_t size = fs::file_size(sidecar_path, error);
+  if (!error && size > kMaxSidecarBytes) {
+    throw InputError(sidecar_path + ": " + std::to_string(size) +
+                     " bytes is too large for a sidecar");
+  }
+  std::ifstream in(sidecar_path, std::ios::binary);
+  if (!in) throw InputError(sidecar_path + ": cannot open: " + std::strerror(errno));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(sidecar_path + ": cannot read: " + std::strerror(errno));
+  json value;
+  try {
+    value = json::parse(text);
+  } catch (const json::exception& parse_error) {
+    std::string reason = parse_error.what();
+    // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep its line and column.
+    if (const auto end = reason.find("] ");
+        reason.rfind("[json.exception", 0) == 0 && end != std::string::npos) {
+      reason = reason.substr(end + 2);
+    }
+    throw InputError(sidecar_path + ": malformed JSON: " + reason);
+  }
+  return parse_sidecar(value, sidecar_path);
+}
+
+void write_sidecar(const Sidecar& sidecar, const std::string& sidecar_path) {
+  std::string text;
+  try {
+    const ordered_json out = to_ordered_json(sidecar);
+    // Validate what would be written, so that an invalid sidecar never reaches the disk.
+    parse_sidecar(json(out), sidecar_path);
+    text = out.dump(2) + "\n";
+  } catch (const json::exception& error) {
+    throw InputError(sidecar_path + ": cannot write the sidecar: " + error.what());
+  }
+  write_text_atomically(text, sidecar_path);
+}
+
+}  // namespace oscilab::daq

@@ -15,9 +15,16 @@ enum class Quantity { Acceleration, Velocity, Displacement, Force };
 
 std::string to_string(ChannelRole role);
 std::string to_string(Quantity quantity);
+/// The SI unit a reader converts `quantity` to: "m/s^2", "m/s", "m" or "N".
+std::string si_unit(Quantity quantity);
+
+/// The value of the sidecar's "format" key this code reads and writes.
+inline constexpr const char* kSidecarFormat = "oscilab-recording/1";
 
 /// One channel of a recording as the sidecar describes it. Physical value in `unit` is
-/// scale × stored + offset; the readers then convert `unit` to SI.
+/// scale × stored + offset; the readers then convert `unit` to SI. In the sidecar, "scale" is
+/// required (a calibration is never guessed) and "offset" defaults to 0. For integer containers
+/// (16/24/32-bit PCM, FLAC) "stored" is the integer count, not a value normalised to ±1.
 struct ChannelInfo {
   std::string name;
   ChannelRole role = ChannelRole::Base;
@@ -27,6 +34,7 @@ struct ChannelInfo {
   double offset = 0.0;
   std::string sensor;
   int column = -1;  // CSV only: 0-based column in the file; -1: matched by name in the header
+  nlohmann::json extra = nlohmann::json::object();  // other keys, kept as they are
 };
 
 /// One stepped-sine level: forcing amplitude and the steady part of its hold.
@@ -34,20 +42,25 @@ struct ExcitationLevel {
   double f0_n = 0.0;
   double start_s = 0.0;
   double end_s = 0.0;
+  nlohmann::json extra = nlohmann::json::object();  // other keys, kept as they are
 };
 
 /// Excitation metadata (optional and possibly partial, contract §1).
 struct Excitation {
-  std::string type;                     // "stepped-sine", "random", ...
-  std::optional<double> frequency_hz;   // stepped sine
-  std::vector<ExcitationLevel> levels;  // stepped sine
+  std::string type;                                 // "stepped-sine", "random", ...
+  std::optional<double> frequency_hz;               // stepped sine
+  std::vector<ExcitationLevel> levels;              // stepped sine
   nlohmann::json extra = nlohmann::json::object();  // other keys, kept as they are
 };
 
-/// How a CSV file is laid out (sidecar key "csv").
+/// How a CSV file is laid out (sidecar key "csv"). With `header` false every channel names its
+/// `column`. A delimiter ' ' splits on runs of spaces and tabs.
 struct CsvLayout {
   bool header = true;
   char delimiter = ',';
+  int skip_lines = 0;    // lines skipped before the header (or the data): an instrument's preamble
+  int time_column = -1;  // 0-based column of the time in s, checked against the rate; -1: none
+                         // (with a header, a column named "t_s" is the time column)
 };
 
 /// The JSON sidecar of a recording, contract §1. Unknown keys are kept in `extra` and written
