@@ -1,0 +1,348 @@
+// GUI tests of the record view and the main window, driving the real widgets with synthetic
+// mouse events. Run under QT_QPA_PLATFORM=offscreen (set by ctest).
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <QApplication>
+#include <QDir>
+#include <QSignalSpy>
+#include <QStatusBar>
+#include <QTest>
+#include <QWheelEvent>
+
+#include <qcustomplot.h>
+
+#include "analysis/common/input_error.h"
+#include "ui/main_window.h"
+#include "ui/record_view.h"
+
+using oscilab::daq::ChannelRole;
+using oscilab::daq::Quantity;
+using oscilab::daq::Recording;
+using oscilab::ui::MainWindow;
+using oscilab::ui::RecordView;
+
+namespace {
+
+constexpr double kRateHz = 512.0;    // the rig's rate
+constexpr double kDurationS = 10.0;  // 5120 samples
+constexpr double kFreqHz = 9.0;      // excitation frequency of the paper's tests
+constexpr double kAccAmp = 2.5;      // m/s²
+constexpr double kDispAmp = 0.004;   // m: shown in mm
+constexpr double kDispPhase = std::numbers::pi / 6;
+
+double base_acc(double t_s) { return kAccAmp * std::sin(2 * std::numbers::pi * kFreqHz * t_s); }
+double mass_disp(double t_s) {
+  return kDispAmp * std::sin(2 * std::numbers::pi * kFreqHz * t_s + kDispPhase);
+}
+
+// Strings are moved in rather than assigned from literals: GCC 12 at -O3 warns falsely
+// (-Wrestrict, GCC bug 105651) on short literal assignments to std::string.
+oscilab::daq::ChannelInfo channel(std::string name, ChannelRole role, Quantity quantity,
+                                  std::string unit, std::string sensor) {
+  oscilab::daq::ChannelInfo info;
+  info.name = std::move(name);
+  info.role = role;
+  info.quantity = quantity;
+  info.unit = std::move(unit);
+  info.sensor = std::move(sensor);
+  return info;
+}
+
+// Two channels as the rig records them: base acceleration (m/s²) and mass displacement (m).
+std::shared_ptr<Recording> sine_recording(double duration_s = kDurationS) {
+  auto recording = std::make_shared<Recording>();
+  recording->sidecar.sample_rate_hz = kRateHz;
+  recording->sidecar.channels = {
+      channel("base_acc", ChannelRole::Base, Quantity::Acceleration, "m/s^2", "accelerometer"),
+      channel("y", ChannelRole::Mass, Quantity::Displacement, "m", "laser vibrometer")};
+  const auto samples = Eigen::Index(std::lround(duration_s * kRateHz));
+  recording->samples_si.resize(samples, 2);
+  for (Eigen::Index i = 0; i < samples; ++i) {
+    const double t_s = double(i) / kRateHz;
+    recording->samples_si(i, 0) = base_acc(t_s);
+    recording->samples_si(i, 1) = mass_disp(t_s);
+  }
+  return recording;
+}
+
+QCPRange time_range(RecordView& view, int channel) {
+  return view.channel_rect(channel)->axis(QCPAxis::atBottom)->range();
+}
+
+void send_mouse(QWidget* widget, QEvent::Type type, QPointF pos, Qt::MouseButtons buttons,
+                Qt::MouseButton button = Qt::NoButton) {
+  QMouseEvent event(type, pos, widget->mapToGlobal(pos), button, buttons, Qt::NoModifier);
+  QApplication::sendEvent(widget, &event);
+}
+
+}  // namespace
+
+class RecordViewTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void init() {
+    window_ = std::make_unique<MainWindow>();
+    window_->set_interactive_errors(false);
+    window_->resize(1000, 700);
+    window_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+    recording_ = sine_recording();
+    window_->show_recording(recording_);
+    QApplication::processEvents();
+  }
+  void cleanup() { window_.reset(); }
+
+  void plots_one_axis_rect_per_channel_over_a_shared_time_axis() {
+    RecordView& view = *window_->record_view();
+    QCustomPlot* plot = view.plot();
+    QCOMPARE(plot->axisRectCount(), 2);
+    QCOMPARE(plot->graphCount(), 2);
+    const int samples = int(recording_->sample_count());
+    const double last_s = (samples - 1) / kRateHz;
+    for (int c = 0; c < 2; ++c) {
+      QCPGraph* graph = view.channel_graph(c);
+      QVERIFY(graph != nullptr);
+      QCOMPARE(graph->keyAxis(), view.channel_rect(c)->axis(QCPAxis::atBottom));
+      QCOMPARE(graph->data()->size(), samples);
+      QCOMPARE(graph->data()->constBegin()->key, 0.0);
+      QCOMPARE((graph->data()->constEnd() - 1)->key, last_s);
+      QVERIFY(graph->adaptiveSampling());
+      // Fitted: the whole record on the time axis.
+      QCOMPARE(time_range(view, c).lower, 0.0);
+      QCOMPARE(time_range(view, c).upper, last_s);
+    }
+    // Only the bottom plot labels the shared time axis.
+    QVERIFY(!view.channel_rect(0)->axis(QCPAxis::atBottom)->tickLabels());
+    QVERIFY(view.channel_rect(1)->axis(QCPAxis::atBottom)->tickLabels());
+    QCOMPARE(view.channel_rect(1)->axis(QCPAxis::atBottom)->label(), QString("time [s]"));
+  }
+
+  void shows_values_in_si_prefixed_display_units() {
+    RecordView& view = *window_->record_view();
+    QCOMPARE(view.channel_rect(0)->axis(QCPAxis::atLeft)->label(), QString("base_acc [m/s²]"));
+    QCOMPARE(view.channel_rect(1)->axis(QCPAxis::atLeft)->label(), QString("y [mm]"));
+    QVERIFY(view.channel_graph(0)->name().contains("accelerometer"));
+    QVERIFY(view.channel_graph(1)->name().contains("laser vibrometer"));
+    // Each plot is titled with its channel and sensor.
+    auto* title = qobject_cast<QCPTextElement*>(view.plot()->plotLayout()->element(2, 0));
+    QVERIFY(title != nullptr);
+    QCOMPARE(title->text(), QString("y \u2014 laser vibrometer (mass)"));
+    // Every point: acceleration as it is, displacement ×1000 (m → mm), against the closed form.
+    auto acc = view.channel_graph(0)->data()->constBegin();
+    auto disp = view.channel_graph(1)->data()->constBegin();
+    double max_disp_mm = 0.0;
+    for (int i = 0; i < int(recording_->sample_count()); ++i, ++acc, ++disp) {
+      const double t_s = i / kRateHz;
+      QVERIFY(std::abs(acc->value - base_acc(t_s)) < 1e-12);
+      QVERIFY(std::abs(disp->value - 1e3 * mass_disp(t_s)) < 1e-12);
+      max_disp_mm = std::max(max_disp_mm, std::abs(disp->value));
+    }
+    // 4 mm amplitude; 512 Hz samples a 9 Hz sine within 0.1 % of its peak.
+    QVERIFY(std::abs(max_disp_mm - 4.0) < 4e-3);
+    // Value axes fitted around the data.
+    const QCPRange y_range = view.channel_rect(1)->axis(QCPAxis::atLeft)->range();
+    QVERIFY(y_range.lower < -3.99 && y_range.lower > -4.5);
+    QVERIFY(y_range.upper > 3.99 && y_range.upper < 4.5);
+  }
+
+  void wheel_zoom_and_drag_pan_move_all_time_axes_together() {
+    RecordView& view = *window_->record_view();
+    QCustomPlot* plot = view.plot();
+    const QCPRange full = time_range(view, 0);
+    const QPointF centre = view.channel_rect(0)->rect().center();
+
+    QWheelEvent wheel(centre, plot->mapToGlobal(centre), QPoint(), QPoint(0, 120), Qt::NoButton,
+                      Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(plot, &wheel);
+    const QCPRange zoomed = time_range(view, 0);
+    QVERIFY(zoomed.size() < 0.9 * full.size());  // one wheel step zooms by 0.85
+    QCOMPARE(time_range(view, 1), zoomed);       // linked
+
+    const QPointF from = view.channel_rect(1)->rect().center();
+    const QPointF to = from - QPointF(100, 0);
+    send_mouse(plot, QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton);
+    send_mouse(plot, QEvent::MouseMove, to, Qt::LeftButton);
+    send_mouse(plot, QEvent::MouseButtonRelease, to, Qt::NoButton, Qt::LeftButton);
+    const QCPRange panned = time_range(view, 1);
+    QVERIFY(panned.lower > zoomed.lower);  // dragging left shows later times
+    QVERIFY(std::abs(panned.size() - zoomed.size()) < 1e-9 * full.size());
+    QCOMPARE(time_range(view, 0), panned);
+
+    // Zooming out far stops at the whole record.
+    QWheelEvent out(centre, plot->mapToGlobal(centre), QPoint(), QPoint(0, -120 * 20), Qt::NoButton,
+                    Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(plot, &out);
+    QCOMPARE(time_range(view, 0), full);
+    QCOMPARE(time_range(view, 1), full);
+  }
+
+  void double_click_and_fit_action_show_the_whole_record() {
+    RecordView& view = *window_->record_view();
+    const QCPRange full = time_range(view, 0);
+    view.set_time_window(2.0, 3.0);
+    QCOMPARE(time_range(view, 1), QCPRange(2.0, 3.0));
+    const QPointF centre = view.channel_rect(0)->rect().center();
+    send_mouse(view.plot(), QEvent::MouseButtonDblClick, centre, Qt::LeftButton, Qt::LeftButton);
+    QCOMPARE(time_range(view, 0), full);
+    QCOMPARE(time_range(view, 1), full);
+
+    view.set_time_window(2.0, 3.0);
+    window_->fit_action()->trigger();
+    QCOMPARE(time_range(view, 1), full);
+  }
+
+  void value_axes_follow_the_data_in_the_time_window() {
+    // base_acc at a tenth of its amplitude (0.25 m/s²) in the first half of the record.
+    auto quiet_start = sine_recording();
+    quiet_start->samples_si.topRows(quiet_start->sample_count() / 2).col(0) *= 0.1;
+    window_->show_recording(quiet_start);
+    RecordView& view = *window_->record_view();
+    QCPAxis* acc_axis = view.channel_rect(0)->axis(QCPAxis::atLeft);
+    // Whole record: ±2.5 m/s² and a 5 % margin.
+    QVERIFY(std::abs(acc_axis->range().upper - 2.5 * 1.1) < 1e-2);
+    view.set_time_window(1.0, 2.0);
+    QVERIFY(std::abs(acc_axis->range().upper - 0.25 * 1.1) < 1e-3);
+    QVERIFY(std::abs(acc_axis->range().lower + 0.25 * 1.1) < 1e-3);
+    // Off: the whole record's range again, whatever the window.
+    QVERIFY(window_->auto_value_range_action()->isChecked());
+    window_->auto_value_range_action()->trigger();
+    QVERIFY(!view.auto_value_range());
+    QVERIFY(std::abs(acc_axis->range().upper - 2.5 * 1.1) < 1e-2);
+    view.set_time_window(2.0, 3.0);
+    QVERIFY(std::abs(acc_axis->range().upper - 2.5 * 1.1) < 1e-2);
+  }
+
+  void cursor_reads_every_channel_at_the_time_under_the_mouse() {
+    RecordView& view = *window_->record_view();
+    QSignalSpy readouts(&view, &RecordView::cursor_text_changed);
+    // At t = 0.25 s: base_acc = 2.5 sin(4.5π) = 2.5 m/s², y = 4 sin(4.5π + π/6) = 2√3 mm.
+    view.set_cursor_time(0.25 + 0.3 / kRateHz);  // snaps to the sample at 0.25 s
+    const QString text = view.cursor_text();
+    // Each value to 4 significant digits of its channel's largest value; spaces aside.
+    QCOMPARE(text.simplified(), QString("t = 0.250 s base_acc = 2.500 m/s² y = 3.464 mm"));
+    QCOMPARE(readouts.count(), 1);
+    QCOMPARE(readouts.front().front().toString(), text);
+
+    // The cursor line stands at that time on every plot.
+    int lines = 0;
+    for (int i = 0; i < view.plot()->itemCount(); ++i) {
+      if (auto* line = qobject_cast<QCPItemStraightLine*>(view.plot()->item(i))) {
+        QVERIFY(line->visible());
+        QCOMPARE(line->point1->coords().x(), 0.25);
+        ++lines;
+      }
+    }
+    QCOMPARE(lines, 2);
+
+    // The mouse does the same: zoom so that one pixel is far below a sample period.
+    view.set_time_window(1.2, 1.3);
+    QCPAxis* time_axis = view.channel_rect(1)->axis(QCPAxis::atBottom);
+    const QPointF over(time_axis->coordToPixel(1.25), view.channel_rect(1)->rect().center().y());
+    send_mouse(view.plot(), QEvent::MouseMove, over, Qt::NoButton);
+    const QString moved = view.cursor_text().simplified();
+    QVERIFY2(moved.startsWith("t = 1.250 s"), qPrintable(moved));
+    QVERIFY2(moved.contains(QString("base_acc = %1 m/s²").arg(base_acc(1.25), 0, 'f', 3)),
+             qPrintable(moved));
+  }
+
+  void replaces_the_plots_when_another_recording_is_shown() {
+    auto three = sine_recording(1.0);
+    three->sidecar.channels.push_back(channel("f", ChannelRole::Force, Quantity::Force, "N", ""));
+    three->samples_si.conservativeResize(Eigen::NoChange, 3);
+    three->samples_si.col(2).setConstant(0.2);  // N: shown in mN
+    window_->show_recording(three);
+    RecordView& view = *window_->record_view();
+    QCOMPARE(view.plot()->axisRectCount(), 3);
+    QCOMPARE(view.plot()->graphCount(), 3);
+    QCOMPARE(view.channel_graph(2)->data()->size(), 512);
+    QCOMPARE(view.channel_rect(2)->axis(QCPAxis::atLeft)->label(), QString("f [mN]"));
+    QCOMPARE(view.channel_graph(2)->data()->constBegin()->value, 200.0);
+  }
+
+  void a_recording_without_channels_or_rate_shows_no_plot_and_does_not_crash() {
+    auto empty = std::make_shared<Recording>();
+    window_->show_recording(empty);
+    RecordView& view = *window_->record_view();
+    QCOMPARE(view.plot()->axisRectCount(), 0);
+    view.set_cursor_time(1.0);
+    view.fit();
+    QVERIFY(view.cursor_text().isEmpty());
+    auto no_rate = sine_recording(1.0);
+    no_rate->sidecar.sample_rate_hz = 0.0;
+    window_->show_recording(no_rate);
+    QCOMPARE(view.plot()->axisRectCount(), 0);
+  }
+
+  void loads_a_long_record_in_one_go() {
+    // 262 s at 512 Hz: the length of the paper's stepped-sine tests, 134 144 samples a channel.
+    auto long_recording = sine_recording(262.0);
+    window_->show_recording(long_recording);
+    RecordView& view = *window_->record_view();
+    QCOMPARE(view.channel_graph(0)->data()->size(), 134144);
+    QCOMPARE(view.channel_graph(1)->data()->size(), 134144);
+    QCOMPARE(time_range(view, 0).upper, 134143 / kRateHz);
+  }
+
+  void a_missing_file_is_reported_and_the_window_stays_usable() {
+    QSignalSpy errors(window_.get(), &MainWindow::error_reported);
+    const QString title = window_->windowTitle();
+    const QString missing = QDir::temp().filePath("oscilab-no-such-recording.wav");
+    QVERIFY(!window_->open_recording(missing));
+    QCOMPARE(errors.count(), 1);
+    const QString message = errors.front().front().toString();
+    QVERIFY2(message.contains("oscilab-no-such-recording"), qPrintable(message));
+    QVERIFY(window_->statusBar()->currentMessage().contains(message));
+    // The recording shown before is still there and still works.
+    QCOMPARE(window_->windowTitle(), title);
+    QCOMPARE(window_->record_view()->plot()->axisRectCount(), 2);
+    window_->record_view()->set_cursor_time(0.25);
+    QVERIFY(window_->record_view()->cursor_text().simplified().contains("base_acc = 2.500 m/s²"));
+  }
+
+  void any_loader_exception_is_reported_not_thrown() {
+    MainWindow window(nullptr, [](const std::string& path) -> Recording {
+      if (path == "bad.wav") throw oscilab::InputError("bad.wav.json: channels[1].unit: unknown");
+      throw std::runtime_error("disk on fire");
+    });
+    window.set_interactive_errors(false);
+    QSignalSpy errors(&window, &MainWindow::error_reported);
+    QVERIFY(!window.open_recording("bad.wav"));
+    QVERIFY(!window.open_recording("other.wav"));
+    QCOMPARE(errors.count(), 2);
+    QCOMPARE(errors[0].front().toString(), QString("bad.wav.json: channels[1].unit: unknown"));
+    QVERIFY(errors[1].front().toString().contains("other.wav"));
+    QVERIFY(errors[1].front().toString().contains("disk on fire"));
+  }
+
+  void opening_a_file_shows_it_and_names_it_in_the_title() {
+    const Recording recording = *sine_recording(1.0);
+    MainWindow window(nullptr, [recording](const std::string& path) {
+      Recording read = recording;
+      read.source_path = path;
+      return read;
+    });
+    QSignalSpy opened(&window, &MainWindow::recording_opened);
+    QVERIFY(window.open_recording("/data/run1.wav"));
+    QCOMPARE(opened.count(), 1);
+    QVERIFY(window.windowTitle().startsWith("run1.wav"));
+    QVERIFY(window.statusBar()->currentMessage().contains("2 channels, 512 Hz, 1.00 s"));
+    QCOMPARE(window.record_view()->channel_graph(0)->data()->size(), 512);
+  }
+
+  void file_menu_has_open_and_quit() {
+    QCOMPARE(window_->open_action()->shortcut(), QKeySequence(QKeySequence::Open));
+    QCOMPARE(window_->quit_action()->shortcut(), QKeySequence(QKeySequence::Quit));
+    window_->quit_action()->trigger();
+    QVERIFY(!window_->isVisible());
+  }
+
+ private:
+  std::unique_ptr<MainWindow> window_;
+  std::shared_ptr<Recording> recording_;
+};
+
+QTEST_MAIN(RecordViewTest)
+#include "record_view_test.moc"

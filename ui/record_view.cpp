@@ -1,0 +1,280 @@
+#include "ui/record_view.h"
+
+#include <algorithm>
+#include <array>
+
+#include <QLabel>
+#include <QMouseEvent>
+#include <QVBoxLayout>
+
+#include <qcustomplot.h>
+
+#include "ui/cursor_readout.h"
+
+namespace oscilab::ui {
+namespace {
+
+// Channel colours (matplotlib's "tab10"): distinct, readable on white, colour-blind aware.
+constexpr std::array<QRgb, 6> kChannelColours = {0x1f77b4, 0xd62728, 0x2ca02c,
+                                                 0xff7f0e, 0x9467bd, 0x8c564b};
+// The narrowest time window a zoom may reach, in samples.
+constexpr double kMinWindowSamples = 10.0;
+// Space left above and below the data when a value axis is fitted, as a fraction of its span.
+constexpr double kValueMargin = 0.05;
+
+// "y — laser vibrometer (mass)": the channel, its sensor and what it measures (its role).
+QString title_text(const daq::ChannelInfo& channel) {
+  const QString role = QString::fromStdString(daq::to_string(channel.role));
+  const QString name = QString::fromStdString(channel.name);
+  if (channel.sensor.empty()) return name + " (" + role + ")";
+  return name + " \u2014 " + QString::fromStdString(channel.sensor) + " (" + role + ")";
+}
+
+}  // namespace
+
+RecordView::RecordView(QWidget* parent) : QWidget(parent) {
+  readout_ = new QLabel(this);
+  readout_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  readout_->setContentsMargins(6, 2, 6, 2);
+  QFont readout_font = readout_->font();
+  readout_font.setStyleHint(QFont::TypeWriter);
+  readout_font.setFamily("DejaVu Sans Mono");
+  readout_->setFont(readout_font);
+
+  plot_ = new QCustomPlot(this);
+  plot_->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
+  plot_->setAutoAddPlottableToLegend(false);
+  plot_->setNoAntialiasingOnDrag(true);
+  plot_->setPlottingHint(QCP::phFastPolylines, true);
+  plot_->setMouseTracking(true);
+  plot_->addLayer("cursor", plot_->layer("main"), QCustomPlot::limAbove);
+  cursor_layer_ = plot_->layer("cursor");
+  cursor_layer_->setMode(QCPLayer::lmBuffered);
+  margin_group_ = new QCPMarginGroup(plot_);
+
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->setSpacing(0);
+  layout->addWidget(readout_);
+  layout->addWidget(plot_, 1);
+
+  connect(plot_, &QCustomPlot::mouseMove, this, &RecordView::on_mouse_move);
+  connect(plot_, &QCustomPlot::mouseDoubleClick, this, [this](QMouseEvent*) { fit(); });
+  rebuild_plots();
+}
+
+RecordView::~RecordView() = default;
+
+void RecordView::set_recording(std::shared_ptr<const daq::Recording> recording) {
+  recording_ = std::move(recording);
+  units_ = recording_ ? choose_display_units(*recording_) : std::vector<DisplayUnit>{};
+  rebuild_plots();
+  fit();
+}
+
+QCPAxisRect* RecordView::channel_rect(int channel) const {
+  return channel >= 0 && std::size_t(channel) < rects_.size() ? rects_[std::size_t(channel)]
+                                                              : nullptr;
+}
+
+QCPGraph* RecordView::channel_graph(int channel) const {
+  return channel >= 0 && std::size_t(channel) < graphs_.size() ? graphs_[std::size_t(channel)]
+                                                               : nullptr;
+}
+
+void RecordView::rebuild_plots() {
+  plot_->clearItems();
+  plot_->clearPlottables();
+  plot_->plotLayout()->clear();
+  rects_.clear();
+  graphs_.clear();
+  cursor_lines_.clear();
+  cursor_tracers_.clear();
+  cursor_text_.clear();
+  readout_->setText(recording_ ? tr("Move the mouse over the plots to read the values.")
+                               : QString());
+
+  const bool showable =
+      recording_ && !recording_->sidecar.channels.empty() &&
+      recording_->sidecar.sample_rate_hz > 0.0 &&
+      recording_->samples_si.cols() >= Eigen::Index(recording_->sidecar.channels.size());
+  if (!showable) {
+    auto* hint = new QCPTextElement(plot_, tr("No recording. File \u25b8 Open\u2026 (Ctrl+O)"));
+    hint->setTextColor(Qt::gray);
+    plot_->plotLayout()->addElement(0, 0, hint);
+    plot_->replot();
+    emit cursor_text_changed(cursor_text_);
+    return;
+  }
+
+  const daq::Recording& recording = *recording_;
+  const auto& channels = recording.sidecar.channels;
+  const int channel_count = int(channels.size());
+  const double rate_hz = recording.sidecar.sample_rate_hz;
+  const Eigen::Index sample_count = recording.samples_si.rows();
+  plot_->plotLayout()->setRowSpacing(0);
+  QFont title_font = font();
+  title_font.setBold(true);
+
+  for (int c = 0; c < channel_count; ++c) {
+    const daq::ChannelInfo& channel = channels[std::size_t(c)];
+    const DisplayUnit& unit = units_[std::size_t(c)];
+    const bool bottom = c == channel_count - 1;
+    const QColor colour(kChannelColours[std::size_t(c) % kChannelColours.size()]);
+
+    // A title row above each plot names the channel and its sensor, where a legend would hide
+    // the data (a long record fills its plot).
+    auto* title = new QCPTextElement(plot_, title_text(channel), title_font);
+    title->setTextColor(colour.darker(120));
+    title->setTextFlags(Qt::AlignLeft | Qt::AlignVCenter);
+    title->setMargins(QMargins(0, c == 0 ? 4 : 10, 0, 0));
+    title->setAutoMargins(QCP::msLeft | QCP::msRight);
+    title->setMarginGroup(QCP::msLeft | QCP::msRight, margin_group_);
+    plot_->plotLayout()->addElement(2 * c, 0, title);
+
+    auto* rect = new QCPAxisRect(plot_);
+    plot_->plotLayout()->addElement(2 * c + 1, 0, rect);
+    rect->setMarginGroup(QCP::msLeft | QCP::msRight, margin_group_);
+    rect->setRangeDrag(Qt::Horizontal);
+    rect->setRangeZoom(Qt::Horizontal);
+    QCPAxis* time_axis = rect->axis(QCPAxis::atBottom);
+    QCPAxis* value_axis = rect->axis(QCPAxis::atLeft);
+    rect->setRangeDragAxes(time_axis, nullptr);
+    rect->setRangeZoomAxes(time_axis, nullptr);
+    time_axis->setTickLabels(bottom);
+    if (bottom) time_axis->setLabel(tr("time [s]"));
+    value_axis->setLabel(QString::fromStdString(channel.name + " [" + unit.symbol + "]"));
+    value_axis->setNumberFormat("gb");
+    // A frame around each plot: top and right axes as lines without ticks.
+    for (QCPAxis::AxisType side : {QCPAxis::atTop, QCPAxis::atRight}) {
+      rect->axis(side)->setVisible(true);
+      rect->axis(side)->setTicks(false);
+      rect->axis(side)->setTickLabels(false);
+    }
+
+    QCPGraph* graph = plot_->addGraph(time_axis, value_axis);
+    graph->setName(title_text(channel));
+    graph->setPen(QPen(colour, 1.0));
+    graph->setAdaptiveSampling(true);
+    QVector<QCPGraphData> data(static_cast<qsizetype>(sample_count));
+    const auto column = recording.samples_si.col(c);
+    for (Eigen::Index i = 0; i < sample_count; ++i) {
+      data[qsizetype(i)] = QCPGraphData(double(i) / rate_hz, unit.to_display(column(i)));
+    }
+    graph->data()->set(data, true);
+
+    auto* line = new QCPItemStraightLine(plot_);
+    line->setLayer(cursor_layer_);
+    line->setClipAxisRect(rect);
+    line->setPen(QPen(QColor(60, 60, 60), 1.0, Qt::DashLine));
+    for (QCPItemPosition* point : {line->point1, line->point2})
+      point->setAxes(time_axis, value_axis);
+    line->setVisible(false);
+
+    auto* tracer = new QCPItemTracer(plot_);
+    tracer->setLayer(cursor_layer_);
+    tracer->setClipAxisRect(rect);
+    tracer->setGraph(graph);
+    tracer->setInterpolating(false);
+    tracer->setStyle(QCPItemTracer::tsCircle);
+    tracer->setSize(9);
+    tracer->setPen(QPen(QColor(30, 30, 30), 1.5));
+    tracer->setBrush(QColor(255, 255, 255, 200));
+    tracer->setVisible(false);
+
+    connect(time_axis, qOverload<const QCPRange&>(&QCPAxis::rangeChanged), this,
+            &RecordView::on_time_range_changed);
+    rects_.push_back(rect);
+    graphs_.push_back(graph);
+    cursor_lines_.push_back(line);
+    cursor_tracers_.push_back(tracer);
+  }
+  emit cursor_text_changed(cursor_text_);
+}
+
+TimeWindow RecordView::full_window() const {
+  if (!recording_ || !(recording_->sidecar.sample_rate_hz > 0.0)) return {0.0, 1.0};
+  const double period_s = 1.0 / recording_->sidecar.sample_rate_hz;
+  const double last_s = double(std::max<Eigen::Index>(recording_->samples_si.rows() - 1, 0));
+  return {0.0, std::max(last_s * period_s, period_s)};
+}
+
+void RecordView::fit() {
+  if (rects_.empty()) return;
+  const TimeWindow full = full_window();
+  set_time_window(full.start_s, full.end_s);
+  fit_value_axes(full);
+  plot_->replot();
+}
+
+void RecordView::set_auto_value_range(bool on) {
+  auto_value_range_ = on;
+  if (rects_.empty()) return;
+  fit_value_axes(on ? time_window() : full_window());
+  plot_->replot(QCustomPlot::rpQueuedReplot);
+}
+
+void RecordView::fit_value_axes(TimeWindow window) {
+  for (QCPGraph* graph : graphs_) {
+    bool found = false;
+    QCPRange range =
+        graph->data()->valueRange(found, QCP::sdBoth, QCPRange(window.start_s, window.end_s));
+    if (!found) continue;
+    if (range.size() <= 0.0) {
+      const double half = range.upper == 0.0 ? 1.0 : 0.1 * std::abs(range.upper);
+      range = QCPRange(range.upper - half, range.upper + half);
+    }
+    const double pad = kValueMargin * range.size();
+    graph->valueAxis()->setRange(range.lower - pad, range.upper + pad);
+  }
+}
+
+void RecordView::set_time_window(double start_s, double end_s) {
+  on_time_range_changed(QCPRange(start_s, end_s));
+}
+
+TimeWindow RecordView::time_window() const {
+  if (rects_.empty()) return {};
+  const QCPRange range = rects_.front()->axis(QCPAxis::atBottom)->range();
+  return {range.lower, range.upper};
+}
+
+void RecordView::on_time_range_changed(const QCPRange& range) {
+  if (syncing_time_axes_ || rects_.empty()) return;
+  syncing_time_axes_ = true;
+  const double min_width_s = kMinWindowSamples / recording_->sidecar.sample_rate_hz;
+  const TimeWindow window =
+      clamp_time_window({range.lower, range.upper}, full_window(), min_width_s);
+  for (QCPAxisRect* rect : rects_) {
+    rect->axis(QCPAxis::atBottom)->setRange(window.start_s, window.end_s);
+  }
+  syncing_time_axes_ = false;
+  if (auto_value_range_) fit_value_axes(window);
+  plot_->replot(QCustomPlot::rpQueuedReplot);
+}
+
+void RecordView::on_mouse_move(QMouseEvent* event) {
+  if (rects_.empty()) return;
+  const QPointF position = event->position();
+  if (plot_->axisRectAt(position) == nullptr) return;
+  set_cursor_time(rects_.front()->axis(QCPAxis::atBottom)->pixelToCoord(position.x()));
+}
+
+void RecordView::set_cursor_time(double t_s) {
+  if (!recording_ || rects_.empty()) return;
+  const CursorReadout readout = read_cursor(*recording_, t_s);
+  if (readout.sample < 0) return;
+  for (std::size_t c = 0; c < rects_.size(); ++c) {
+    cursor_lines_[c]->point1->setCoords(readout.t_s, 0.0);
+    cursor_lines_[c]->point2->setCoords(readout.t_s, 1.0);
+    cursor_lines_[c]->setVisible(true);
+    cursor_tracers_[c]->setGraphKey(readout.t_s);
+    cursor_tracers_[c]->setVisible(true);
+  }
+  cursor_text_ = QString::fromStdString(format_readout(readout, *recording_, units_));
+  readout_->setText(cursor_text_);
+  cursor_layer_->replot();
+  emit cursor_text_changed(cursor_text_);
+}
+
+}  // namespace oscilab::ui

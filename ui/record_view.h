@@ -1,0 +1,99 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <QString>
+#include <QWidget>
+
+#include "daq/recording/recording.h"
+#include "ui/display_units.h"
+#include "ui/time_window.h"
+
+class QCPAxisRect;
+class QCPGraph;
+class QCPItemStraightLine;
+class QCPItemTracer;
+class QCPLayer;
+class QCPMarginGroup;
+class QCPRange;
+class QCustomPlot;
+class QLabel;
+class QMouseEvent;
+
+namespace oscilab::ui {
+
+/// Review of a whole recording: one plot per channel, stacked over a shared time axis, each in
+/// its physical unit with an SI prefix chosen from its range (display_units.h).
+///
+/// Mouse: the wheel zooms and a drag pans the time axis of all channels together; a
+/// double-click fits the whole record; value axes follow the data in view (optional); moving the
+/// mouse places a cursor on every plot and shows t and each channel's value in a readout line above
+/// the plots. Large records (10⁵–10⁶ samples per channel) stay responsive: graph data is loaded in
+/// one go, drawn with adaptive sampling, and the cursor lives on its own buffered layer so that
+/// moving it does not redraw the curves.
+///
+/// Used from the UI thread only.
+class RecordView : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit RecordView(QWidget* parent = nullptr);
+  ~RecordView() override;
+
+  /// Shows `recording` (replacing what was shown) and fits the view to it. Null clears.
+  void set_recording(std::shared_ptr<const daq::Recording> recording);
+  /// The recording shown, or null.
+  const daq::Recording* recording() const { return recording_.get(); }
+  /// Display unit of each channel of the recording shown.
+  const std::vector<DisplayUnit>& display_units() const { return units_; }
+
+  /// Shows the whole record: time axis over all samples, each value axis over its data.
+  void fit();
+  /// Shows the time window [start_s, end_s] on all channels, limited to the record.
+  void set_time_window(double start_s, double end_s);
+  /// The time window shown, in s.
+  TimeWindow time_window() const;
+
+  /// On (the default): each value axis follows the data inside the time window shown, so a
+  /// zoom also magnifies the values. Off: value axes keep the range of the whole record.
+  void set_auto_value_range(bool on);
+  bool auto_value_range() const { return auto_value_range_; }
+
+  /// Places the cursor at the sample nearest to `t_s` and updates the readout.
+  void set_cursor_time(double t_s);
+  /// The readout line: t and every channel's value at the cursor; empty without a cursor.
+  QString cursor_text() const { return cursor_text_; }
+
+  /// The plot, its per-channel axis rects and graphs (for tests and screenshots).
+  QCustomPlot* plot() const { return plot_; }
+  QCPAxisRect* channel_rect(int channel) const;
+  QCPGraph* channel_graph(int channel) const;
+
+ signals:
+  /// The readout changed (cursor moved, recording replaced).
+  void cursor_text_changed(const QString& text);
+
+ private:
+  void rebuild_plots();
+  void on_time_range_changed(const QCPRange& range);
+  void on_mouse_move(QMouseEvent* event);
+  TimeWindow full_window() const;
+  void fit_value_axes(TimeWindow window);
+
+  std::shared_ptr<const daq::Recording> recording_;
+  std::vector<DisplayUnit> units_;
+  QLabel* readout_ = nullptr;
+  QCustomPlot* plot_ = nullptr;
+  QCPLayer* cursor_layer_ = nullptr;
+  QCPMarginGroup* margin_group_ = nullptr;  // aligns the plots' left and right edges
+  std::vector<QCPAxisRect*> rects_;
+  std::vector<QCPGraph*> graphs_;
+  std::vector<QCPItemStraightLine*> cursor_lines_;
+  std::vector<QCPItemTracer*> cursor_tracers_;
+  QString cursor_text_;
+  bool syncing_time_axes_ = false;
+  bool auto_value_range_ = true;
+};
+
+}  // namespace oscilab::ui
