@@ -25,15 +25,27 @@ double robust_sigma(const std::vector<double>& values, double centre) {
   return 1.4826 * median(deviations);
 }
 
-// First index from which every value stays within the band around the final value.
-std::size_t steady_start(const std::vector<double>& x, double rel_tol) {
-  if (x.size() < 3) return 0;
+// The steady part [first, last) of a level's per-cycle values: the transient decays into a band
+// around the final value (median of the last third, ±4 robust σ + rel_tol·|value|). It starts at
+// the first of three consecutive cycles inside the band; up to three trailing cycles outside it
+// (a cycle cut by the next ramp) are dropped.
+struct SteadyRange {
+  std::size_t first = 0;
+  std::size_t last = 0;
+};
+
+SteadyRange steady_range(const std::vector<double>& x, double rel_tol) {
+  if (x.size() < 3) return {0, x.size()};
   const std::vector<double> tail(x.end() - static_cast<std::ptrdiff_t>(x.size() / 3), x.end());
   const double final_value = median(tail);
   const double band = 4.0 * robust_sigma(tail, final_value) + rel_tol * std::abs(final_value);
-  std::size_t start = x.size();
-  while (start > 0 && std::abs(x[start - 1] - final_value) <= band) --start;
-  return start;
+  const auto inside = [&](std::size_t i) { return std::abs(x[i] - final_value) <= band; };
+  std::size_t last = x.size();
+  while (last > 0 && x.size() - last < 3 && !inside(last - 1)) --last;
+  std::size_t first = 0;
+  while (first + 2 < last && !(inside(first) && inside(first + 1) && inside(first + 2))) ++first;
+  if (first + 2 >= last) first = last;  // never settled
+  return {first, last};
 }
 
 // Relative change of the first three harmonics between consecutive cycles.
@@ -65,11 +77,12 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   LevelResult level;
   if (cycles.empty()) return level;
   // Cycles at the end of a detected level may already belong to the ramp to the next one: drop
-  // trailing cycles whose force amplitude is off the level's by more than 0.5 % or 5 σ.
+  // trailing cycles whose force amplitude is off the level's by more than 0.1 % or 5 σ (a
+  // ramp's first cycle moves f0 by a few tenths of a percent and its EDC by far more).
   std::vector<double> f0_all;
   for (const CycleFit& c : cycles) f0_all.push_back(c.f0_n);
   const double f0_level = median(f0_all);
-  const double f0_band = std::max(5e-3 * f0_level, 5.0 * robust_sigma(f0_all, f0_level));
+  const double f0_band = std::max(1e-3 * f0_level, 5.0 * robust_sigma(f0_all, f0_level));
   std::size_t end = cycles.size();
   while (end > 0 && std::abs(cycles[end - 1].f0_n - f0_level) > f0_band) --end;
   const std::vector<CycleFit> all(cycles.begin(),
@@ -78,9 +91,10 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   std::vector<double> edc;
   edc.reserve(all.size());
   for (const CycleFit& c : all) edc.push_back(c.edc_j);
-  const std::size_t first = steady_start(edc, options.steady_rel_tol);
-  const std::vector<CycleFit> steady(all.begin() + static_cast<std::ptrdiff_t>(first), all.end());
-  level.transient_cycles = static_cast<int>(first);
+  const SteadyRange range = steady_range(edc, options.steady_rel_tol);
+  const std::vector<CycleFit> steady(all.begin() + static_cast<std::ptrdiff_t>(range.first),
+                                     all.begin() + static_cast<std::ptrdiff_t>(range.last));
+  level.transient_cycles = static_cast<int>(range.first);
   level.cycles = static_cast<int>(steady.size());
   level.few_cycles = level.cycles < options.min_steady_cycles;
   if (steady.empty()) return level;
@@ -102,8 +116,10 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
     z_mean += c.z_mean_m;
     level.z_min_m = std::min(level.z_min_m, c.z_min_m);
     level.z_max_m = std::max(level.z_max_m, c.z_max_m);
+    // Only a displacement channel knows where z is; a velocity's z has no mean.
     level.cross_well = level.cross_well ||
-                       (c.z_min_m < options.well_boundary_m && c.z_max_m > options.well_boundary_m);
+                       (options.mass_quantity == MotionQuantity::Displacement &&
+                        c.z_min_m < options.well_boundary_m && c.z_max_m > options.well_boundary_m);
     mass_residuals.push_back(c.mass_residual_rms);
     base_residuals.push_back(c.base_residual_rms);
     samples.push_back(c.samples);
@@ -121,25 +137,38 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   level.end_s = steady.back().end_s;
 
   // Noise floor of the mean EDC from the sensor noise (the fits' residual rms; at high levels
-  // this also holds harmonics above H, so the floor errs on the high side there). Per cycle the
-  // quadrature part of Z1 has σ = √(2/N)·σ_z, with σ_z the displacement noise of y − b, and
-  // S₁ = π f0 |Z1| sin θ1 moves by π f0 σ; the mean of n independent cycles divides by √n.
+  // this also holds harmonics above H, so the floor errs on the high side there). Over a cycle of
+  // N samples a least-squares sine/cosine coefficient of white noise σ has σ·√(2/N). Eq. (13),
+  // S = π f0 |Z1| sin θ1, then moves by π f0 σ_z through the quadrature part of Z1 (σ_z the
+  // displacement noise of y − b) and by S σ_F / f0 through the force amplitude (σ_F the noise
+  // of F1 = m·B̈1). The mean of n independent cycles divides by √n.
   const double omega = 2.0 * std::numbers::pi * options.freq_hz;
+  const double n_per_cycle = median(samples);
+  const double coefficient_noise = std::sqrt(2.0 / n_per_cycle);
   const double mass_noise =
       median(mass_residuals) / std::pow(omega, derivative_order(options.mass_quantity));
-  const double base_noise =
+  const double base_noise_disp =
       median(base_residuals) / std::pow(omega, derivative_order(options.base_quantity));
-  const double sigma_z = std::hypot(mass_noise, base_noise) * std::sqrt(2.0 / median(samples));
-  level.edc_noise_floor_j = std::numbers::pi * level.f0_n * sigma_z / std::sqrt(n);
+  const double sigma_z = std::hypot(mass_noise, base_noise_disp) * coefficient_noise;
+  const double sigma_f = options.mass_kg * base_noise_disp * omega * omega * coefficient_noise;
+  const double sigma_cycle =
+      std::hypot(std::numbers::pi * level.f0_n * sigma_z,
+                 level.f0_n > 0 ? level.edc_mean_j * sigma_f / level.f0_n : 0.0);
+  level.edc_noise_floor_j = sigma_cycle / std::sqrt(n);
 
-  // Period 1: the harmonics repeat from cycle to cycle within their noise. The noise of the
-  // relative change of three harmonics is about √(2·6/N)·σ_z/|Z|; demand 3× that plus 2 %.
+  // Period 1: the harmonics repeat from cycle to cycle within their noise (the relative change
+  // of three harmonics has noise ≈ √(2·6/N)·σ_z/|Z|; demand 3× that plus 2 %), and the
+  // per-cycle EDC scatters no more than 10× its predicted noise (plus 0.5 %). A period-2 or
+  // chaotic response fails one or both (Fig. 17).
   if (!changes.empty()) {
     level.period1_change = median(changes);
-    const double noise_change = std::sqrt(12.0 / median(samples)) *
-                                std::hypot(mass_noise, base_noise) /
+    const double noise_change = std::sqrt(12.0 / n_per_cycle) *
+                                std::hypot(mass_noise, base_noise_disp) /
                                 std::max(level.z1_abs_m, 1e-300);
-    level.period1 = level.period1_change <= 3.0 * noise_change + 0.02;
+    const bool harmonics_repeat = level.period1_change <= 3.0 * noise_change + 0.02;
+    const bool energy_repeats =
+        level.edc_std_j <= 10.0 * sigma_cycle + 5e-3 * std::abs(level.edc_mean_j);
+    level.period1 = harmonics_repeat && energy_repeats;
   }
 
   if (level.cross_well) {

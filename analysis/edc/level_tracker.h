@@ -20,6 +20,7 @@ struct LevelWindow {
 struct LevelOptions {
   std::vector<LevelWindow> windows;  // empty: levels are found from the cycles' force amplitude
   double freq_hz = 0.0;
+  double mass_kg = 1.0;
   MotionQuantity base_quantity = MotionQuantity::Acceleration;
   MotionQuantity mass_quantity = MotionQuantity::Displacement;
   /// z between the wells: the paper's zero of y is the rods' horizontal configuration (§2),
@@ -30,7 +31,7 @@ struct LevelOptions {
   /// Without windows: a cycle whose f0 differs from the level's median by more than this
   /// fraction (or 5 noise σ) starts a new level.
   double level_change_rel = 0.03;
-  /// Steady-state test: a cycle is steady when it and every later cycle of the level lie within
+  /// Steady-state test: the steady part starts at the first of three consecutive cycles within
   /// 4 robust σ + steady_rel_tol·|value| of the level's final value (median of its last third).
   double steady_rel_tol = 2e-4;
 };

@@ -23,6 +23,7 @@ LevelOptions level_options(const PipelineSettings& settings, const StreamSetup& 
   LevelOptions options;
   options.windows = s.level_windows;
   options.freq_hz = s.excitation_freq_hz;
+  options.mass_kg = s.mass_kg;
   options.base_quantity = s.base_quantity;
   options.mass_quantity = s.mass_quantity;
   options.well_boundary_m = settings.well_boundary_m;

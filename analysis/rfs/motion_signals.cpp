@@ -1,5 +1,7 @@
 #include "analysis/rfs/motion_signals.h"
 
+#include <algorithm>
+
 #include "analysis/signal/spectral_calculus.h"
 
 namespace oscilab::analysis {
@@ -9,7 +11,8 @@ namespace {
 Eigen::VectorXd to_order(const Eigen::VectorXd& x, int measured, int target, double rate_hz,
                          const PipelineSettings& settings) {
   SpectralOptions options;
-  options.lowpass_hz = settings.derivative_lowpass_hz;
+  // The low-pass band must fit below Nyquist (its taper ends at 1.25 × the cut-off).
+  options.lowpass_hz = std::min(settings.derivative_lowpass_hz, 0.35 * rate_hz);
   if (target < measured) options.highpass_hz = settings.integration_highpass_hz;
   return spectral_derivative(x, rate_hz, target - measured, options);
 }

@@ -53,6 +53,43 @@ DominantTone dominant_tone(const Eigen::VectorXd& x, double sample_rate_hz, doub
   const double denominator = a - 2 * b + c;
   const double offset = denominator != 0 ? 0.5 * (a - c) / denominator : 0.0;
   tone.freq_hz = (static_cast<double>(peak) + offset) * df;
+
+  // Refine on the unwindowed record: |Σ x_n e^{−iωn/fs}| peaks exactly at the carrier of a
+  // sine with a non-negative envelope (a stepped sine's envelope spectrum peaks at 0 Hz), where
+  // the windowed interpolation above is biased by the envelope's sidebands. Golden-section
+  // search over ±1 bin around the interpolated peak; the phasor is advanced by a recurrence.
+  const auto magnitude = [&](double f_hz) {
+    const std::complex<double> step =
+        std::polar(1.0, -2.0 * std::numbers::pi * f_hz / sample_rate_hz);
+    std::complex<double> phasor = 1.0, sum = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      sum += (x[i] - mean) * phasor;
+      phasor *= step;
+      if ((i & 1023) == 1023) phasor /= std::abs(phasor);  // keep |phasor| = 1 against rounding
+    }
+    return std::abs(sum);
+  };
+  const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = tone.freq_hz - df, hi = tone.freq_hz + df;
+  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
+  double m1 = magnitude(x1), m2 = magnitude(x2);
+  // The unwindowed peak's main lobe is 2/T wide: search down to 1e-4 of a bin.
+  while (hi - lo > 1e-4 * df) {
+    if (m1 > m2) {
+      hi = x2;
+      x2 = x1;
+      m2 = m1;
+      x1 = hi - ratio * (hi - lo);
+      m1 = magnitude(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      m1 = m2;
+      x2 = lo + ratio * (hi - lo);
+      m2 = magnitude(x2);
+    }
+  }
+  tone.freq_hz = 0.5 * (lo + hi);
   double near = 0.0;
   for (Eigen::Index k = std::max<Eigen::Index>(1, peak - 4); k <= std::min(bins - 1, peak + 4);
        ++k) {

@@ -12,9 +12,10 @@ struct DominantTone {
 
 /// Finds the dominant tone by the FFT of the Hann-windowed, mean-removed record and Gaussian
 /// interpolation of the three bins around the peak (Gasior & Gonzalez 2004, "Improving FFT
-/// frequency measurement resolution by parabolic and Gaussian spectrum interpolation"): about
-/// 1e-3 of a bin for a clean tone, i.e. ~1e-5 Hz on a 260 s record. Bins below `min_hz` are
-/// ignored (sensor drift).
+/// frequency measurement resolution by parabolic and Gaussian spectrum interpolation"), then
+/// refined by a golden-section search for the maximum of the unwindowed record's DTFT magnitude
+/// within ±1 bin, which is unbiased for a sine under a non-negative amplitude envelope (stepped
+/// levels). Bins below `min_hz` are ignored (sensor drift).
 DominantTone dominant_tone(const Eigen::VectorXd& x, double sample_rate_hz, double min_hz = 0.5);
 
 }  // namespace oscilab::analysis

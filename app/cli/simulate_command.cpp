@@ -23,7 +23,7 @@ struct SimulateOptions {
   double hold_s = 10.0;
   double ramp_s = 0.5;
   double lead_in_s = 2.5;
-  double rms_n = 1.2;
+  double rms_n = 2.0;
   std::string band_hz = "2:30";
   double duration_s = 120.0;
   double rate_hz = 512.0;

@@ -1,0 +1,145 @@
+// The measurement analysis against the virtual rig's truth (issue: every level's mean EDC within
+// 0.5 % + 5 noise-floor σ of the simulator's true dissipated energy, both wells, 0.2 to 2.7 N).
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "analysis/model/reference_models.h"
+#include "analysis/pipeline/offline_analysis.h"
+#include "daq/recording/measurement_mapping.h"
+#include "daq/rig/virtual_rig.h"
+
+namespace oscilab::analysis {
+namespace {
+
+SteppedSineSchedule test_schedule() {
+  SteppedSineSchedule schedule;
+  schedule.levels_n = {0.2, 0.3, 0.5, 0.8, 1.0, 1.3, 1.8, 2.2, 2.7};
+  return schedule;
+}
+
+daq::RigRecording rig_record(bool positive, std::uint64_t seed,
+                             const SteppedSineSchedule& schedule = test_schedule()) {
+  daq::RigSpec spec;
+  spec.positive_well = positive;
+  spec.seed = seed;
+  return daq::record_stepped_sine(paper_model(), schedule, spec);
+}
+
+void expect_matches_truth(const RecordAnalysis& analysis, const daq::RigRecording& rig,
+                          const std::string& expected_well) {
+  ASSERT_EQ(analysis.levels.size(), rig.levels.size());
+  for (std::size_t i = 0; i < rig.levels.size(); ++i) {
+    const LevelResult& measured = analysis.levels[i];
+    const double truth = rig.levels[i].edc_j;
+    SCOPED_TRACE("level " + std::to_string(rig.levels[i].f0_n) + " N");
+    EXPECT_EQ(measured.well, expected_well);
+    EXPECT_TRUE(measured.usable()) << measured.flags();
+    EXPECT_GE(measured.cycles, 15);
+    EXPECT_NEAR(measured.f0_n, rig.levels[i].f0_n, 0.01 * rig.levels[i].f0_n);
+    // The issue's bound: 0.5 % of the value plus 5 σ of the noise floor derived from the sensors.
+    EXPECT_NEAR(measured.edc_mean_j, truth, 0.005 * truth + 5.0 * measured.edc_noise_floor_j);
+  }
+}
+
+class EdcAccuracy : public ::testing::TestWithParam<std::tuple<bool, int>> {};
+
+TEST_P(EdcAccuracy, MeanEdcWithinHalfPercentPlusFiveSigmaOfTruth) {
+  const auto [positive, seed] = GetParam();
+  const daq::RigRecording rig = rig_record(positive, static_cast<std::uint64_t>(seed));
+  const RecordAnalysis analysis =
+      analyze_record(daq::measurement_channels(rig.recording), PipelineSettings{});
+  EXPECT_FALSE(analysis.frequency_detected);  // the sidecar gives it
+  expect_matches_truth(analysis, rig, positive ? "positive" : "negative");
+}
+
+INSTANTIATE_TEST_SUITE_P(BothWellsThreeSeeds, EdcAccuracy,
+                         ::testing::Combine(::testing::Bool(), ::testing::Values(11, 12, 13)));
+
+TEST(EdcAnalysis, FindsFrequencyAndLevelsWithoutSidecarExcitation) {
+  const daq::RigRecording rig = rig_record(true, 21);
+  MeasurementChannels channels = daq::measurement_channels(rig.recording);
+  channels.excitation_type.clear();
+  channels.excitation_freq_hz.reset();
+  channels.level_windows.clear();
+  const RecordAnalysis analysis = analyze_record(channels, PipelineSettings{});
+  EXPECT_TRUE(analysis.frequency_detected);
+  EXPECT_TRUE(analysis.stepped_sine);
+  // 9 levels of 10 s at 9 Hz: the carrier is found to a few µHz (1e-3 of a 3.8 mHz bin).
+  EXPECT_NEAR(analysis.setup.excitation_freq_hz, 9.0, 2e-5);
+  expect_matches_truth(analysis, rig, "positive");
+}
+
+TEST(EdcAnalysis, LiveBlocksGiveTheOfflineLevels) {
+  const daq::RigRecording rig = rig_record(false, 31);
+  const MeasurementChannels channels = daq::measurement_channels(rig.recording);
+  const RecordAnalysis offline = analyze_record(channels, PipelineSettings{});
+
+  MeasurementPipeline live(PipelineSettings{}, offline.setup);
+  const Eigen::Index n = channels.base.size();
+  std::uint64_t sequence = 0;
+  for (Eigen::Index i = 0, size = 7; i < n; i += size, size = size % 211 + 37) {
+    SampleBlock block;  // odd sizes: 7, 44, 81, ... as a DAQ driver might deliver
+    block.sequence = sequence++;
+    block.t0_s = static_cast<double>(i) / channels.sample_rate_hz;
+    const Eigen::Index count = std::min(size, n - i);
+    block.samples.resize(count, 2);
+    block.samples.col(0) = channels.base.segment(i, count);
+    block.samples.col(1) = channels.mass.segment(i, count);
+    live.push(block);
+  }
+  live.finish();
+  ASSERT_EQ(live.levels().size(), offline.levels.size());
+  for (std::size_t k = 0; k < offline.levels.size(); ++k) {
+    // The issue allows 0.5 %; the engine is the same code on the same samples, so the only
+    // difference is the block timestamps' rounding (t0 + i/fs vs i/fs): 1e-9 relative.
+    EXPECT_NEAR(live.levels()[k].edc_mean_j, offline.levels[k].edc_mean_j,
+                1e-9 * offline.levels[k].edc_mean_j);
+    EXPECT_EQ(live.levels()[k].cycles, offline.levels[k].cycles);
+  }
+}
+
+TEST(EdcAnalysis, VibrometerVelocityAndUnknownMassStillGiveTheEnergy) {
+  SteppedSineSchedule schedule;
+  schedule.levels_n = {0.5, 1.5};
+  const daq::RigRecording rig = rig_record(true, 41, schedule);
+  MeasurementChannels channels = daq::measurement_channels(rig.recording);
+  // A velocity-output vibrometer: ẏ = ż + ḃ, with 1e-4 m/s white noise.
+  const SteppedSineMotion motion(schedule, paper_model().mass_kg());
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, 1e-4);
+  for (Eigen::Index i = 0; i < channels.mass.size(); ++i) {
+    channels.mass[i] = rig.truth.z_dot_m_s[i] + motion.at(rig.truth.t_s[i]).b_dot_m_s + noise(rng);
+  }
+  channels.mass_quantity = MotionQuantity::Velocity;
+  channels.mass_kg.reset();  // the sidecar has no mass: energies per unit mass
+  channels.well_hint_positive = true;
+  const RecordAnalysis analysis = analyze_record(channels, PipelineSettings{});
+  EXPECT_TRUE(analysis.per_unit_mass);
+  ASSERT_EQ(analysis.levels.size(), 2u);
+  const double m = paper_model().mass_kg();
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double truth_per_kg = rig.levels[i].edc_j / m;
+    EXPECT_EQ(analysis.levels[i].well, "positive");  // from the hint: a velocity has no position
+    EXPECT_NEAR(analysis.levels[i].edc_mean_j, truth_per_kg,
+                0.005 * truth_per_kg + 5.0 * analysis.levels[i].edc_noise_floor_j);
+  }
+}
+
+TEST(EdcAnalysis, FlagsPeriodDoublingBeyondThreePointFiveNewton) {
+  // The paper's model doubles its period on the z₊* branch near 3.4 N (issue 5); at 3.7 N the
+  // response is not period-1 and must be kept out of fits.
+  SteppedSineSchedule schedule;
+  schedule.levels_n = {2.7, 3.7};
+  const daq::RigRecording rig = rig_record(true, 51, schedule);
+  const RecordAnalysis analysis =
+      analyze_record(daq::measurement_channels(rig.recording), PipelineSettings{});
+  ASSERT_EQ(analysis.levels.size(), 2u);
+  EXPECT_TRUE(analysis.levels[0].usable());
+  EXPECT_FALSE(analysis.levels[1].period1);
+  EXPECT_FALSE(analysis.levels[1].usable());
+}
+
+}  // namespace
+}  // namespace oscilab::analysis
