@@ -94,10 +94,15 @@ void write_damping(const analysis::CampaignAnalysis& campaign, const std::string
 
 void print_report(const analysis::CampaignAnalysis& campaign) {
   for (const auto& record : campaign.records) {
-    std::printf("%s: %s, excitation %.4f Hz%s%s\n", record.name.c_str(),
-                record.stepped_sine ? "stepped sine" : "not a sine test (no EDC levels)",
-                record.setup.excitation_freq_hz, record.frequency_detected ? " (detected)" : "",
-                record.per_unit_mass ? ", per unit mass" : "");
+    if (record.stepped_sine) {
+      std::printf("%s: stepped sine at %.4f Hz%s%s\n", record.name.c_str(),
+                  record.setup.excitation_freq_hz, record.frequency_detected ? " (detected)" : "",
+                  record.per_unit_mass ? ", per unit mass" : "");
+    } else {
+      std::printf("%s: broadband excitation (no single tone holds %.0f%% of the base power): no "
+                  "EDC levels, restoring force only\n",
+                  record.name.c_str(), 100.0 * record.tone.power_fraction);
+    }
     for (const auto& note : record.notes) std::printf("  note: %s\n", note.c_str());
     if (record.levels.empty()) continue;
     std::printf("  %-10s %7s %12s %11s %12s %6s  %s\n", "well", "f0 [N]", "EDC [J]", "std [J]",
