@@ -373,9 +373,16 @@ Recording read_csv(const std::string& path, const Sidecar& sidecar,
           list += (i == 0 ? "" : ", ") + in_quotes(names[i].substr(0, 40));
         }
         if (names.size() > 12) list += ", ...";
+        const bool numeric = std::all_of(names.begin(), names.end(), [](const std::string& name) {
+          double value = 0.0;
+          return parse_number(name, value).empty();
+        });
         throw InputError(path + ": " + where + ": the header has no column " +
                          in_quotes(channel.name) + " for that channel of " + sidecar_name +
-                         " (found " + list + ")");
+                         " (found " + list + ")" +
+                         (numeric ? "; a file without a header needs \"csv\": {\"header\": "
+                                    "false} and a \"column\" for each channel"
+                                  : ""));
       }
       if (matches > 1) {
         throw InputError(path + ": " + where + ": the header names " + in_quotes(channel.name) +
@@ -609,7 +616,7 @@ Recording read_recording(const std::string& path) {
 Recording read_recording(const std::string& path, const Sidecar& sidecar) {
   check_data_file(path);
   const std::string name = "the sidecar given";
-  const Sidecar checked = parse_sidecar(sidecar_to_json(sidecar), name);
+  const Sidecar checked = parse_sidecar(sidecar_to_json(sidecar), path + ": " + name);
   if (is_text_extension(lower_extension(path))) return read_csv(path, checked, name);
   return read_sound(path, checked, name);
 }

@@ -52,7 +52,6 @@ class Field {
   Field operator[](std::size_t index) const {
     return Field(file_, path_ + "[" + std::to_string(index) + "]");
   }
-  const std::string& path() const { return path_; }
   std::string where() const { return path_.empty() ? file_ : file_ + ": " + path_; }
 
   [[noreturn]] void fail(const std::string& problem) const {

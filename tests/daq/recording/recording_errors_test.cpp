@@ -224,6 +224,26 @@ TEST(CsvReader, ThrowsInputErrorWhenHeaderLacksAChannel) {
                 dir.file("rec.json") + " (found \"t_s\", \"base_acc\", \"z\")");
 }
 
+TEST(CsvReader, ThrowsInputErrorSuggestingTheLayoutWhenTheHeaderIsMissing) {
+  const TempDir dir;
+  const std::string message = csv_error(dir, "0,1,2\n0.25,3,4\n");
+  EXPECT_TRUE(
+      starts_with(message, dir.file("rec.csv") + ": line 1: the header has no column \"base_acc\""))
+      << message;
+  EXPECT_NE(message.find("needs \"csv\": {\"header\": false}"), std::string::npos) << message;
+}
+
+TEST(CsvReader, ThrowsInputErrorNamingTheDataFileWhenTheGivenSidecarIsInvalid) {
+  const TempDir dir;
+  testing::write_file(dir.file("bare.csv"), "y\n1\n");
+  Sidecar sidecar;
+  sidecar.sample_rate_hz = 0.0;
+  sidecar.channels = {channel("y", ChannelRole::Mass, Quantity::Displacement, "mm")};
+  EXPECT_EQ(input_error_of([&] { read_recording(dir.file("bare.csv"), sidecar); }),
+            dir.file("bare.csv") +
+                ": the sidecar given: sample_rate_hz: expected a positive number, got 0.0");
+}
+
 TEST(CsvReader, ThrowsInputErrorWhenAMappedColumnIsBeyondTheRow) {
   const TempDir dir;
   const std::string sidecar = R"({"sample_rate_hz": 4, "csv": {"header": false},

@@ -194,12 +194,10 @@ Recording base_recording() {
   return recording;
 }
 
-// Mutates the bytes of `mutated_name` (a recording or its sidecar) `iterations` times from
-// `seed` and reads the recording each time.
-void fuzz_file_bytes(const std::string& recording_name, const std::string& mutated_name,
-                     std::uint64_t seed, int iterations) {
-  const TempDir dir;
-  write_recording(base_recording(), dir.file(recording_name));
+// Mutates the bytes of `mutated_name` (a recording or its sidecar in `dir`) `iterations` times
+// from `seed` and reads the recording each time.
+void fuzz_file_bytes(const TempDir& dir, const std::string& recording_name,
+                     const std::string& mutated_name, std::uint64_t seed, int iterations) {
   const std::string original = testing::read_file(dir.file(mutated_name));
   std::mt19937_64 rng(seed);
   int rejected = 0;
@@ -219,20 +217,53 @@ void fuzz_file_bytes(const std::string& recording_name, const std::string& mutat
   EXPECT_GT(rejected, 0);
 }
 
+// A recording written by the code under test, with its sidecar.
+void fuzz_written(const std::string& recording_name, const std::string& mutated_name,
+                  std::uint64_t seed, int iterations) {
+  const TempDir dir;
+  write_recording(base_recording(), dir.file(recording_name));
+  fuzz_file_bytes(dir, recording_name, mutated_name, seed, iterations);
+}
+
+// Another instrument's export: preamble, no header, semicolons, a time column, unused columns.
+void write_instrument_csv(const TempDir& dir) {
+  std::string text = "Scope export 2026-11-23\ntime;ch1;ch2;ch3\n";
+  for (int i = 0; i < 40; ++i) {
+    text += std::to_string(i / 2048.0) + ";" + std::to_string(0.01 * i) + ";" +
+            std::to_string(-0.5 * i) + ";21.5\n";
+  }
+  testing::write_file(dir.file("scope.csv"), text);
+  testing::write_file(dir.file("scope.json"), R"({"sample_rate_hz": 2048,
+    "csv": {"header": false, "delimiter": ";", "skip_lines": 2, "time_column": 0},
+    "channels": [
+      {"name": "base_acc", "role": "base", "quantity": "acceleration", "unit": "g",
+       "scale": 10, "offset": 0.02, "column": 1},
+      {"name": "y_dot", "role": "mass", "quantity": "velocity", "unit": "mm/s", "scale": 1,
+       "column": 2}]})");
+}
+
 TEST(RecordingFuzz, MutatedSidecarBytesGiveOnlyInputErrors) {
-  fuzz_file_bytes("run.csv", "run.json", 20261123, 1500);
+  fuzz_written("run.csv", "run.json", 20261123, 1500);
 }
 
 TEST(RecordingFuzz, MutatedCsvBytesGiveOnlyInputErrors) {
-  fuzz_file_bytes("run.csv", "run.csv", 4242, 1500);
+  fuzz_written("run.csv", "run.csv", 4242, 1500);
+}
+
+TEST(RecordingFuzz, MutatedHeaderlessCsvAndItsSidecarGiveOnlyInputErrors) {
+  const TempDir dir;
+  write_instrument_csv(dir);
+  fuzz_file_bytes(dir, "scope.csv", "scope.csv", 2048, 700);
+  write_instrument_csv(dir);
+  fuzz_file_bytes(dir, "scope.csv", "scope.json", 9, 700);
 }
 
 TEST(RecordingFuzz, MutatedWavBytesGiveOnlyInputErrors) {
-  fuzz_file_bytes("run.wav", "run.wav", 512, 1500);
+  fuzz_written("run.wav", "run.wav", 512, 1500);
 }
 
 TEST(RecordingFuzz, MutatedFlacBytesGiveOnlyInputErrors) {
-  fuzz_file_bytes("run.flac", "run.flac", 24, 500);
+  fuzz_written("run.flac", "run.flac", 24, 500);
 }
 
 TEST(RecordingFuzz, SidecarsWithWrongTypesGiveOnlyInputErrors) {
