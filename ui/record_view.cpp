@@ -91,13 +91,13 @@ void RecordView::rebuild_plots() {
   cursor_lines_.clear();
   cursor_tracers_.clear();
   cursor_text_.clear();
-  readout_->setText(recording_ ? tr("Move the mouse over the plots to read the values.")
-                               : QString());
+  readout_->setText(tr("Move the mouse over the plots to read the values."));
 
   const bool showable =
       recording_ && !recording_->sidecar.channels.empty() &&
       recording_->sidecar.sample_rate_hz > 0.0 &&
       recording_->samples_si.cols() >= Eigen::Index(recording_->sidecar.channels.size());
+  readout_->setVisible(showable);
   if (!showable) {
     auto* hint = new QCPTextElement(plot_, tr("No recording. File \u25b8 Open\u2026 (Ctrl+O)"));
     hint->setTextColor(Qt::gray);
