@@ -5,7 +5,7 @@
 #include <limits>
 #include <numbers>
 
-#include <Eigen/QR>
+#include <Eigen/Cholesky>
 
 namespace oscilab::analysis {
 namespace {
@@ -32,32 +32,60 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   const int harmonics = std::min(input.harmonics, (n - 3) / 2);
   if (harmonics < 1 || n < input.min_samples) return false;
 
+  // Basis rows for the samples lo..hi: the window plus one neighbour on each side (for the
+  // trapezoid's partial intervals). Columns: 1, t − t_mid, then cos(hωτ), −sin(hωτ) for
+  // h = 1..H, τ = t − t_ref, by the angle-addition recurrence from one sincos per sample.
+  const int lo = std::max(0, first - 1), hi = std::min(count - 1, last);
+  const int rows = hi - lo + 1;
   const int columns = 2 + 2 * harmonics;
   const double t_mid = start_s + 0.5 * period;
-  Eigen::MatrixXd design(n, columns);
-  Eigen::MatrixXd rhs(n, 2);
-  for (int r = 0; r < n; ++r) {
-    const double t = t_s[first + r];
-    design(r, 0) = 1.0;
-    design(r, 1) = t - t_mid;
+  Eigen::MatrixXd basis(rows, columns);
+  for (int r = 0; r < rows; ++r) {
+    const double t = t_s[lo + r];
+    const double c1 = std::cos(omega * (t - input.t_ref_s));
+    const double s1 = std::sin(omega * (t - input.t_ref_s));
+    basis(r, 0) = 1.0;
+    basis(r, 1) = t - t_mid;
+    double c = c1, sn = s1;
     for (int h = 1; h <= harmonics; ++h) {
-      const double phase = h * omega * (t - input.t_ref_s);
-      design(r, 2 * h) = std::cos(phase);
-      design(r, 2 * h + 1) = -std::sin(phase);
+      basis(r, 2 * h) = c;
+      basis(r, 2 * h + 1) = -sn;
+      const double next_c = c * c1 - sn * s1;
+      sn = sn * c1 + c * s1;
+      c = next_c;
     }
-    rhs(r, 0) = base[first + r];
-    rhs(r, 1) = mass[first + r];
   }
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(design);
-  const Eigen::MatrixXd coefficients = qr.solve(rhs);
-  const Eigen::MatrixXd residual = design * coefficients - rhs;
+
+  // Least squares by the normal equations: over one period the columns are close to orthogonal
+  // (sines and cosines of whole harmonics, a centred linear term), so AᵀA is well conditioned
+  // and its Cholesky factor is as accurate as a QR here, at a quarter of the cost. The channels
+  // are offset by their first sample so that the sums carry no large constant.
+  const auto window = basis.middleRows(first - lo, n);
+  Eigen::MatrixXd values(n, 2);
+  const double base_offset = base[first], mass_offset = mass[first];
+  for (int r = 0; r < n; ++r) {
+    values(r, 0) = base[first + r] - base_offset;
+    values(r, 1) = mass[first + r] - mass_offset;
+  }
+  const Eigen::MatrixXd gram = window.transpose() * window;
+  const Eigen::MatrixXd projections = window.transpose() * values;
+  const Eigen::LLT<Eigen::MatrixXd> cholesky(gram);
+  if (cholesky.info() != Eigen::Success) return false;
+  Eigen::MatrixXd coefficients = cholesky.solve(projections);
+  const Eigen::MatrixXd residual = window * coefficients - values;
+  coefficients(0, 0) += base_offset;
+  coefficients(0, 1) += mass_offset;
   // Residual rms with the degrees of freedom of the fit removed (unbiased for white noise).
   const double dof = std::max(1, n - columns);
   out.base_residual_rms = std::sqrt(residual.col(0).squaredNorm() / dof);
   out.mass_residual_rms = std::sqrt(residual.col(1).squaredNorm() / dof);
 
+  // Harmonic coefficients as displacement: X / (ihω)^order, with X = a + ib for the basis
+  // columns (cos, −sin). Also the table's acceleration, −(hω)² B_h, for the force.
   const int base_order = derivative_order(input.base_quantity);
   const int mass_order = derivative_order(input.mass_quantity);
+  Eigen::VectorXd b_disp = Eigen::VectorXd::Zero(columns), z_disp = Eigen::VectorXd::Zero(columns),
+                  b_acc = Eigen::VectorXd::Zero(columns);
   out.start_s = start_s;
   out.end_s = end_s;
   out.samples = n;
@@ -68,12 +96,19 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
     const double hw = h * omega;
     const std::complex<double> b(coefficients(2 * h, 0), coefficients(2 * h + 1, 0));
     const std::complex<double> y(coefficients(2 * h, 1), coefficients(2 * h + 1, 1));
-    const std::complex<double> b_disp = to_displacement(b, hw, base_order);
-    const std::complex<double> y_disp = to_displacement(y, hw, mass_order);
-    const std::complex<double> z = input.mass_is_relative ? y_disp : y_disp - b_disp;
-    const std::complex<double> f = input.mass_kg * hw * hw * b_disp;  // F_h = −m (ihω)² B_h
+    const std::complex<double> b_d = to_displacement(b, hw, base_order);
+    const std::complex<double> y_d = to_displacement(y, hw, mass_order);
+    const std::complex<double> z = input.mass_is_relative ? y_d : y_d - b_d;
+    const std::complex<double> f = input.mass_kg * hw * hw * b_d;  // F_h = −m (ihω)² B_h
     out.z_h[static_cast<std::size_t>(h - 1)] = z;
     f_h[static_cast<std::size_t>(h - 1)] = f;
+    b_disp(2 * h) = b_d.real();
+    b_disp(2 * h + 1) = b_d.imag();
+    z_disp(2 * h) = z.real();
+    z_disp(2 * h + 1) = z.imag();
+    b_acc(2 * h) = -hw * hw * b_d.real();
+    b_acc(2 * h + 1) = -hw * hw * b_d.imag();
+    // Parseval: ∫_T f ż dt = (T/2) Σ_h hω Im(F_h conj Z_h).
     edc += 0.5 * period * hw * std::imag(f * std::conj(z));
   }
   out.edc_j = edc;
@@ -81,64 +116,36 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   // Eq. (13) with the lag θ1 of z behind f: S₁ = (T/2) ω Im(F1 conj Z1) = π |F1| |Z1| sin θ1.
   const std::complex<double> f1 = f_h[0], z1 = out.z_h[0];
   out.f0_n = std::abs(f1);
-  out.lag_rad = std::arg(f1) - std::arg(z1);
-  out.lag_rad = std::remainder(out.lag_rad, 2.0 * std::numbers::pi);
+  out.lag_rad = std::remainder(std::arg(f1) - std::arg(z1), 2.0 * std::numbers::pi);
   out.edc_eq13_j = std::numbers::pi * out.f0_n * std::abs(z1) * std::sin(out.lag_rad);
 
-  // Mean and extremes of z over the cycle from the fit (the constant of a velocity or
-  // acceleration channel is not a position: then only a displacement channel sets the mean).
+  // Mean and extremes of z over the cycle from the fit, at the sample times (the constant of a
+  // velocity or acceleration channel is not a position: then only a displacement sets the mean).
   const double y_mean = mass_order == 0 ? coefficients(0, 1) : 0.0;
   const double b_mean = base_order == 0 ? coefficients(0, 0) : 0.0;
   out.z_mean_m = input.mass_is_relative ? y_mean : y_mean - b_mean;
-  out.z_min_m = std::numeric_limits<double>::infinity();
-  out.z_max_m = -out.z_min_m;
-  constexpr int kEvaluations = 64;
-  for (int k = 0; k < kEvaluations; ++k) {
-    const double t = start_s + period * k / kEvaluations;
-    double z = out.z_mean_m;
-    for (int h = 1; h <= harmonics; ++h) {
-      z += std::real(out.z_h[static_cast<std::size_t>(h - 1)] *
-                     std::polar(1.0, h * omega * (t - input.t_ref_s)));
-    }
-    out.z_min_m = std::min(out.z_min_m, z);
-    out.z_max_m = std::max(out.z_max_m, z);
-  }
+  const Eigen::VectorXd z_fit = basis * z_disp;  // harmonic part at lo..hi
+  const Eigen::VectorXd b_fit = basis * b_disp;
+  out.z_min_m = out.z_mean_m + z_fit.segment(first - lo, n).minCoeff();
+  out.z_max_m = out.z_mean_m + z_fit.segment(first - lo, n).maxCoeff();
 
   // Trapezoidal ∮ f dz over the samples, with the measured force where the base channel is an
   // acceleration (f = −m b̈) and z = y − b_fit where the mass channel is a displacement;
   // otherwise the fitted signal stands in. Partial intervals at the window edges are
   // interpolated linearly between the samples outside and inside.
-  std::vector<std::complex<double>> b_h(static_cast<std::size_t>(harmonics));
-  for (int h = 1; h <= harmonics; ++h) {
-    const std::complex<double> bh(coefficients(2 * h, 0), coefficients(2 * h + 1, 0));
-    b_h[static_cast<std::size_t>(h - 1)] = to_displacement(bh, h * omega, base_order);
-  }
-  // Σ_h Re((ihω)^order X_h e^{ihω(t − t_ref)}) for displacement phasors X_h.
-  const auto synthesise = [&](const std::vector<std::complex<double>>& x, int order, double t) {
-    double value = 0.0;
-    for (int h = 1; h <= harmonics; ++h) {
-      const double hw = h * omega;
-      value +=
-          std::real(std::pow(std::complex<double>(0.0, hw), order) *
-                    x[static_cast<std::size_t>(h - 1)] * std::polar(1.0, hw * (t - input.t_ref_s)));
-    }
-    return value;
-  };
+  const Eigen::VectorXd b_acc_fit = base_order == 2 ? Eigen::VectorXd() : basis * b_acc;
   const auto force_at = [&](int i) {
-    const double b_ddot = base_order == 2 ? base[i] : synthesise(b_h, 2, t_s[i]);
-    return -input.mass_kg * b_ddot;
+    return -input.mass_kg * (base_order == 2 ? base[i] : b_acc_fit[i - lo]);
   };
   const auto z_at = [&](int i) {
-    if (mass_order != 0) return synthesise(out.z_h, 0, t_s[i]);
-    return input.mass_is_relative ? mass[i] : mass[i] - synthesise(b_h, 0, t_s[i]);
+    if (mass_order != 0) return z_fit[i - lo];
+    return input.mass_is_relative ? mass[i] : mass[i] - b_fit[i - lo];
   };
   double area = 0.0;
-  const int lo = std::max(0, first - 1), hi = std::min(count - 1, last);
+  const auto lerp = [](double a, double b, double s) { return a + (b - a) * s; };
   for (int i = lo; i < hi; ++i) {
     double ta = t_s[i], tb = t_s[i + 1];
     double fa = force_at(i), fb = force_at(i + 1), za = z_at(i), zb = z_at(i + 1);
-    // Clip the interval to the window by linear interpolation.
-    const auto lerp = [](double a, double b, double s) { return a + (b - a) * s; };
     if (ta < start_s) {
       const double s = (start_s - ta) / (tb - ta);
       fa = lerp(fa, fb, s);

@@ -6,17 +6,9 @@
 #include <fftw3.h>
 
 #include "analysis/common/input_error.h"
+#include "analysis/signal/fftw_planner.h"
 
 namespace oscilab::analysis {
-namespace {
-
-std::mutex& planner_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-}  // namespace
-
 int next_power_of_two(int n) {
   int p = 1;
   while (p < n) p *= 2;
@@ -29,7 +21,7 @@ FourierGrid::FourierGrid(int harmonics, int samples) : harmonics_(harmonics), sa
                      " time samples cannot carry " + std::to_string(harmonics) +
                      " harmonics (need N > 2H)");
   }
-  const std::lock_guard<std::mutex> lock(planner_mutex());
+  const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   real_ = fftw_alloc_real(static_cast<std::size_t>(samples));
   auto* spectrum = fftw_alloc_complex(static_cast<std::size_t>(samples / 2 + 1));
   complex_ = spectrum;
@@ -38,7 +30,7 @@ FourierGrid::FourierGrid(int harmonics, int samples) : harmonics_(harmonics), sa
 }
 
 FourierGrid::~FourierGrid() {
-  const std::lock_guard<std::mutex> lock(planner_mutex());
+  const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   fftw_destroy_plan(static_cast<fftw_plan>(forward_));
   fftw_destroy_plan(static_cast<fftw_plan>(backward_));
   fftw_free(complex_);

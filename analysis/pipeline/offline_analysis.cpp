@@ -57,10 +57,13 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
   setup.level_windows = channels.level_windows;
   setup.well_hint_positive = channels.well_hint_positive;
 
-  out.tone = dominant_tone(channels.base, channels.sample_rate_hz);
+  // The tone is looked for only where the sidecar leaves the excitation open.
+  const bool known = !channels.excitation_type.empty() &&
+                     (channels.excitation_type != "stepped-sine" || channels.excitation_freq_hz);
+  if (!known) out.tone = dominant_tone(channels.base, channels.sample_rate_hz);
   if (channels.excitation_freq_hz) {
     setup.excitation_freq_hz = *channels.excitation_freq_hz;
-  } else {
+  } else if (!known || channels.excitation_type == "stepped-sine") {
     setup.excitation_freq_hz = out.tone.freq_hz;
     out.frequency_detected = true;
   }

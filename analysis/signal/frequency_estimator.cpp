@@ -8,6 +8,7 @@
 #include <fftw3.h>
 
 #include "analysis/signal/fft_size.h"
+#include "analysis/signal/fftw_planner.h"
 
 namespace oscilab::analysis {
 
@@ -26,11 +27,8 @@ DominantTone dominant_tone(const Eigen::VectorXd& x, double sample_rate_hz, doub
   }
   const Eigen::Index bins = n_fft / 2 + 1;
   std::vector<std::complex<double>> spectrum(static_cast<std::size_t>(bins));
-  fftw_plan plan =
-      fftw_plan_dft_r2c_1d(static_cast<int>(n_fft), buffer.data(),
-                           reinterpret_cast<fftw_complex*>(spectrum.data()), FFTW_ESTIMATE);
-  fftw_execute(plan);
-  fftw_destroy_plan(plan);
+  fftw_execute_dft_r2c(cached_r2c_plan(static_cast<int>(n_fft)), buffer.data(),
+                       reinterpret_cast<fftw_complex*>(spectrum.data()));
 
   const double df = sample_rate_hz / static_cast<double>(n_fft);
   const auto first = static_cast<Eigen::Index>(std::ceil(min_hz / df));

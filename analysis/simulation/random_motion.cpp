@@ -10,6 +10,7 @@
 #include <fftw3.h>
 
 #include "analysis/common/input_error.h"
+#include "analysis/signal/fftw_planner.h"
 
 namespace oscilab::analysis {
 namespace {
@@ -18,6 +19,7 @@ namespace {
 // (FFTW's c2r convention, see docs/conventions.md).
 std::vector<double> inverse_real_dft(std::vector<std::complex<double>> spectrum, std::size_t n) {
   std::vector<double> out(n);
+  const std::lock_guard lock(fftw_planner_mutex());  // one-off transform: plan and run locked
   fftw_plan plan =
       fftw_plan_dft_c2r_1d(static_cast<int>(n), reinterpret_cast<fftw_complex*>(spectrum.data()),
                            out.data(), FFTW_ESTIMATE);

@@ -1,6 +1,8 @@
 // Speed of the measurement analysis (issue: offline analysis of the 262.5 s stepped-sine record
 // at ≥ 5000× real time on one core, i.e. ≤ 52 ms; the live pipeline at 512 Hz under 1 % of one
 // core). Records come from the virtual rig once, outside the timed loops.
+#include <chrono>
+
 #include <benchmark/benchmark.h>
 
 #include "analysis/model/reference_models.h"

@@ -1,0 +1,36 @@
+#include "analysis/signal/fftw_planner.h"
+
+#include <map>
+#include <utility>
+
+namespace oscilab::analysis {
+namespace {
+
+// Plans by (size, direction); never destroyed: a process meets only a handful of sizes.
+fftw_plan cached_plan(int n, bool forward) {
+  static std::map<std::pair<int, bool>, fftw_plan> plans;
+  const std::lock_guard lock(fftw_planner_mutex());
+  const auto key = std::make_pair(n, forward);
+  if (const auto it = plans.find(key); it != plans.end()) return it->second;
+  double* real = fftw_alloc_real(static_cast<std::size_t>(n));
+  fftw_complex* spectrum = fftw_alloc_complex(static_cast<std::size_t>(n / 2 + 1));
+  const unsigned flags = FFTW_ESTIMATE | FFTW_UNALIGNED;
+  const fftw_plan plan = forward ? fftw_plan_dft_r2c_1d(n, real, spectrum, flags)
+                                 : fftw_plan_dft_c2r_1d(n, spectrum, real, flags);
+  fftw_free(real);
+  fftw_free(spectrum);
+  plans.emplace(key, plan);
+  return plan;
+}
+
+}  // namespace
+
+std::mutex& fftw_planner_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+fftw_plan cached_r2c_plan(int n) { return cached_plan(n, true); }
+fftw_plan cached_c2r_plan(int n) { return cached_plan(n, false); }
+
+}  // namespace oscilab::analysis
