@@ -59,6 +59,12 @@ run_main() {
   echo "setup: running the headless analysis of the same sample instead:"
   echo
   ./build/app/oscilab-cli info "$DEFAULT_SAMPLE"
+  echo
+  local out
+  out=$(mktemp -d)
+  ./build/app/oscilab-cli analyze "$DEFAULT_SAMPLE" --edc "$out/edc.csv" --summary "$out/summary.json"
+  echo
+  echo "setup: EDC table and summary written to $out/"
 }
 
 run_tests() {

@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include <gtest/gtest.h>
 
 #include "analysis/signal/fft_size.h"
 #include "analysis/signal/frequency_estimator.h"
+#include "analysis/signal/streaming_integrator.h"
 
 namespace oscilab::analysis {
 namespace {
@@ -92,6 +94,63 @@ TEST(FrequencyEstimator, FindsASteppedSineCarrierToAFewMicrohertz) {
   // Bin width 512/100000 Hz ≈ 5 mHz; Gaussian interpolation of a Hann peak is good to ~1e-3 bin.
   EXPECT_NEAR(tone.freq_hz, f, 2e-5);
   EXPECT_GT(tone.power_fraction, 0.9);
+}
+
+TEST(StreamingIntegrator, DoubleIntegratesLiveWithItsLatencyAndNoPhaseError) {
+  // A stepped sine's table acceleration with a bias: b̈ = −A(t) ω² sin ωt + bias, A stepping
+  // smoothly from 1 to 2 mm. The live output at t is b(t − latency).
+  const double rate = 512.0, w = 2 * kPi * 9.0, bias = 4e-3;
+  StreamingIntegrator::Options options;
+  options.sample_rate_hz = rate;
+  StreamingIntegrator integrator(options);
+  EXPECT_EQ(integrator.latency_samples(), 2048);  // 4 s at 512 Hz
+  const auto amplitude = [](double t) { return t < 20 ? 1e-3 : 2e-3; };
+  double worst = 0.0;
+  for (int i = 0; i < 40 * 512; ++i) {
+    const double t = i / rate;
+    const double out = integrator.push(-amplitude(t) * w * w * std::sin(w * t) + bias);
+    const double t_out = t - integrator.latency_s();
+    // Away from the filter's start and from the step (the step's own transient is the
+    // high-pass's, as offline), compare with the exact displacement.
+    if (!integrator.ready() || t_out < 10 || std::abs(t_out - 20) < 5 || t_out > 36) continue;
+    worst =
+        std::max(worst, std::abs(out - amplitude(t_out) * std::sin(w * t_out)) / amplitude(t_out));
+  }
+  // Truncation of the impulse response to ±4 s (Tukey taper): below 1e-4 of the amplitude.
+  EXPECT_LT(worst, 1e-4);
+}
+
+TEST(StreamingIntegrator, AgreesWithTheOfflineIntegratorInsideTheRecord) {
+  const double rate = 512.0;
+  const Eigen::Index n = 30 * 512;
+  Eigen::VectorXd x(n);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  double smooth = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {  // red-ish noise with content from 1 to 100 Hz
+    smooth = 0.9 * smooth + noise(rng);
+    x[i] = smooth;
+  }
+  SpectralOptions band;
+  band.highpass_hz = 1.0;
+  const Eigen::VectorXd offline = spectral_derivative(x, rate, -2, band);
+  StreamingIntegrator::Options options;
+  options.sample_rate_hz = rate;
+  StreamingIntegrator live(options);
+  const int lag = live.latency_samples();
+  double worst = 0.0, scale = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double out = live.push(x[i]);
+    const Eigen::Index j = i - lag;
+    if (j < 8 * 512 || j > n - 8 * 512) continue;  // away from both records' ends
+    worst = std::max(worst, std::abs(out - offline[j]));
+    scale = std::max(scale, std::abs(offline[j]));
+  }
+  // Same frequency response; they differ by the live filter's truncation to ±4 s and by the
+  // offline mirror extension's end leakage (≤ 1e-3 at 8 s from the ends for a record that
+  // stops mid-signal, see above); measured 1.8e-3 of the largest value for this red noise,
+  // whose power sits at the low frequencies where 1/ω² makes both errors largest.
+  EXPECT_LT(worst / scale, 3e-3);
 }
 
 }  // namespace
