@@ -33,6 +33,19 @@ std::vector<double> stable_zeros(const PolynomialFit& fit, double lo, double hi)
 
 }  // namespace
 
+StreamSetup stream_setup(const MeasurementChannels& channels) {
+  StreamSetup setup;
+  setup.sample_rate_hz = channels.sample_rate_hz;
+  setup.mass_kg = channels.mass_kg.value_or(1.0);
+  setup.base_quantity = channels.base_quantity;
+  setup.mass_quantity = channels.mass_quantity;
+  setup.mass_is_relative = channels.mass_is_relative;
+  setup.excitation_freq_hz = channels.excitation_freq_hz.value_or(0.0);
+  setup.level_windows = channels.level_windows;
+  setup.well_hint_positive = channels.well_hint_positive;
+  return setup;
+}
+
 RecordAnalysis analyze_record(const MeasurementChannels& channels,
                               const PipelineSettings& settings) {
   if (channels.base.size() != channels.mass.size() || channels.base.size() < 16) {
@@ -48,14 +61,7 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
         "per unit mass (J/kg)");
   }
 
-  StreamSetup setup;
-  setup.sample_rate_hz = channels.sample_rate_hz;
-  setup.mass_kg = mass;
-  setup.base_quantity = channels.base_quantity;
-  setup.mass_quantity = channels.mass_quantity;
-  setup.mass_is_relative = channels.mass_is_relative;
-  setup.level_windows = channels.level_windows;
-  setup.well_hint_positive = channels.well_hint_positive;
+  StreamSetup setup = stream_setup(channels);
 
   // The tone is looked for only where the sidecar leaves the excitation open.
   const bool known = !channels.excitation_type.empty() &&

@@ -39,6 +39,10 @@ struct CampaignAnalysis {
   JobStatus status = JobStatus::Ok;
 };
 
+/// The pipeline's setup for a record: rate, mass (1 when unknown), channel quantities, the
+/// sidecar's levels and frequency (0 when the sidecar does not give it).
+StreamSetup stream_setup(const MeasurementChannels& channels);
+
 /// The offline analysis of one record: detect the excitation when the sidecar does not say it,
 /// run the measurement pipeline over the whole record as one block, and compute the time
 /// signals of the restoring surface.

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <sstream>
 
 #include "analysis/common/input_error.h"
 #include "analysis/model/model_json.h"
 #include "app/cli/commands.h"
+#include "app/cli/option_parsing.h"
 #include "app/cli/progress_bar.h"
 #include "daq/rig/virtual_rig.h"
 
@@ -33,50 +33,6 @@ struct SimulateOptions {
   std::string out;
 };
 
-double parse_number(const std::string& text, const std::string& option) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !std::isfinite(value)) {
-    throw InputError(option + ": \"" + text + "\" is not a number");
-  }
-  return value;
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, separator)) parts.push_back(part);
-  return parts;
-}
-
-// "A:STEP:B" (inclusive, A ≤ B, STEP > 0) or a comma-separated list "0.2,0.5,1".
-std::vector<double> parse_levels(const std::string& text) {
-  std::vector<double> levels;
-  const auto range = split(text, ':');
-  if (range.size() == 3) {
-    const double a = parse_number(range[0], "--levels"), step = parse_number(range[1], "--levels"),
-                 b = parse_number(range[2], "--levels");
-    if (!(step > 0) || b < a) {
-      throw InputError("--levels: \"" + text + "\" needs A <= B and STEP > 0");
-    }
-    // Count by rounding so that 0.2:0.1:2.7 gives 26 levels despite binary fractions.
-    const long count = std::lround((b - a) / step) + 1;
-    if (count > 10000) throw InputError("--levels: \"" + text + "\" gives too many levels");
-    for (long i = 0; i < count; ++i) levels.push_back(a + step * static_cast<double>(i));
-  } else if (range.size() == 1) {
-    for (const auto& part : split(text, ',')) levels.push_back(parse_number(part, "--levels"));
-  } else {
-    throw InputError("--levels: \"" + text + "\" is neither A:STEP:B nor a list A,B,...");
-  }
-  return levels;
-}
-
 void run(const SimulateOptions& options) {
   const analysis::Model model = analysis::model_from_spec(options.model);
   daq::RigSpec spec;
@@ -96,7 +52,7 @@ void run(const SimulateOptions& options) {
     if (options.test == "stepped-sine") {
       analysis::SteppedSineSchedule schedule;
       schedule.frequency_hz = options.freq_hz;
-      schedule.levels_n = parse_levels(options.levels);
+      schedule.levels_n = parse_levels(options.levels, "--levels");
       schedule.hold_s = options.hold_s;
       schedule.ramp_s = options.ramp_s;
       schedule.lead_in_s = options.lead_in_s;

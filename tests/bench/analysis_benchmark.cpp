@@ -34,11 +34,7 @@ double record_seconds() {
 // The EDC path alone: per-cycle fits, levels, steady-state test (what `analyze --edc` needs).
 void BM_OfflineEdc(benchmark::State& state) {
   const MeasurementChannels& channels = default_record();
-  StreamSetup setup;
-  setup.sample_rate_hz = channels.sample_rate_hz;
-  setup.mass_kg = *channels.mass_kg;
-  setup.excitation_freq_hz = *channels.excitation_freq_hz;
-  setup.level_windows = channels.level_windows;
+  const StreamSetup setup = stream_setup(channels);
   SampleBlock block;
   block.samples.resize(channels.base.size(), 2);
   block.samples.col(0) = channels.base;
@@ -72,11 +68,7 @@ BENCHMARK(BM_OfflineAnalyzeRecord)->Unit(benchmark::kMillisecond)->UseRealTime()
 // `core_pct_at_512hz` is the share of one core the pipeline needs to keep up in real time.
 void BM_LivePipeline(benchmark::State& state) {
   const MeasurementChannels& channels = default_record();
-  StreamSetup setup;
-  setup.sample_rate_hz = channels.sample_rate_hz;
-  setup.mass_kg = *channels.mass_kg;
-  setup.excitation_freq_hz = *channels.excitation_freq_hz;
-  setup.level_windows = channels.level_windows;
+  const StreamSetup setup = stream_setup(channels);
   constexpr Eigen::Index kBlock = 64;
   std::vector<SampleBlock> blocks;
   for (Eigen::Index i = 0; i < channels.base.size(); i += kBlock) {

@@ -1,0 +1,52 @@
+#include "app/cli/option_parsing.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "analysis/common/input_error.h"
+
+namespace oscilab::cli {
+
+double parse_number(const std::string& text, const std::string& option) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(value)) {
+    throw InputError(option + ": \"" + text + "\" is not a number");
+  }
+  return value;
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, separator)) parts.push_back(part);
+  return parts;
+}
+
+std::vector<double> parse_levels(const std::string& text, const std::string& option) {
+  std::vector<double> levels;
+  const auto range = split(text, ':');
+  if (range.size() == 3) {
+    const double a = parse_number(range[0], option), step = parse_number(range[1], option),
+                 b = parse_number(range[2], option);
+    if (!(step > 0) || b < a) {
+      throw InputError(option + ": \"" + text + "\" needs A <= B and STEP > 0");
+    }
+    const long count = std::lround((b - a) / step) + 1;
+    if (count > 10000) throw InputError(option + ": \"" + text + "\" gives too many levels");
+    for (long i = 0; i < count; ++i) levels.push_back(a + step * static_cast<double>(i));
+  } else if (range.size() == 1) {
+    for (const auto& part : split(text, ',')) levels.push_back(parse_number(part, option));
+  } else {
+    throw InputError(option + ": \"" + text + "\" is neither A:STEP:B nor a list A,B,...");
+  }
+  return levels;
+}
+
+}  // namespace oscilab::cli
