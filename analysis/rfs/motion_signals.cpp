@@ -18,29 +18,31 @@ MotionSignals motion_signals(const MeasurementChannels& channels, const Pipeline
     if (target < measured) options.highpass_hz = settings.integration_highpass_hz;
     return options;
   };
-  // Two forward transforms, then one inverse for each of z, ż, z̈ (= y − b in each order) and b̈.
+  // Two forward transforms, then one inverse for each of z, ż (= y − b in each order) and R.
   const SpectralRecord mass(channels.mass, rate);
   const SpectralRecord base(channels.base, rate);
   MotionSignals s;
   const Eigen::Index n = channels.base.size();
   s.t_s = Eigen::VectorXd::LinSpaced(n, 0.0, static_cast<double>(n - 1) / rate);
-  Eigen::VectorXd relative[3];
   SpectralRecord::Spectrum spectrum;
-  for (int order = 0; order < 3; ++order) {
+  // The relative motion of a given order: y − b, or the mass channel itself when it measures z.
+  const auto relative = [&](int order) {
     mass.clear(spectrum);
     mass.accumulate(spectrum, 1.0, order - mass_order, band(mass_order, order));
     if (!channels.mass_is_relative) {
       base.accumulate(spectrum, -1.0, order - base_order, band(base_order, order));
     }
-    relative[order] = mass.inverse(spectrum);
+    return mass.inverse(spectrum);
+  };
+  s.z_m = relative(0);
+  s.z_dot_m_s = relative(1);
+  // Eq. (1): R = f − m z̈ = −m (b̈ + z̈), which for an absolute mass channel is −m ÿ.
+  mass.clear(spectrum);
+  mass.accumulate(spectrum, -mass_kg, 2 - mass_order, band(mass_order, 2));
+  if (channels.mass_is_relative) {
+    base.accumulate(spectrum, -mass_kg, 2 - base_order, band(base_order, 2));
   }
-  base.clear(spectrum);
-  base.accumulate(spectrum, -mass_kg, 2 - base_order, band(base_order, 2));  // eq. (1): f = −m b̈
-  s.f_n = base.inverse(spectrum);
-  s.z_m = std::move(relative[0]);
-  s.z_dot_m_s = std::move(relative[1]);
-  s.z_ddot_m_s2 = std::move(relative[2]);
-  s.restoring_force_n = s.f_n - mass_kg * s.z_ddot_m_s2;  // eq. (1): R = f − m z̈
+  s.restoring_force_n = mass.inverse(spectrum);
   s.z_absolute = mass_order == 0;
   return s;
 }

@@ -7,13 +7,14 @@
 
 namespace oscilab::analysis {
 
-/// Relative motion and forces of a record in the time domain (§3): z = y − b, ż, z̈, the force
-/// f = −m b̈ and the restoring force R = f − m z̈ (eq. (1)), all through the same zero-phase band
-/// (spectral_derivative: high-pass only where a channel is integrated, low-pass at
-/// derivative_lowpass_hz everywhere), so the terms of R are consistent with each other.
-/// Note R = −m ÿ when the mass channel is absolute: R needs no integration of b̈ at all.
+/// Relative motion and restoring force of a record in the time domain (§3): z = y − b, ż and
+/// R = f − m z̈ with f = −m b̈ (eq. (1)), all through the same zero-phase band (SpectralRecord:
+/// high-pass only where a channel is integrated, low-pass at derivative_lowpass_hz everywhere),
+/// so the terms of R are consistent with each other. R = −m (b̈ + z̈) = −m ÿ: with an absolute
+/// mass channel R needs no integration of b̈ at all, and it is computed that way, in one
+/// inverse transform.
 struct MotionSignals {
-  Eigen::VectorXd t_s, z_m, z_dot_m_s, z_ddot_m_s2, f_n, restoring_force_n;
+  Eigen::VectorXd t_s, z_m, z_dot_m_s, restoring_force_n;
   bool z_absolute = true;  // false: z's mean is unknown (mass measured as velocity/acceleration)
 };
 
