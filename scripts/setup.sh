@@ -67,7 +67,18 @@ run_main() {
   echo "setup: EDC table and summary written to $out/"
 }
 
+format_check() {  # CI fails on a format diff (style.md)
+  local files
+  mapfile -t files < <(git ls-files '*.cpp' '*.h' 2>/dev/null || find analysis daq ui app tests -name '*.cpp' -o -name '*.h')
+  if ! clang-format --dry-run --Werror "${files[@]}"; then
+    echo "setup: clang-format found a diff: run clang-format -i on the files above" >&2
+    return 1
+  fi
+  echo "setup: clang-format: ${#files[@]} files formatted"
+}
+
 run_tests() {
+  format_check
   build build -DOSCILAB_WERROR=ON
   ctest --test-dir build --output-on-failure -j "$JOBS"
   # Sanitizer build: the same tests under AddressSanitizer + UndefinedBehaviorSanitizer

@@ -16,11 +16,12 @@ namespace oscilab::analysis {
 /// Method: the embedded Dormand–Prince 5(4) pair with error control (Boost.Odeint
 /// `runge_kutta_dopri5` in a controlled stepper; Dormand & Prince 1980, "A family of embedded
 /// Runge–Kutta formulae"). Steps are shortened to land exactly on every output sample and probe
-/// time, so no reported state is interpolated. The friction switch of eq. (5) is smooth (tanh over v_t) but steep: the step
-/// control shrinks the step through each |ż| ≲ v_t passage and grows it again in between, which a
-/// fixed step cannot do at a comparable cost. The largest switch stiffness, ∂D/∂ż ≈ 4 f_d / v_t
-/// (≈ 180 N s/m for Table 3, time constant m/(∂D/∂ż) ≈ 1.5 ms), stays within the explicit
-/// method's stability region at the steps the accuracy needs, so an implicit method buys nothing.
+/// time, so no reported state is interpolated. The friction switch of eq. (5) is smooth (tanh over
+/// v_t) but steep: the step control shrinks the step through each |ż| ≲ v_t passage and grows it
+/// again in between, which a fixed step cannot do at a comparable cost. The largest switch
+/// stiffness, ∂D/∂ż ≈ 4 f_d / v_t (≈ 180 N s/m for Table 3, time constant m/(∂D/∂ż) ≈ 1.5 ms),
+/// stays within the explicit method's stability region at the steps the accuracy needs, so an
+/// implicit method buys nothing.
 ///
 /// The state is augmented with two energy integrals, W_in = ∫ f ż dt and W_diss = ∫ D ż dt,
 /// integrated by the same error-controlled scheme, so the energy balance

@@ -99,9 +99,10 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
                   record.setup.excitation_freq_hz, record.frequency_detected ? " (detected)" : "",
                   record.per_unit_mass ? ", per unit mass" : "");
     } else {
-      std::printf("%s: broadband excitation (no single tone holds %.0f%% of the base power): no "
-                  "EDC levels, restoring force only\n",
-                  record.name.c_str(), 100.0 * record.tone.power_fraction);
+      std::printf(
+          "%s: broadband excitation (no single tone holds %.0f%% of the base power): no "
+          "EDC levels, restoring force only\n",
+          record.name.c_str(), 100.0 * record.tone.power_fraction);
     }
     for (const auto& note : record.notes) std::printf("  note: %s\n", note.c_str());
     if (record.levels.empty()) continue;
