@@ -80,7 +80,9 @@ format_check() {  # CI fails on a format diff (style.md)
 run_tests() {
   format_check
   build build -DOSCILAB_WERROR=ON
-  ctest --test-dir build --output-on-failure -j "$JOBS"
+  ctest --test-dir build --output-on-failure -j "$JOBS" -LE benchmark
+  # Benchmarks one at a time, verbose, so their figures (medians) are printed.
+  ctest --test-dir build --output-on-failure -L benchmark -V | grep -E "^[0-9]+: (BM_|Benchmark )|tests passed|tests failed|Failed|rror"
   # Sanitizer build: the same tests under AddressSanitizer + UndefinedBehaviorSanitizer
   # (benchmarks are not registered there: their timings would mean nothing).
   build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOSCILAB_SANITIZE=ON -DOSCILAB_WERROR=ON
