@@ -23,6 +23,8 @@ struct FigurePanel {
   std::string y_label;
   std::vector<FigureSeries> series;
   bool legend = true;
+  enum class Corner { TopLeft, TopRight, BottomLeft, BottomRight };
+  Corner legend_corner = Corner::TopLeft;  // where the legend sits inside the axes
 };
 
 struct Figure {

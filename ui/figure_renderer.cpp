@@ -108,7 +108,13 @@ std::string render_figure_png(const Figure& figure, const std::string& path) {
     QCPLegend* legend = nullptr;
     if (panel.legend) {
       legend = new QCPLegend;
-      rect->insetLayout()->addElement(legend, Qt::AlignTop | Qt::AlignLeft);
+      using Corner = FigurePanel::Corner;
+      const Corner c = panel.legend_corner;
+      const Qt::Alignment vertical =
+          c == Corner::TopLeft || c == Corner::TopRight ? Qt::AlignTop : Qt::AlignBottom;
+      const Qt::Alignment horizontal =
+          c == Corner::TopLeft || c == Corner::BottomLeft ? Qt::AlignLeft : Qt::AlignRight;
+      rect->insetLayout()->addElement(legend, vertical | horizontal);
       legend->setLayer(QLatin1String("legend"));
       legend->setFont(font);
       legend->setBrush(QBrush(QColor(255, 255, 255, 220)));

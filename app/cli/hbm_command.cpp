@@ -2,13 +2,20 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "analysis/common/input_error.h"
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model_json.h"
+#include "analysis/simulation/amplitude_sweep.h"
+#include "analysis/simulation/bifurcation_map.h"
 #include "app/cli/commands.h"
+#include "app/cli/hbm_figures.h"
+#include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
 
 namespace oscilab::cli {
@@ -26,7 +33,36 @@ struct HbmCommandOptions {
   bool no_stability = false;
   double max_step = 0.1;
   std::string out;
+  std::string map;  // time-simulation bifurcation map CSV (Fig. 17)
+  double map_step = 0.05;
+  int map_hold = 200;
+  int map_sampled = 32;
+  std::string sweep;  // time-integration amplitude sweep CSV (Fig. 12)
+  double sweep_time = 400.0;
+  std::string png;  // figure prefix
 };
+
+// The branch CSV of one well, or of both with a `well` column appended (contract §2 allows
+// extra columns; the contract's own come first and keep their order).
+void write_branches(const std::vector<analysis::Branch>& branches,
+                    const std::vector<std::string>& wells, const std::string& path) {
+  if (branches.size() == 1) {
+    analysis::write_branch_csv(branches[0], path);
+    return;
+  }
+  std::ofstream file(path);
+  if (!file) throw InputError(path + ": cannot write");
+  for (std::size_t i = 0; i < branches.size(); ++i) {
+    std::ostringstream text;
+    analysis::write_branch_csv(branches[i], text);
+    std::istringstream lines(text.str());
+    std::string line;
+    std::getline(lines, line);
+    if (i == 0) file << line << ",well\n";
+    while (std::getline(lines, line)) file << line << ',' << wells[i] << '\n';
+  }
+  if (!file) throw InputError(path + ": write failed");
+}
 
 double parse_number(const std::string& text, const std::string& option) {
   std::size_t used = 0;
@@ -46,11 +82,12 @@ void run(const HbmCommandOptions& o) {
   const analysis::Model model = analysis::model_from_spec(o.model);
   const auto colon = o.f0.find(':');
   if (colon == std::string::npos) throw InputError("--f0: \"" + o.f0 + "\" is not A:B");
+  std::unique_ptr<FigureWriter> figures;  // before the work: without the GUI, fail early
+  if (!o.png.empty()) figures = std::make_unique<FigureWriter>();
   analysis::ContinuationOptions options;
   options.start = parse_number(o.f0.substr(0, colon), "--f0");
   options.end = parse_number(o.f0.substr(colon + 1), "--f0");
   options.freq_hz = o.freq_hz;
-  options.positive_well = o.well == "positive";
   options.hbm.harmonics = o.harmonics;
   options.hbm.subharmonic = o.subharmonic;
   options.hbm.samples = o.samples;
@@ -59,30 +96,125 @@ void run(const HbmCommandOptions& o) {
   options.max_step = o.max_step;
   options.initial_step = std::min(options.initial_step, o.max_step);
 
-  const auto start = std::chrono::steady_clock::now();
-  analysis::Branch branch;
-  {
-    ProgressBar bar("hbm");
-    branch = analysis::continue_branch(model, options, bar.callback());
+  std::vector<std::string> wells;
+  if (o.well != "negative") wells.push_back("positive");
+  if (o.well != "positive") wells.push_back("negative");
+  std::vector<analysis::Branch> branches;
+  for (const std::string& well : wells) {
+    options.positive_well = well == "positive";
+    const auto start = std::chrono::steady_clock::now();
+    analysis::Branch branch;
+    {
+      ProgressBar bar("hbm " + well);
+      branch = analysis::continue_branch(model, options, bar.callback());
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("%s well: %zu points, %g Hz, f0 %g -> %g N, H = %d, nu = %d, N = %d\n",
+                well.c_str(), branch.points.size(), o.freq_hz, options.start, options.end,
+                o.harmonics, o.subharmonic, branch.samples);
+    std::printf("continuation: %d steps accepted, %d rejected, %d Newton iterations, %.1f ms\n",
+                branch.steps_accepted, branch.steps_rejected, branch.newton_iterations,
+                seconds * 1e3);
+    if (branch.events.empty()) std::printf("no folds or bifurcations found\n");
+    for (const analysis::BranchEvent& event : branch.events) {
+      std::printf("%-16s f0 = %.6f N  amp = %.6g m\n", analysis::marker_name(event.kind),
+                  event.f0_n, event.amp_m);
+    }
+    branches.push_back(std::move(branch));
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  analysis::write_branch_csv(branch, o.out);
-  std::printf("wrote %s: %zu points, %s well, %g Hz, f0 %g -> %g N, H = %d, nu = %d, N = %d\n",
-              o.out.c_str(), branch.points.size(), o.well.c_str(), o.freq_hz, options.start,
-              options.end, o.harmonics, o.subharmonic, branch.samples);
-  std::printf("continuation: %d steps accepted, %d rejected, %d Newton iterations, %.1f ms\n",
-              branch.steps_accepted, branch.steps_rejected, branch.newton_iterations,
-              seconds * 1e3);
-  if (branch.events.empty()) std::printf("no folds or bifurcations found\n");
-  for (const analysis::BranchEvent& event : branch.events) {
-    std::printf("%-16s f0 = %.6f N  amp = %.6g m\n", analysis::marker_name(event.kind), event.f0_n,
-                event.amp_m);
+  write_branches(branches, wells, o.out);
+  std::printf("wrote %s\n", o.out.c_str());
+  for (const analysis::Branch& branch : branches) {
+    if (branch.status != JobStatus::Ok) {
+      throw InputError("hbm: continuation stopped early (points so far written): " +
+                       branch.message);
+    }
+    if (!branch.message.empty()) std::printf("note: %s\n", branch.message.c_str());
   }
-  if (branch.status != JobStatus::Ok) {
-    throw InputError("hbm: continuation stopped early (points so far written): " + branch.message);
+
+  std::vector<NamedBranch> named;
+  for (std::size_t i = 0; i < branches.size(); ++i) {
+    named.push_back({wells[i] == "positive" ? "z+* well" : "z-* well", &branches[i]});
   }
-  if (!branch.message.empty()) std::printf("note: %s\n", branch.message.c_str());
+  char title[160];
+  std::snprintf(title, sizeof title, "%s model, %.4g Hz, H = %d%s", o.model.c_str(), o.freq_hz,
+                o.harmonics,
+                o.subharmonic > 1 ? (", nu = " + std::to_string(o.subharmonic)).c_str() : "");
+  if (!o.png.empty()) {
+    figures->write(branch_figure(title, named), o.png + "-branch.png");
+    std::printf("wrote %s-branch.png\n", o.png.c_str());
+  }
+
+  if (!o.sweep.empty()) {
+    analysis::AmplitudeSweepOptions sweep_options;
+    sweep_options.freq_hz = o.freq_hz;
+    sweep_options.f0_max_n = options.end;
+    sweep_options.up_s = sweep_options.down_s = o.sweep_time;
+    sweep_options.positive_well = wells[0] == "positive";
+    analysis::AmplitudeSweep sweep;
+    {
+      ProgressBar bar("sweep");
+      sweep = analysis::amplitude_sweep(model, sweep_options, bar.callback());
+    }
+    analysis::write_amplitude_sweep_csv(sweep, o.sweep);
+    std::printf("wrote %s: sweep 0 -> %g -> 0 N, %g s each way (%g N/s), %s well\n",
+                o.sweep.c_str(), sweep_options.f0_max_n, o.sweep_time,
+                sweep_options.f0_max_n / o.sweep_time, wells[0].c_str());
+    std::printf("jump up   at f0 = %.4f N  (%.4g -> %.4g m)\n", sweep.jump_up.f0_n,
+                sweep.jump_up.amp_before_m, sweep.jump_up.amp_after_m);
+    std::printf("jump down at f0 = %.4f N  (%.4g -> %.4g m)\n", sweep.jump_down.f0_n,
+                sweep.jump_down.amp_before_m, sweep.jump_down.amp_after_m);
+    if (sweep.status != JobStatus::Ok) throw InputError("hbm --sweep: " + sweep.message);
+    if (!o.png.empty()) {
+      char sweep_title[512];
+      std::snprintf(sweep_title, sizeof sweep_title,
+                    "%s, time integration: f0 swept 0 -> %g -> 0 N at %.3g N/s", title,
+                    sweep_options.f0_max_n, sweep_options.f0_max_n / o.sweep_time);
+      figures->write(sweep_figure(sweep_title, branches[0], sweep), o.png + "-sweep.png");
+      std::printf("wrote %s-sweep.png\n", o.png.c_str());
+    }
+  }
+
+  if (!o.map.empty()) {
+    analysis::BifurcationMapOptions map_options;
+    map_options.freq_hz = o.freq_hz;
+    map_options.start_n = options.start;
+    map_options.end_n = options.end;
+    map_options.step_n = o.map_step;
+    map_options.hold_periods = o.map_hold;
+    map_options.sampled_periods = o.map_sampled;
+    map_options.positive_well = o.well != "negative";
+    map_options.negative_well = o.well != "positive";
+    analysis::BifurcationMap map;
+    {
+      ProgressBar bar("map");
+      map = analysis::bifurcation_map(model, map_options, bar.callback());
+    }
+    analysis::write_bifurcation_map_csv(map, o.map);
+    std::printf("wrote %s: %zu levels, %d periods each, last %d sampled at t = nT\n", o.map.c_str(),
+                map.levels.size(), o.map_hold, o.map_sampled);
+    for (bool positive : {true, false}) {
+      const char* well = positive ? "positive" : "negative";
+      int previous = 0;
+      for (const analysis::BifurcationMapLevel& level : map.levels_of(positive)) {
+        if (level.distinct_points != previous) {
+          std::printf("%s well: %d distinct point%s from f0 = %.4g N\n", well,
+                      level.distinct_points, level.distinct_points == 1 ? "" : "s", level.f0_n);
+          previous = level.distinct_points;
+        }
+      }
+    }
+    if (map.status != JobStatus::Ok) throw InputError("hbm --map: " + map.message);
+    if (!o.png.empty()) {
+      char map_title[512];
+      std::snprintf(map_title, sizeof map_title,
+                    "%s: bifurcation map, time simulation stepped %g N, %d periods per level",
+                    title, o.map_step, o.map_hold);
+      figures->write(map_figure(map_title, named, map), o.png + "-map.png");
+      std::printf("wrote %s-map.png\n", o.png.c_str());
+    }
+  }
 }
 
 }  // namespace
@@ -98,8 +230,11 @@ void add_hbm_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--freq", o->freq_hz, "excitation frequency [Hz]")->capture_default_str();
   command->add_option("--f0", o->f0, "forcing amplitude range A:B [N]")->capture_default_str();
-  command->add_option("--well", o->well, "stable equilibrium the branch grows from")
-      ->check(CLI::IsMember({"positive", "negative"}))
+  command
+      ->add_option("--well", o->well,
+                   "stable equilibrium the branch grows from; both: one branch per well, the "
+                   "CSV gets a well column")
+      ->check(CLI::IsMember({"positive", "negative", "both"}))
       ->capture_default_str();
   command->add_option("--harmonics", o->harmonics, "H: harmonics of the forcing frequency")
       ->check(CLI::Range(1, 200))
@@ -120,6 +255,27 @@ void add_hbm_command(CLI::App& app) {
   command->add_option("--max-step", o->max_step, "largest scaled arc-length step")
       ->capture_default_str();
   command->add_option("--out", o->out, "branch CSV to write")->required();
+  command->add_option("--map", o->map,
+                      "also write the bifurcation map by time simulation (Fig. 17): a stepped "
+                      "sine over the --f0 range in the selected well(s), z once per forcing "
+                      "period at t = nT; CSV f0_n,well,z_m,period");
+  command->add_option("--map-step", o->map_step, "map: level step [N]")->capture_default_str();
+  command->add_option("--map-hold", o->map_hold, "map: forcing periods per level")
+      ->check(CLI::Range(2, 1000000))
+      ->capture_default_str();
+  command->add_option("--map-sampled", o->map_sampled, "map: last periods of a level recorded")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  command->add_option("--sweep", o->sweep,
+                      "also write an amplitude sweep by time integration (Fig. 12): f0 ramped "
+                      "0 -> B -> 0 linearly (B: end of --f0) in the (first) well; CSV "
+                      "f0_n,direction,amp_m,t_s, one row per forcing period");
+  command->add_option("--sweep-time", o->sweep_time, "sweep: duration of each direction [s]")
+      ->capture_default_str();
+  command->add_option("--png", o->png,
+                      "also write figures PREFIX-branch.png (amplitude, EDC, harmonics; "
+                      "unstable parts dashed), PREFIX-sweep.png with --sweep and PREFIX-map.png "
+                      "with --map (needs the GUI build; renders offscreen)");
   command->callback([o] { run(*o); });
 }
 

@@ -12,6 +12,7 @@ using analysis::Branch;
 using analysis::BranchPoint;
 using analysis::PointMarker;
 using Style = ui::FigureSeries::Style;
+using ui::FigurePanel;
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMm = 1e3;  // m → mm
@@ -65,7 +66,7 @@ void add_branch_series(ui::FigurePanel& panel, const Branch& branch, const std::
 
 template <typename Value>
 void add_event_markers(ui::FigurePanel& panel, const Branch& branch, Value value, bool with_names) {
-  ui::FigureSeries folds{with_names ? "fold" : "", Style::Markers, 2, {}, {}, 9.0};
+  ui::FigureSeries folds{with_names ? "fold" : "", Style::Markers, 4, {}, {}, 9.0};
   ui::FigureSeries flips{with_names ? "period doubling" : "", Style::Markers, 3, {}, {}, 9.0};
   for (const analysis::BranchEvent& e : branch.events) {
     const BranchPoint& p = branch.points[e.point_index];
@@ -166,36 +167,42 @@ ui::Figure map_figure(const std::string& title, const std::vector<NamedBranch>& 
                       const analysis::BifurcationMap& map) {
   ui::Figure figure;
   figure.title = title;
-  figure.panel_height_px = 420;
-  ui::FigurePanel section{"", kF0Label, "z at t = nT (once per forcing period) [mm]", {}, true};
-  ui::FigurePanel amp{"", kF0Label, "HBM amplitude (max z - min z)/2 [mm]", {}, true};
+  figure.panel_height_px = 400;
+  ui::FigurePanel amp{
+      "HBM amplitude", kF0Label, "response amplitude (max z - min z)/2 [mm]", {}, true};
+  // One section panel per well (their z ranges are far apart: z+* and z-* sit 50 mm apart).
   for (std::size_t i = 0; i < branches.size(); ++i) {
     const Branch& b = *branches[i].branch;
-    const std::string name = legend_name(branches, i, "HBM z(nT)");
-    add_branch_series(section, b, name, 0,
-                      [](const BranchPoint& p) { return z_at_period_start(p) * kMm; });
-    add_event_markers(
-        section, b, [](const BranchPoint& p) { return z_at_period_start(p) * kMm; }, i == 0);
-    add_branch_series(amp, b, legend_name(branches, i, "HBM"), 0,
-                      [](const BranchPoint& p) { return p.measures.amp_m * kMm; });
-    add_event_markers(
-        amp, b, [](const BranchPoint& p) { return p.measures.amp_m * kMm; }, i == 0);
-  }
-  for (bool positive : {true, false}) {
-    ui::FigureSeries dots{positive ? "time simulation, z+* well" : "time simulation, z-* well",
-                          Style::Dots,
-                          positive ? 1 : 4,
-                          {},
-                          {},
-                          4.0};
+    const bool positive = b.positive_well;
+    ui::FigurePanel section{
+        "Poincare section, " + branches[i].name + ": z sampled once per forcing period",
+        kF0Label,
+        "z at t = nT [mm]",
+        {},
+        true};
+    // The z+* sections fall with f0 and split to both sides at the flip; the z-* ones dip.
+    section.legend_corner =
+        positive ? FigurePanel::Corner::BottomLeft : FigurePanel::Corner::TopRight;
+    ui::FigureSeries dots{
+        "time simulation (last sampled periods of each level)", Style::Dots, 1, {}, {}, 4.5};
     for (const analysis::BifurcationMapRow& row : map.rows) {
       if (row.positive_well != positive) continue;
       dots.x.push_back(row.f0_n);
       dots.y.push_back(row.z_m * kMm);
     }
+    add_branch_series(section, b, "HBM orbit z(nT)", 0,
+                      [](const BranchPoint& p) { return z_at_period_start(p) * kMm; });
+    add_event_markers(
+        section, b, [](const BranchPoint& p) { return z_at_period_start(p) * kMm; }, true);
     if (!dots.x.empty()) section.series.push_back(dots);
+    figure.panels.push_back(section);
+
+    const int color = branches.size() == 1 ? 0 : static_cast<int>(i) + 1;
+    add_branch_series(amp, b, legend_name(branches, i, "HBM"), color,
+                      [](const BranchPoint& p) { return p.measures.amp_m * kMm; });
+    add_event_markers(
+        amp, b, [](const BranchPoint& p) { return p.measures.amp_m * kMm; }, i == 0);
   }
-  figure.panels.push_back(section);
   figure.panels.push_back(amp);
   return figure;
 }

@@ -1,7 +1,6 @@
 #include "app/cli/png_output.h"
 
 #include <cstdlib>
-#include <memory>
 
 #include "analysis/common/input_error.h"
 
@@ -16,37 +15,42 @@ namespace oscilab::cli {
 
 #ifdef OSCILAB_CLI_WITH_GUI
 
-bool png_output_available() { return true; }
+struct FigureWriter::Application {
+  int argc = 1;
+  char name[16] = "oscilab-cli";
+  char* argv[2] = {name, nullptr};
+  QApplication app{argc, argv};  // QApplication keeps references to argc and argv
+};
 
-void write_figure_png(const ui::Figure& figure, const std::string& path) {
-  // One application for the process, made only when a figure is asked for, so that the other
-  // commands never touch Qt. Without a display Qt would abort; the offscreen platform renders
-  // into memory, which is all savePng needs.
-  static int argc = 1;
-  static char name[] = "oscilab-cli";
-  static char* argv[] = {name, nullptr};
-  static std::unique_ptr<QApplication> app;
-  if (!app) {
-    if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr &&
-        !qEnvironmentVariableIsSet("QT_QPA_PLATFORM")) {
-      qputenv("QT_QPA_PLATFORM", QByteArray("offscreen"));
-    }
-    app = std::make_unique<QApplication>(argc, argv);
+FigureWriter::FigureWriter() {
+  // Without a display Qt's default platform would abort; the offscreen platform renders into
+  // memory, which is all QCustomPlot::savePng needs.
+  if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr &&
+      !qEnvironmentVariableIsSet("QT_QPA_PLATFORM")) {
+    qputenv("QT_QPA_PLATFORM", QByteArray("offscreen"));
   }
+  app_ = std::make_unique<Application>();
+}
+
+void FigureWriter::write(const ui::Figure& figure, const std::string& path) {
   const std::string error = ui::render_figure_png(figure, path);
   if (!error.empty()) throw InputError(error);
 }
 
 #else
 
-bool png_output_available() { return false; }
+struct FigureWriter::Application {};
 
-void write_figure_png(const ui::Figure&, const std::string& path) {
-  throw InputError("--png: cannot write " + path +
-                   ": this oscilab-cli was built without the GUI (OSCILAB_BUILD_GUI=OFF), and PNG "
-                   "figures need Qt; the CSV files hold the same data");
+FigureWriter::FigureWriter() {
+  throw InputError(
+      "--png: this oscilab-cli was built without the GUI (OSCILAB_BUILD_GUI=OFF), and PNG "
+      "figures need Qt; the CSV files hold the same data");
 }
 
+void FigureWriter::write(const ui::Figure&, const std::string&) {}
+
 #endif
+
+FigureWriter::~FigureWriter() = default;
 
 }  // namespace oscilab::cli
