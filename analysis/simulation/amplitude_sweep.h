@@ -16,9 +16,10 @@ namespace oscilab::analysis {
 struct AmplitudeSweepOptions {
   double freq_hz = 1.0;
   double f0_max_n = 2.0;
-  /// Duration of each direction, s. A slow sweep lags the quasi-static response by about
-  /// (rate × relaxation time); with the eq. (14) example (relaxation ≈ 2m/c = 2.6 s) 400 s per
-  /// direction keeps that lag ≈ 0.013 N, well below the 0.03 N between the folds.
+  /// Duration of each direction, s. A slow sweep passes a fold late, by ≈ C rate^(2/3) (slow
+  /// passage through a saddle-node): with the eq. (14) example at 400 s per direction
+  /// (0.005 N/s) the jumps come 0.020 N (up) and 0.024 N (down) after the folds, which are
+  /// 0.032 N apart; halving the rate shrinks that by ≈ 1.6 (docs/hbm.md §8).
   double up_s = 400.0;
   double down_s = 400.0;
   bool positive_well = true;
@@ -37,7 +38,9 @@ struct AmplitudeSweepPeriod {
   double amp_m = 0.0;  // (max z − min z) / 2 over the period
 };
 
-/// The largest period-to-period change of the amplitude in one direction.
+/// The largest period-to-period change of the amplitude in one direction: the middle of the jump,
+/// which takes several periods (amp_before_m and amp_after_m are the two periods around it, not
+/// the ends of the jump).
 struct AmplitudeSweepJump {
   bool up = true;
   double f0_n = 0.0;  // f0 between the two periods
