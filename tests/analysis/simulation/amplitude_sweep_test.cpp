@@ -95,17 +95,16 @@ TEST(AmplitudeSweep, IllustrativeSweepJumpsJustPastTheHbmFolds) {
   }
 
   // Halving the rate brings both jumps closer to the folds by about 2^(2/3) ≈ 1.59 (measured
-  // 1.54 up and 1.50 down from 0.005 to 0.0025 N/s): the lag is the sweep's, not an offset
-  // between the time integration and the HBM folds.
-  options.up_s = options.down_s = 800.0;
-  const AmplitudeSweep slower = amplitude_sweep(model, options);
-  ASSERT_EQ(slower.status, JobStatus::Ok) << slower.message;
-  const double slower_lag_up = slower.jump_up.f0_n - fold_up;
-  const double slower_lag_down = fold_down - slower.jump_down.f0_n;
-  EXPECT_GT(slower_lag_up, 0.0);
-  EXPECT_GT(slower_lag_down, 0.0);
-  EXPECT_NEAR(lag_up / slower_lag_up, 1.59, 0.3);
-  EXPECT_NEAR(lag_down / slower_lag_down, 1.59, 0.3);
+  // from 0.01 to 0.005 N/s: 1.47 up, 1.60 down): the lag is the sweep's, not an offset between
+  // the time integration and the HBM folds. (The faster sweep keeps the test short: it also runs
+  // under the sanitizers.)
+  options.up_s = options.down_s = 200.0;
+  const AmplitudeSweep faster = amplitude_sweep(model, options);
+  ASSERT_EQ(faster.status, JobStatus::Ok) << faster.message;
+  const double faster_lag_up = faster.jump_up.f0_n - fold_up;
+  const double faster_lag_down = fold_down - faster.jump_down.f0_n;
+  EXPECT_NEAR(faster_lag_up / lag_up, 1.59, 0.3);
+  EXPECT_NEAR(faster_lag_down / lag_down, 1.59, 0.3);
 }
 
 TEST(AmplitudeSweep, MotionForceIsTheRampedSine) {
