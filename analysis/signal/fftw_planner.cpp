@@ -6,10 +6,25 @@
 namespace oscilab::analysis {
 namespace {
 
-// Plans by (size, direction); never destroyed: a process meets only a handful of sizes.
+// Plans by (size, direction), kept until the process exits (a process meets only a handful of
+// sizes), then destroyed so that nothing FFTW allocated outlives the program.
+struct PlanCache {
+  std::map<std::pair<int, bool>, fftw_plan> plans;
+  PlanCache() = default;
+  PlanCache(const PlanCache&) = delete;
+  PlanCache& operator=(const PlanCache&) = delete;
+  ~PlanCache() {
+    const std::lock_guard lock(fftw_planner_mutex());
+    for (auto& [key, plan] : plans) fftw_destroy_plan(plan);
+  }
+};
+
 fftw_plan cached_plan(int n, bool forward) {
-  static std::map<std::pair<int, bool>, fftw_plan> plans;
-  const std::lock_guard lock(fftw_planner_mutex());
+  // The mutex is made first, so it outlives the cache when statics are destroyed.
+  std::mutex& mutex = fftw_planner_mutex();
+  static PlanCache cache;
+  const std::lock_guard lock(mutex);
+  auto& plans = cache.plans;
   const auto key = std::make_pair(n, forward);
   if (const auto it = plans.find(key); it != plans.end()) return it->second;
   double* real = fftw_alloc_real(static_cast<std::size_t>(n));
