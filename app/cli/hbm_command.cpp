@@ -15,6 +15,7 @@
 #include "analysis/simulation/bifurcation_map.h"
 #include "app/cli/commands.h"
 #include "app/cli/hbm_figures.h"
+#include "app/cli/option_parsing.h"
 #include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
 
@@ -62,20 +63,6 @@ void write_branches(const std::vector<analysis::Branch>& branches,
     while (std::getline(lines, line)) file << line << ',' << wells[i] << '\n';
   }
   if (!file) throw InputError(path + ": write failed");
-}
-
-double parse_number(const std::string& text, const std::string& option) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !std::isfinite(value)) {
-    throw InputError(option + ": \"" + text + "\" is not a number");
-  }
-  return value;
 }
 
 void run(const HbmCommandOptions& o) {
