@@ -455,7 +455,8 @@ Branch Continuer::run_steps(const ProgressFn& progress, const CancelToken& cance
     if (turn > 0.5 * options_.max_turn_rad) factor = std::min(factor, 1.0);
     ds = std::clamp(ds * factor, options_.min_step, options_.max_step);
 
-    if ((y[n_] - lambda_start) * direction < -1e-12) {
+    const double behind = (lambda_start - y[n_]) * direction;  // > 0: behind the start value
+    if (behind > (options_.stop_when_turning_back ? 1e-12 : std::abs(lambda_end - lambda_start))) {
       branch.message = "the branch turned back past the start value";
       break;
     }

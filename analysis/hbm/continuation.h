@@ -46,6 +46,11 @@ struct ContinuationOptions {
   bool locate_events = true;
   /// Parameter values at which to land exactly (every crossing), e.g. the measured levels.
   std::vector<double> landing;
+  /// Stop when the branch turns back past the start value (a branch from rest that does so has
+  /// left the range for good). A branch switched onto near a pitchfork may dip below its first
+  /// point before it bends away: branch_switching.h turns this off (the run then stops only once
+  /// it is further behind the start than the length of the range).
+  bool stop_when_turning_back = true;
   /// z_ref, m; 0: force scale / well stiffness (the static deflection under the largest force).
   double displacement_scale_m = 0.0;
 

@@ -1,0 +1,264 @@
+#include "analysis/hbm/branch_switching.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include "analysis/common/input_error.h"
+
+namespace oscilab::analysis {
+
+void PeriodDoublingSwitchOptions::validate() const {
+  if (!(perturbation_m >= 0.0) || !std::isfinite(perturbation_m)) {
+    throw InputError("period-doubling switch: perturbation_m: " + std::to_string(perturbation_m) +
+                     " must be finite and >= 0");
+  }
+  if (!(pitchfork_search_n >= 0.0) || !(pitchfork_scan_step_n > 0.0)) {
+    throw InputError(
+        "period-doubling switch: pitchfork_search_n must be >= 0 and "
+        "pitchfork_scan_step_n > 0");
+  }
+  if (max_corrector_iterations < 1) {
+    throw InputError("period-doubling switch: max_corrector_iterations must be >= 1");
+  }
+  if (!(residual_tolerance_n > 0.0)) {
+    throw InputError("period-doubling switch: residual_tolerance_n must be positive");
+  }
+  continuation.validate();
+}
+
+Eigen::VectorXd embed_in_doubled_ansatz(const Eigen::VectorXd& coefficients) {
+  const Eigen::Index harmonics = (coefficients.size() - 1) / 2;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(4 * harmonics + 1);
+  out[0] = coefficients[0];
+  for (Eigen::Index k = 1; k <= harmonics; ++k) {
+    out[2 * (2 * k) - 1] = coefficients[2 * k - 1];  // a_k → a_2k
+    out[2 * (2 * k)] = coefficients[2 * k];          // b_k → b_2k
+  }
+  return out;
+}
+
+double odd_harmonic_norm_m(const Eigen::VectorXd& coefficients) {
+  double sum = 0.0;
+  for (Eigen::Index k = 1; 2 * k < coefficients.size(); k += 2) {
+    sum += coefficients[2 * k - 1] * coefficients[2 * k - 1] +
+           coefficients[2 * k] * coefficients[2 * k];
+  }
+  return std::sqrt(sum);
+}
+
+PeriodDoublingSwitch switch_at_period_doubling(const Model& model, const BranchPoint& flip,
+                                               const PeriodDoublingSwitchOptions& options,
+                                               const ProgressFn& progress,
+                                               const CancelToken& cancel) {
+  options.validate();
+  const HbmOptions& source = options.continuation.hbm;
+  if (flip.coefficients.size() != 2 * source.harmonics * source.subharmonic + 1) {
+    throw InputError(
+        "period-doubling switch: the flip point has " + std::to_string(flip.coefficients.size()) +
+        " coefficients, not those of the ansatz H = " + std::to_string(source.harmonics) +
+        ", nu = " + std::to_string(source.subharmonic));
+  }
+  PeriodDoublingSwitch out;
+  out.f0_flip_n = flip.f0_n;
+  out.subharmonic = 2 * source.subharmonic;
+  HbmOptions doubled = source;
+  doubled.subharmonic = out.subharmonic;
+  doubled.samples = source.samples > 0 ? 2 * source.samples : 0;
+  HarmonicBalance hbm(model, options.continuation.freq_hz, doubled);
+  HarmonicBalance source_hbm(model, options.continuation.freq_hz, source);
+  const int n = hbm.size();
+  Eigen::VectorXd r(n);
+  Eigen::MatrixXd jacobian(n, n);
+  std::vector<int> odd;
+  for (int k = 1; k <= hbm.base_harmonics(); k += 2) {
+    odd.push_back(2 * k - 1);
+    odd.push_back(2 * k);
+  }
+  const int n_odd = static_cast<int>(odd.size());
+  Eigen::MatrixXd odd_block(n_odd, n_odd);
+  auto fill_odd_block = [&](const Eigen::VectorXd& x_embedded, double f0_n) {
+    hbm.residual_and_jacobian(x_embedded, f0_n, r, jacobian);
+    for (int i = 0; i < n_odd; ++i) {
+      for (int j = 0; j < n_odd; ++j) odd_block(i, j) = jacobian(odd[i], odd[j]);
+    }
+  };
+  // Signed smallest singular value of the odd block, sign(det J_o) σ_min: continuous along the
+  // period-νT branch and zero exactly where J_o is singular (det itself would overflow at H = 21).
+  auto singularity_test = [&](const Eigen::VectorXd& x_embedded, double f0_n) {
+    fill_odd_block(x_embedded, f0_n);
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(odd_block);
+    double sign = lu.permutationP().determinant();
+    for (int i = 0; i < n_odd; ++i) sign *= lu.matrixLU()(i, i) < 0.0 ? -1.0 : 1.0;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(odd_block);
+    return sign * svd.singularValues()[n_odd - 1];
+  };
+
+  // The harmonic-balance pitchfork: where J_o of the period-νT orbit is singular. The Floquet
+  // flip (monodromy of the HBM orbit) and the singularity of the truncated Hill matrix J_o agree
+  // only as H grows (docs/hbm.md, "Period-2 branch"), so the switch happens at the latter, found
+  // by scanning the period-νT branch from the flip outwards and refining by regula falsi.
+  const double low = std::min(options.continuation.start, options.continuation.end);
+  const double high = std::max(options.continuation.start, options.continuation.end);
+  out.f0_pitchfork_n = flip.f0_n;
+  Eigen::VectorXd x_source = flip.coefficients;
+  NewtonOptions newton;
+  newton.residual_tolerance_n = options.residual_tolerance_n;
+  const double g_flip = singularity_test(embed_in_doubled_ansatz(x_source), flip.f0_n);
+  bool bracketed = g_flip == 0.0;
+  if (!bracketed && options.pitchfork_search_n > 0.0) {
+    for (double side : {-1.0, 1.0}) {
+      Eigen::VectorXd x_b = flip.coefficients;
+      double a = flip.f0_n, g_a = g_flip;
+      for (double b = flip.f0_n + side * options.pitchfork_scan_step_n;
+           std::abs(b - flip.f0_n) <= options.pitchfork_search_n && b > low && b < high &&
+           !bracketed;
+           b += side * options.pitchfork_scan_step_n) {
+        if (!source_hbm.solve(x_b, b, newton).converged()) break;
+        const double g_b = singularity_test(embed_in_doubled_ansatz(x_b), b);
+        if ((g_b > 0.0) != (g_a > 0.0)) {
+          // Illinois regula falsi on [a, b].
+          double fa = g_a, fb = g_b, lo = a, hi = b;
+          Eigen::VectorXd x_c = x_b;
+          for (int iteration = 0; iteration < 60 && std::abs(hi - lo) > 1e-12; ++iteration) {
+            const double c = (lo * fb - hi * fa) / (fb - fa);
+            if (!source_hbm.solve(x_c, c, newton).converged()) break;
+            const double fc = singularity_test(embed_in_doubled_ansatz(x_c), c);
+            out.f0_pitchfork_n = c;
+            x_source = x_c;
+            if (fc == 0.0) break;
+            if ((fc > 0.0) != (fb > 0.0)) {
+              lo = hi;
+              fa = fb;
+            } else {
+              fa *= 0.5;
+            }
+            hi = c;
+            fb = fc;
+          }
+          bracketed = true;
+        }
+        a = b;
+        g_a = g_b;
+      }
+      if (bracketed) break;
+    }
+  }
+  if (!bracketed) {
+    out.status = JobStatus::NoConvergence;
+    out.message =
+        "period-doubling switch: the harmonic-balance Jacobian's sub-harmonic block is "
+        "not singular within " +
+        std::to_string(options.pitchfork_search_n) + " N of the flip at " +
+        std::to_string(flip.f0_n) + " N";
+    return out;
+  }
+  out.embedded = embed_in_doubled_ansatz(x_source);
+
+  // The critical (null) direction of the odd block at the pitchfork.
+  fill_odd_block(out.embedded, out.f0_pitchfork_n);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(odd_block, Eigen::ComputeFullV);
+  out.odd_block_sigma_max_n_m = svd.singularValues()[0];
+  out.odd_block_sigma_min_n_m = svd.singularValues()[n_odd - 1];
+  out.critical_direction = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n_odd; ++i) out.critical_direction[odd[i]] = svd.matrixV()(i, n_odd - 1);
+
+  // Predictor x_p + ε v at the pitchfork; corrector: Newton on [r(x, f0); vᵀ(x − x_pred)] = 0 with
+  // the bordered Jacobian [∂r/∂x, ∂r/∂f0; vᵀ, 0].
+  out.perturbation_m =
+      options.perturbation_m > 0.0 ? options.perturbation_m : 0.02 * flip.measures.amp_m;
+  const Eigen::VectorXd x_pred = out.embedded + out.perturbation_m * out.critical_direction;
+  Eigen::VectorXd x = x_pred;
+  double f0 = out.f0_pitchfork_n;
+  Eigen::VectorXd dr_df0(n);
+  hbm.d_residual_d_f0(dr_df0);
+  Eigen::MatrixXd bordered = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  Eigen::VectorXd rhs(n + 1);
+  bool converged = false;
+  for (out.corrector_iterations = 0;; ++out.corrector_iterations) {
+    hbm.residual_and_jacobian(x, f0, r, jacobian);
+    const double constraint = out.critical_direction.dot(x - x_pred);
+    if (!r.allFinite()) break;
+    if (r.norm() <= options.residual_tolerance_n && std::abs(constraint) <= 1e-12) {
+      converged = true;
+      break;
+    }
+    if (out.corrector_iterations >= options.max_corrector_iterations) break;
+    bordered.topLeftCorner(n, n) = jacobian;
+    bordered.topRightCorner(n, 1) = dr_df0;
+    bordered.bottomLeftCorner(1, n) = out.critical_direction.transpose();
+    rhs.head(n) = -r;
+    rhs[n] = -constraint;
+    const Eigen::VectorXd delta = bordered.partialPivLu().solve(rhs);
+    if (!delta.allFinite()) break;
+    x += delta.head(n);
+    f0 += delta[n];
+  }
+  out.branch.parameter = BranchParameter::ForcingAmplitude;
+  out.branch.hbm = doubled;
+  out.branch.samples = hbm.samples();
+  out.branch.positive_well = options.continuation.positive_well;
+  if (!converged) {
+    out.status = JobStatus::NoConvergence;
+    out.message = "period-doubling switch at " + std::to_string(flip.f0_n) +
+                  " N: the corrector did not converge from x + eps v (eps = " +
+                  std::to_string(out.perturbation_m) + " m, |r| = " + std::to_string(r.norm()) +
+                  " N after " + std::to_string(out.corrector_iterations) + " iterations)";
+    return out;
+  }
+
+  // Continue from the corrected point away from the pitchfork: along the tangent t whose
+  // sub-harmonic component grows, [∂r/∂x, ∂r/∂f0; vᵀ, 0] t = [0; 1]; the sign of its f0 component
+  // says which end of the range the branch bends to (up for a supercritical flip).
+  bordered.topLeftCorner(n, n) = jacobian;
+  rhs.setZero();
+  rhs[n] = 1.0;
+  const Eigen::VectorXd tangent = bordered.partialPivLu().solve(rhs);
+  ContinuationOptions continuation = options.continuation;
+  continuation.hbm = doubled;
+  continuation.start = f0;
+  continuation.end = tangent[n] > 0.0 ? high : low;
+  continuation.initial_coefficients = x;
+  continuation.stop_when_turning_back = false;
+  if (!(f0 > low && f0 < high)) {
+    out.status = JobStatus::NoConvergence;
+    out.message = "period-doubling switch: the corrected point (f0 = " + std::to_string(f0) +
+                  " N) is outside the f0 range";
+    return out;
+  }
+  out.branch = continue_branch(model, continuation, progress, cancel);
+
+  // The flip orbit itself heads the branch.
+  BranchPoint head;
+  head.f0_n = out.f0_pitchfork_n;
+  head.freq_hz = options.continuation.freq_hz;
+  head.coefficients = out.embedded;
+  head.measures = hbm.measure(out.embedded, out.f0_pitchfork_n);
+  if (options.continuation.stability) {
+    head.floquet = FloquetAnalysis(options.continuation.floquet).analyse(hbm, out.embedded);
+    head.stability_known = true;
+  }
+  head.marker = PointMarker::BranchPoint;
+  hbm.residual(out.embedded, out.f0_pitchfork_n, r);
+  head.residual_norm_n = r.norm();
+  if (!out.branch.points.empty()) {
+    out.branch.points.front().marker = PointMarker::None;
+    head.tangent_parameter = 0.0;  // the new branch leaves the flip along (v, 0)
+  }
+  out.branch.points.insert(out.branch.points.begin(), std::move(head));
+  for (BranchEvent& event : out.branch.events) ++event.point_index;
+  out.branch.events.insert(
+      out.branch.events.begin(),
+      {PointMarker::BranchPoint, out.f0_pitchfork_n, options.continuation.freq_hz,
+       out.branch.points.front().measures.amp_m, 0});
+  out.branch.newton_iterations += out.corrector_iterations;
+  out.status = out.branch.status;
+  out.message = out.branch.message;
+  return out;
+}
+
+}  // namespace oscilab::analysis
