@@ -240,7 +240,7 @@ class Continuer {
     for (int iteration = 0; iteration < 60; ++iteration) {
       const double c = (a * fb - b * fa) / (fb - fa);
       Solved s = correct(y + c * t, t);
-      if (!s.ok) return out;
+      if (!s.ok) break;  // keep the last corrected iterate, if any
       const double fc = test(s.y, s);
       out.ok = true;
       out.sigma = c;
@@ -256,7 +256,7 @@ class Continuer {
       fb = fc;
       if (std::abs(b - a) <= 1e-10 * std::max(ds, 1e-3)) break;
     }
-    out.t = tangent(out.solved.g_y, t);
+    if (out.ok) out.t = tangent(out.solved.g_y, t);
     return out;
   }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/hbm/branch_switching.h"
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model_json.h"
 #include "analysis/simulation/amplitude_sweep.h"
@@ -41,28 +42,94 @@ struct HbmCommandOptions {
   std::string sweep;  // time-integration amplitude sweep CSV (Fig. 12)
   double sweep_time = 400.0;
   std::string png;  // figure prefix
+  bool follow_period_doubling = false;
 };
 
-// The branch CSV of one well, or of both with a `well` column appended (contract §2 allows
-// extra columns; the contract's own come first and keep their order).
-void write_branches(const std::vector<analysis::Branch>& branches,
-                    const std::vector<std::string>& wells, const std::string& path) {
-  if (branches.size() == 1) {
-    analysis::write_branch_csv(branches[0], path);
+// One branch of the CSV: which well and the period of its orbits in forcing periods.
+struct CsvBranch {
+  const analysis::Branch* branch;
+  std::string well;
+  int period;
+};
+
+// The branch CSV of one well, or of both with a `well` column appended, and with `period` (1, 2,
+// 4 … forcing periods) appended after it when period-doubled branches are followed (contract §2
+// allows extra columns; the contract's own come first and keep their order).
+void write_branches(const std::vector<CsvBranch>& branches, bool well_column, bool period_column,
+                    const std::string& path) {
+  if (branches.size() == 1 && !well_column && !period_column) {
+    analysis::write_branch_csv(*branches[0].branch, path);
     return;
   }
   std::ofstream file(path);
   if (!file) throw InputError(path + ": cannot write");
   for (std::size_t i = 0; i < branches.size(); ++i) {
     std::ostringstream text;
-    analysis::write_branch_csv(branches[i], text);
+    analysis::write_branch_csv(*branches[i].branch, text);
     std::istringstream lines(text.str());
     std::string line;
     std::getline(lines, line);
-    if (i == 0) file << line << ",well\n";
-    while (std::getline(lines, line)) file << line << ',' << wells[i] << '\n';
+    if (i == 0) {
+      file << line << (well_column ? ",well" : "") << (period_column ? ",period" : "") << '\n';
+    }
+    while (std::getline(lines, line)) {
+      file << line;
+      if (well_column) file << ',' << branches[i].well;
+      if (period_column) file << ',' << branches[i].period;
+      file << '\n';
+    }
   }
   if (!file) throw InputError(path + ": write failed");
+}
+
+// Switches onto the period-doubled branch at the first period doubling of `branch` (ansatz ν)
+// and, once more, at the first one of the new branch (period 4T at most), appending them to `out`.
+void follow_period_doublings(const analysis::Model& model, const analysis::Branch& branch,
+                             const analysis::ContinuationOptions& options, const std::string& well,
+                             std::vector<std::unique_ptr<analysis::Branch>>& out,
+                             std::vector<CsvBranch>& csv) {
+  const auto flips = branch.events_of(analysis::PointMarker::PeriodDoubling);
+  if (flips.empty()) return;
+  const analysis::BranchEvent& event = flips.front();
+  {
+    analysis::PeriodDoublingSwitchOptions switching;
+    switching.continuation = options;
+    switching.continuation.hbm = branch.hbm;
+    // A truncated balance can make a period-4T branch wind back and forth (H = 7: docs/hbm.md);
+    // bound the work instead of running to the default 20000 points.
+    switching.continuation.max_points = 2000;
+    const auto start = std::chrono::steady_clock::now();
+    analysis::PeriodDoublingSwitch doubled;
+    {
+      ProgressBar bar("period " + std::to_string(2 * branch.hbm.subharmonic) + " " + well);
+      doubled = analysis::switch_at_period_doubling(model, branch.points[event.point_index],
+                                                    switching, bar.callback());
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const int period = doubled.subharmonic;
+    if (doubled.status != JobStatus::Ok && doubled.branch.points.empty()) {
+      std::printf("period-%d branch (%s well): not followed: %s\n", period, well.c_str(),
+                  doubled.message.c_str());
+      return;
+    }
+    std::printf(
+        "period-%d branch (%s well): starts at f0 = %.6f N (harmonic-balance pitchfork; "
+        "Floquet flip at %.6f N), %zu points to f0 = %.6f N, %.1f ms\n",
+        period, well.c_str(), doubled.f0_pitchfork_n, doubled.f0_flip_n,
+        doubled.branch.points.size(), doubled.branch.points.back().f0_n, seconds * 1e3);
+    for (const analysis::BranchEvent& e : doubled.branch.events) {
+      if (e.point_index == 0) continue;  // the start itself
+      std::printf("  %-16s f0 = %.6f N  amp = %.6g m\n", analysis::marker_name(e.kind), e.f0_n,
+                  e.amp_m);
+    }
+    if (doubled.status != JobStatus::Ok) {
+      std::printf("  stopped early (points so far written): %s\n", doubled.message.c_str());
+    }
+    out.push_back(std::make_unique<analysis::Branch>(std::move(doubled.branch)));
+    csv.push_back({out.back().get(), well, period});
+    if (period < 4) follow_period_doublings(model, *out.back(), options, well, out, csv);
+  }
 }
 
 void run(const HbmCommandOptions& o) {
@@ -80,6 +147,11 @@ void run(const HbmCommandOptions& o) {
   options.hbm.samples = o.samples;
   options.floquet.steps_per_forcing_period = o.floquet_steps;
   options.stability = !o.no_stability;
+  if (o.follow_period_doubling && o.no_stability) {
+    throw InputError(
+        "--follow-period-doubling: period doublings are found from the Floquet "
+        "multipliers; drop --no-stability");
+  }
   options.max_step = o.max_step;
   options.initial_step = std::min(options.initial_step, o.max_step);
 
@@ -110,7 +182,18 @@ void run(const HbmCommandOptions& o) {
     }
     branches.push_back(std::move(branch));
   }
-  write_branches(branches, wells, o.out);
+  std::vector<CsvBranch> csv;
+  std::vector<std::unique_ptr<analysis::Branch>> doubled;
+  for (std::size_t i = 0; i < branches.size(); ++i) {
+    csv.push_back({&branches[i], wells[i], o.subharmonic});
+    if (o.follow_period_doubling) {
+      options.positive_well = wells[i] == "positive";
+      if (branches[i].events_of(analysis::PointMarker::PeriodDoubling).empty())
+        std::printf("%s well: no period doubling to follow\n", wells[i].c_str());
+      follow_period_doublings(model, branches[i], options, wells[i], doubled, csv);
+    }
+  }
+  write_branches(csv, wells.size() > 1, o.follow_period_doubling, o.out);
   std::printf("wrote %s\n", o.out.c_str());
   for (const analysis::Branch& branch : branches) {
     if (branch.status != JobStatus::Ok) {
@@ -239,6 +322,11 @@ void add_hbm_command(CLI::App& app) {
       ->check(CLI::Range(8, 1 << 20))
       ->capture_default_str();
   command->add_flag("--no-stability", o->no_stability, "skip Floquet multipliers");
+  command->add_flag("--follow-period-doubling", o->follow_period_doubling,
+                    "at each period doubling switch onto the period-2 branch (ansatz 2 nu) and "
+                    "continue it over the --f0 range (and once more at its first period doubling: "
+                    "period 4); its points are appended to the CSV, which gets a period column "
+                    "(1, 2, 4 ... forcing periods); needs stability");
   command->add_option("--max-step", o->max_step, "largest scaled arc-length step")
       ->capture_default_str();
   command->add_option("--out", o->out, "branch CSV to write")->required();
