@@ -122,6 +122,15 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
         "k1 = %.4g ± %.2g N/m, k0 = %.4g ± %.2g N\n",
         static_cast<long>(campaign.stiffness->fit.samples), campaign.stiffness->velocity_band_m_s,
         c[3], e[3], c[2], e[2], -c[1], e[1], c[0], e[0]);
+    const auto& slice = *campaign.stiffness;
+    const double boundary = campaign.settings.well_boundary_m;
+    if (!(slice.z_min_m < boundary && slice.z_max_m > boundary)) {
+      std::printf(
+          "  warning: the slice covers z from %.4f to %.4f m only, one side of the well "
+          "boundary (z = %g m):\n  the cubic is extrapolated outside it and poorly "
+          "determined; analyse both wells or a cross-well record together\n",
+          slice.z_min_m, slice.z_max_m, boundary);
+    }
   } else {
     std::printf("no stiffness slice: %s\n", campaign.rfs_message.c_str());
   }
