@@ -36,6 +36,13 @@ Model paper_model(const PaperFriction& friction) {
 
 Model paper_model() { return paper_model(PaperFriction{}); }
 
+Model linear_oscillator_model(double mass_kg, double k_n_m, double c_ns_m) {
+  std::vector<std::unique_ptr<ModelTerm>> terms;
+  terms.push_back(std::make_unique<PolynomialStiffness>(std::vector<double>{0.0, k_n_m}));
+  terms.push_back(std::make_unique<ViscousDamping>(c_ns_m));
+  return Model(mass_kg, std::move(terms), "linear");
+}
+
 Model illustrative_model() {
   // Table 2; eq. (14) is eq. (7) with a linear spring and a position-independent f_d.
   PositionDependentFriction::Parameters friction;

@@ -14,6 +14,9 @@ Model paper_model();
 /// k = 800 N/m, c = 1 N s/m, f_d = 1 N, k_s = 1.2, v_t = 1e-2 m/s.
 Model illustrative_model();
 
+/// A linear oscillator m z̈ + c ż + k z = f: the closed-form reference of many tests.
+Model linear_oscillator_model(double mass_kg, double k_n_m, double c_ns_m);
+
 /// Table 3 values, named as the paper's θ of eq. (9).
 struct PaperFriction {
   double fd_zminus_n = 0.33;

@@ -14,13 +14,6 @@
 namespace oscilab::analysis {
 namespace {
 
-Model linear_model(double m, double k, double c) {
-  std::vector<std::unique_ptr<ModelTerm>> terms;
-  terms.push_back(std::make_unique<PolynomialStiffness>(std::vector<double>{0.0, k}));
-  terms.push_back(std::make_unique<ViscousDamping>(c));
-  return Model(m, std::move(terms), "linear");
-}
-
 // A response with every harmonic present, around the positive well of the paper's model.
 Eigen::VectorXd rich_point(const HarmonicBalance& hbm, double z_star) {
   Eigen::VectorXd x(hbm.size());
@@ -71,7 +64,7 @@ TEST(HarmonicBalance, AnalyticJacobianMatchesCentralDifferences) {
 
 TEST(HarmonicBalance, LinearOscillatorMatchesClosedForm) {
   const double m = 0.5, k = 2000.0, c = 4.0, f0 = 1.5, freq = 7.0;
-  HarmonicBalance hbm(linear_model(m, k, c), freq, {});
+  HarmonicBalance hbm(linear_oscillator_model(m, k, c), freq, {});
   Eigen::VectorXd x = Eigen::VectorXd::Zero(hbm.size());
   const NewtonReport report = hbm.solve(x, f0);
   ASSERT_TRUE(report.converged()) << report.message;

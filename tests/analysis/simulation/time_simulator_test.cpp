@@ -13,16 +13,9 @@
 namespace oscilab::analysis {
 namespace {
 
-Model linear_model(double m, double k, double c) {
-  std::vector<std::unique_ptr<ModelTerm>> terms;
-  terms.push_back(std::make_unique<PolynomialStiffness>(std::vector<double>{0.0, k}));
-  terms.push_back(std::make_unique<ViscousDamping>(c));
-  return Model(m, std::move(terms), "linear");
-}
-
 TEST(TimeSimulator, LinearOscillatorReachesClosedFormSteadyState) {
   const double m = 0.5, k = 2000.0, c = 4.0;  // ω_n = 63 rad/s, decay c/2m = 4 s⁻¹
-  const Model model = linear_model(m, k, c);
+  const Model model = linear_oscillator_model(m, k, c);
   SteppedSineSchedule schedule;
   schedule.frequency_hz = 7.0;
   schedule.levels_n = {1.5};
