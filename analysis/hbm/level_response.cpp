@@ -19,56 +19,89 @@ LevelResponse level_response(const Model& model, double freq_hz, bool positive_w
   HarmonicBalance hbm(model, freq_hz, hbm_options);
   const double z_star = model.well(positive_well).z_m;
 
-  // Natural continuation from rest: the equilibrium is the exact solution at f0 = 0.
+  // Natural continuation from rest: the equilibrium is the exact solution at f0 = 0. A level
+  // whose Newton solve fails from the extrapolated guess is approached again in halved steps
+  // (up to kMaxHalvings times) before the whole set falls back to arclength continuation: sharp
+  // friction (small v_t) bends the branch between levels without any fold, and a few
+  // intermediate solves are far cheaper than a continuation from rest.
+  constexpr int kMaxHalvings = 4;
   Eigen::VectorXd previous = hbm.linear_guess(z_star, 0.0), before_previous;
   double previous_f0 = 0.0, before_previous_f0 = 0.0;
   int sign = 0;
   bool fast = true;
-  for (double f0 : levels_n) {
-    Eigen::VectorXd x;
+  const auto predict = [&](double f0) -> Eigen::VectorXd {
     if (before_previous.size() == 0) {
-      x = hbm.linear_guess(z_star, f0);
+      Eigen::VectorXd x = hbm.linear_guess(z_star, f0);
       if (previous_f0 > 0.0) x = previous + (x - hbm.linear_guess(z_star, previous_f0));
-    } else {
-      x = previous +
-          (previous - before_previous) * ((f0 - previous_f0) / (previous_f0 - before_previous_f0));
+      return x;
     }
+    return previous +
+           (previous - before_previous) * ((f0 - previous_f0) / (previous_f0 - before_previous_f0));
+  };
+  // Newton at f0 from the prediction; on success the point becomes the newest of the two that
+  // the next prediction extrapolates from.
+  const auto step_to = [&](double f0, Eigen::VectorXd& x) {
+    x = predict(f0);
     const NewtonReport report = hbm.solve(x, f0);
     out.newton_iterations += report.iterations;
-    if (!report.converged() || (sign != 0 && report.jacobian_sign != sign)) {
+    if (!report.converged() || (sign != 0 && report.jacobian_sign != sign)) return false;
+    sign = report.jacobian_sign;
+    before_previous = previous;
+    before_previous_f0 = previous_f0;
+    previous = x;
+    previous_f0 = f0;
+    return true;
+  };
+  for (double f0 : levels_n) {
+    Eigen::VectorXd x;
+    bool reached = step_to(f0, x);
+    for (int halvings = 1; !reached && halvings <= kMaxHalvings; ++halvings) {
+      // A failed solve leaves previous untouched: retry from it in 2^halvings equal steps.
+      const double from = previous_f0;
+      const int steps = 1 << halvings;
+      reached = true;
+      for (int i = 1; i <= steps && reached; ++i) {
+        reached = step_to(from + (f0 - from) * i / steps, x);
+      }
+      if (!reached && sign != 0 && previous_f0 > from) break;  // crossed a fold on the way
+    }
+    if (!reached) {
       fast = false;
       break;
     }
-    sign = report.jacobian_sign;
     const HbmMeasures measures = hbm.measure(x, f0);
     out.f0_n.push_back(f0);
     out.edc_j.push_back(measures.edc_j);
     out.amp_m.push_back(measures.amp_m);
     out.coefficients.push_back(x);
-    before_previous = previous;
-    before_previous_f0 = previous_f0;
-    previous = x;
-    previous_f0 = f0;
   }
   if (fast) return out;
 
+  // A fold lies ahead (the Jacobian's sign flipped) or Newton failed even in small steps:
+  // follow the branch by pseudo-arclength continuation from the last level reached (from rest
+  // when none was), landing at the remaining levels and taking each one's first crossing. The
+  // levels solved so far stand: natural continuation reached them with one Jacobian sign, so the
+  // branch up to there has no fold and rises monotonically in f0.
   out.used_arclength = true;
-  out.f0_n.clear();
-  out.edc_j.clear();
-  out.amp_m.clear();
-  out.coefficients.clear();
+  const std::size_t solved = out.f0_n.size();
   ContinuationOptions options;
   options.freq_hz = freq_hz;
   options.positive_well = positive_well;
   options.hbm = hbm_options;
-  options.start = 0.0;
+  options.start = solved > 0 ? out.f0_n.back() : 0.0;
+  if (solved > 0) {
+    options.initial_coefficients = out.coefficients.back();
+    // Past a fold the branch may turn back below the level it started from before it rises
+    // again; only a return further than the whole range ends it.
+    options.stop_when_turning_back = false;
+  }
   options.end = levels_n.back();
   options.stability = false;
   options.locate_events = false;
-  options.landing = levels_n;
+  options.landing.assign(levels_n.begin() + static_cast<std::ptrdiff_t>(solved), levels_n.end());
   const Branch branch = continue_branch(model, options);
   out.newton_iterations += branch.newton_iterations;
-  std::size_t next = 0;
+  std::size_t next = solved;
   for (const BranchPoint& point : branch.points) {
     if (next < levels_n.size() &&
         std::abs(point.f0_n - levels_n[next]) <= 1e-12 * levels_n.back() &&

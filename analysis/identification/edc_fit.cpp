@@ -1,0 +1,154 @@
+#include "analysis/identification/edc_fit.h"
+
+#include <chrono>
+#include <limits>
+
+#include "analysis/common/input_error.h"
+
+namespace oscilab::analysis {
+namespace {
+
+// What an evaluation returns after cancellation: finite (the searches sort by it), never best.
+constexpr double kCancelledCost = 1e300;
+
+}  // namespace
+
+std::string fit_method_name(FitMethod method) {
+  switch (method) {
+    case FitMethod::Genetic:
+      return "ga";
+    case FitMethod::Cmaes:
+      return "cmaes";
+    case FitMethod::Local:
+      return "local";
+  }
+  return "?";
+}
+
+FitMethod parse_fit_method(const std::string& name) {
+  if (name == "ga") return FitMethod::Genetic;
+  if (name == "cmaes") return FitMethod::Cmaes;
+  if (name == "local") return FitMethod::Local;
+  throw InputError("--method: unknown method \"" + name + "\" (ga, cmaes or local)");
+}
+
+FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
+                  const FitProgressFn& progress, const CancelToken& cancel) {
+  if (!(options.polish_share >= 0.0 && options.polish_share < 1.0)) {
+    throw InputError("fit: the polish share must lie in [0, 1)");
+  }
+  const ModelForm& form = objective.form();
+  const auto start = std::chrono::steady_clock::now();
+  const long evaluations_before = objective.evaluations();
+  FitResult result;
+  result.method = options.method;
+  result.names = form.names();
+
+  const UnitCost cost = [&](const Eigen::VectorXd& u) {
+    if (cancel.cancelled()) return kCancelledCost;
+    return objective.evaluate(form.from_unit(u)).weighted_cost;
+  };
+  long spent = 0;
+  const auto reporter = [&](const char* stage) -> SearchProgressFn {
+    if (!progress) return {};
+    return [&, stage](const SearchProgress& p) {
+      progress({stage, spent + p.evaluations, p.best_cost, form.from_unit(p.best_unit)});
+    };
+  };
+  const auto append_history = [&](const SearchResult& s) {
+    for (const auto& [evaluations, best] : s.history) {
+      const double so_far =
+          result.history.empty() ? best : std::min(best, result.history.back().second);
+      result.history.emplace_back(spent + evaluations, so_far);
+    }
+    spent += s.evaluations;
+  };
+
+  SearchResult best;
+  best.best_cost = std::numeric_limits<double>::infinity();
+  long polish_budget = 0;
+  switch (options.method) {
+    case FitMethod::Genetic: {
+      GeneticOptions ga = options.genetic;
+      ga.seed = options.seed;
+      ga.threads = options.threads;
+      best = genetic_algorithm(form.size(), cost, ga, reporter("search"), cancel);
+      polish_budget = options.polish_after_genetic ? options.polish.max_evaluations : 0;
+      result.settings = {{"population", ga.population},
+                         {"generations", ga.generations},
+                         {"mutation_rate", ga.mutation_rate},
+                         {"crossover_fraction", ga.crossover_fraction},
+                         {"elite", ga.elite},
+                         {"mutation_sigma_unit", ga.mutation_sigma},
+                         {"seed", ga.seed},
+                         {"polish", options.polish_after_genetic}};
+      break;
+    }
+    case FitMethod::Cmaes: {
+      CmaesOptions cmaes = options.cmaes;
+      polish_budget = static_cast<long>(options.polish_share * options.max_evaluations);
+      cmaes.max_evaluations = options.max_evaluations - polish_budget;
+      cmaes.seed = options.seed;
+      if (cmaes.streams <= 0) cmaes.streams = options.threads;
+      best = cmaes_search(form.size(), cost, cmaes, reporter("search"), cancel);
+      // What the global search left of the budget goes to the polish.
+      polish_budget = options.max_evaluations - best.evaluations;
+      result.settings = {{"max_evaluations", options.max_evaluations},
+                         {"polish_share", options.polish_share},
+                         {"sigma0_unit", cmaes.sigma0},
+                         {"initial_population", cmaes.initial_population},
+                         {"streams", cmaes.streams},
+                         {"seed", cmaes.seed},
+                         {"polish", "BOBYQA (NLopt)"}};
+      break;
+    }
+    case FitMethod::Local:
+      best.best_unit = form.to_unit(form.clamp(form.initial()));
+      polish_budget = options.max_evaluations;
+      result.settings = {{"max_evaluations", options.max_evaluations},
+                         {"start", "the form's initial values"},
+                         {"polish", "BOBYQA (NLopt)"}};
+      break;
+  }
+  append_history(best);
+  if (polish_budget > 0 && !cancel.cancelled()) {
+    PolishOptions polish = options.polish;
+    polish.max_evaluations = polish_budget;
+    const SearchResult polished =
+        local_polish(best.best_unit, cost, polish, reporter("polish"), cancel);
+    append_history(polished);
+    if (polished.best_cost < best.best_cost) {
+      best.best_unit = polished.best_unit;
+      best.best_cost = polished.best_cost;
+    }
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.evaluations = objective.evaluations() - evaluations_before;
+  result.theta = form.from_unit(best.best_unit);
+  result.evaluation = objective.evaluate(result.theta);
+
+  if (cancel.cancelled()) {
+    result.status = JobStatus::Cancelled;
+    result.message = "cancelled after " + std::to_string(result.evaluations) + " evaluations";
+    return result;
+  }
+  if (!result.evaluation.ok) {
+    result.status = JobStatus::NoConvergence;
+    result.message =
+        "the best model could not be solved at every level: " + result.evaluation.message;
+  }
+  if (options.compute_uncertainty) {
+    if (progress) progress({"uncertainty", result.evaluations, best.best_cost, result.theta});
+    UncertaintyOptions u = options.uncertainty;
+    u.seed = options.seed;
+    u.threads = options.threads;
+    result.uncertainty = fit_uncertainty(objective, result.theta, u, cancel);
+    if (cancel.cancelled()) {
+      result.status = JobStatus::Cancelled;
+      result.message = "cancelled during the uncertainty analysis";
+    }
+  }
+  return result;
+}
+
+}  // namespace oscilab::analysis

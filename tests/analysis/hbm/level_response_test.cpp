@@ -1,0 +1,57 @@
+// level_response (the model side of an EDC fit): natural continuation with halved steps, and the
+// arclength fallback from the last level reached when a fold lies ahead.
+#include "analysis/hbm/level_response.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "analysis/common/input_error.h"
+
+#include "analysis/hbm/continuation.h"
+#include "analysis/model/reference_models.h"
+
+namespace oscilab::analysis {
+namespace {
+
+// The illustrative example of eq. (14) folds at 1.3778 N and 1.3477 N (H = 7, issue 5): a sweep
+// up from rest jumps at the upper fold. Levels across it make the fast path stop at the fold and
+// hand over to arclength continuation from the last level it reached; the result must equal the
+// first crossings of one continuation from rest.
+TEST(LevelResponse, LevelsAcrossAFoldEqualFirstCrossingsFromRest) {
+  const Model model = illustrative_model();
+  const double freq_hz = 0.8 * std::sqrt(800.0 / 1.3) / (2.0 * M_PI);  // 80 % of √(k/m), §4.2
+  std::vector<double> levels;
+  for (int i = 1; i <= 20; ++i) levels.push_back(0.1 * i);
+  const LevelResponse response = level_response(model, freq_hz, true, levels);
+  ASSERT_EQ(response.status, JobStatus::Ok) << response.message;
+  EXPECT_TRUE(response.used_arclength);  // the fold at 1.3778 N is in range
+  ASSERT_EQ(response.edc_j.size(), levels.size());
+
+  ContinuationOptions options;
+  options.freq_hz = freq_hz;
+  options.start = 0.0;
+  options.end = 2.0;
+  options.stability = false;
+  options.landing = levels;
+  const Branch branch = continue_branch(model, options);
+  std::size_t next = 0;
+  for (const BranchPoint& p : branch.points) {
+    if (next >= levels.size() || std::abs(p.f0_n - levels[next]) > 1e-12) continue;
+    if (p.marker != PointMarker::Landing && p.marker != PointMarker::End) continue;
+    // Two converged solutions of the same equations (‖r‖ ≤ 1e-11 N): EDCs agree to ~1e-9.
+    EXPECT_NEAR(response.edc_j[next] / p.measures.edc_j, 1.0, 1e-8) << "f0 = " << levels[next];
+    ++next;
+  }
+  EXPECT_EQ(next, levels.size());
+  // Past the jump the response is on the upper branch: the EDC at 1.4 N is several times that at
+  // 1.3 N (the jump of Fig. 11b), not a smooth continuation of the levels below.
+  EXPECT_GT(response.edc_j[13] / response.edc_j[12], 2.0);
+}
+
+TEST(LevelResponse, RejectsDecreasingLevels) {
+  EXPECT_THROW(level_response(paper_model(), 9.0, true, {0.5, 0.4}), InputError);
+}
+
+}  // namespace
+}  // namespace oscilab::analysis

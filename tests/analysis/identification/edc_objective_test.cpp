@@ -1,0 +1,95 @@
+#include "analysis/identification/edc_objective.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "analysis/common/input_error.h"
+#include "analysis/model/reference_models.h"
+#include "tests/analysis/identification/twin_data.h"
+
+namespace oscilab::analysis {
+namespace {
+
+EdcDataset scaled(EdcDataset data, double factor) {
+  for (EdcGroup& g : data.groups) {
+    for (MeasuredLevel& level : g.levels) level.edc_j *= factor;
+  }
+  return data;
+}
+
+TEST(EdcObjective, TruthHasZeroCostOnItsOwnTwinData) {
+  const Model truth = paper_model();
+  const EdcObjective objective(ModelForm::paper(truth), testing::twin_dataset(truth));
+  EXPECT_EQ(objective.level_count(), 52);
+  const EdcEvaluation e = objective.evaluate(objective.form().initial());
+  EXPECT_TRUE(e.ok) << e.message;
+  // Same equations, same solver, same starting points: the same numbers to rounding.
+  EXPECT_LT(e.cost_j, 1e-12);
+  EXPECT_LT(e.weighted_cost, 1e-12);
+  EXPECT_LT(e.mean_deviation_pct_positive, 1e-9);
+}
+
+TEST(EdcObjective, CostsAndDeviationsFollowTheirDefinitions) {
+  const Model truth = paper_model();
+  const EdcDataset twin = testing::twin_dataset(truth);
+  // Measurement 10 % above the model everywhere: eq. (8) is 0.1 Σ S_mod, every whitened residual
+  // is 0.1 S_mod / (0.01 · 1.1 S_mod) = 9.0909, and each level deviates by 0.1 / 1.1 of S_mes.
+  const EdcObjective objective(ModelForm::paper(truth), scaled(twin, 1.1));
+  const EdcEvaluation e = objective.evaluate(objective.form().initial());
+  double sum = 0.0;
+  for (const EdcGroup& g : twin.groups) {
+    for (const MeasuredLevel& level : g.levels) sum += level.edc_j;
+  }
+  EXPECT_NEAR(e.cost_j, 0.1 * sum, 1e-12 * sum);
+  EXPECT_NEAR(e.residuals(0), 0.1 / 0.011, 1e-9);
+  EXPECT_NEAR(e.weighted_cost, 52 * std::pow(0.1 / 0.011, 2), 1e-6);
+  EXPECT_NEAR(e.mean_deviation_pct_positive, 100.0 / 11.0, 1e-9);
+  EXPECT_NEAR(e.mean_deviation_pct_negative, 100.0 / 11.0, 1e-9);
+}
+
+TEST(EdcObjective, SigmaCombinesCycleSpreadAndModelFloor) {
+  EdcDataset data = testing::twin_dataset(paper_model(), {}, testing::few_levels_n());
+  MeasuredLevel& level = data.groups[0].levels[0];
+  level.edc_std_j = 0.04 * level.edc_j;
+  level.cycles = 16;  // σ_mean = 0.04 S / 4 = 0.01 S; with the 1 % floor σ = √2 · 0.01 S
+  level.noise_floor_j = 0.0;
+  const EdcObjective objective(ModelForm::paper(paper_model()), data);
+  EXPECT_NEAR(objective.sigma_j()[0] / level.edc_j, std::sqrt(2.0) * 0.01, 1e-15);
+  EXPECT_NEAR(objective.sigma_j()[1] / data.groups[0].levels[1].edc_j, 0.01, 1e-15);
+}
+
+TEST(EdcObjective, UnsolvableThetaIsAFiniteCostNotAnError) {
+  const Model truth = paper_model();
+  const EdcObjective objective(ModelForm::paper(truth),
+                               testing::twin_dataset(truth, {}, testing::few_levels_n()));
+  Eigen::VectorXd theta = objective.form().initial();
+  theta(4) = 0.5;  // k_s < 1: no model; every level counts as S_mod = 0
+  const EdcEvaluation e = objective.evaluate(theta);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("ks"), std::string::npos) << e.message;
+  EXPECT_NEAR(e.weighted_cost, 10 * 1e4, 1e-6);  // each residual is S / (0.01 S) = 100
+}
+
+TEST(EdcObjective, WeightsMultiplyTheSquaredResiduals) {
+  const Model truth = paper_model();
+  const EdcObjective objective(
+      ModelForm::paper(truth),
+      scaled(testing::twin_dataset(truth, {}, testing::few_levels_n()), 1.1));
+  std::vector<double> weights(10, 0.0);
+  weights[3] = 2.0;
+  const EdcEvaluation e = objective.evaluate(objective.form().initial(), &weights);
+  EXPECT_NEAR(e.weighted_cost, 2.0 * std::pow(0.1 / 0.011, 2), 1e-8);
+}
+
+TEST(EdcObjective, RejectsLevelsWithNoSpreadAndNoFloor) {
+  EdcCostSettings settings;
+  settings.model_error_rel = 0.0;
+  EXPECT_THROW(
+      EdcObjective(ModelForm::paper(paper_model()),
+                   testing::twin_dataset(paper_model(), {}, testing::few_levels_n()), settings),
+      InputError);
+}
+
+}  // namespace
+}  // namespace oscilab::analysis
