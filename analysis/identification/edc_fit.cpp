@@ -1,6 +1,7 @@
 #include "analysis/identification/edc_fit.h"
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 #include "analysis/common/input_error.h"
@@ -136,6 +137,24 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
     result.status = JobStatus::NoConvergence;
     result.message =
         "the best model could not be solved at every level: " + result.evaluation.message;
+  }
+  if (options.check_truncation) {
+    // One evaluation of the fitted model at 2H + 1 harmonics (the same levels and branches).
+    EdcCostSettings finer = objective.settings();
+    finer.hbm.harmonics = 2 * finer.hbm.harmonics + 1;
+    finer.hbm.samples = 0;
+    const EdcObjective check(form, objective.data(), finer);
+    const EdcEvaluation fine = check.evaluate(result.theta);
+    result.check_harmonics = finer.hbm.harmonics;
+    result.truncation_change_rel = 0.0;
+    for (std::size_t g = 0; g < fine.edc_mod_j.size(); ++g) {
+      for (std::size_t i = 0; i < fine.edc_mod_j[g].size(); ++i) {
+        const double coarse = result.evaluation.edc_mod_j[g][i];
+        result.truncation_change_rel =
+            std::max(result.truncation_change_rel,
+                     std::abs(fine.edc_mod_j[g][i] - coarse) / std::abs(coarse));
+      }
+    }
   }
   if (options.compute_uncertainty) {
     if (progress) progress({"uncertainty", result.evaluations, best.best_cost, result.theta});

@@ -43,6 +43,7 @@ struct FitOptions {
   int threads = 0;                 // 0: all hardware threads
   UncertaintyOptions uncertainty;  // seed and threads set from the fields here
   bool compute_uncertainty = true;
+  bool check_truncation = true;
 };
 
 /// Progress of a fit: which stage, evaluations so far, the best θ and its χ².
@@ -67,6 +68,11 @@ struct FitResult {
   std::vector<std::pair<long, double>> history;  // best χ² against evaluations (Fig. 14)
   FitUncertainty uncertainty;
   nlohmann::json settings;  // the method's settings as run
+  /// Truncation check of the fitted model's harmonic balance: the largest relative change of
+  /// S^mod over the levels when H is raised to 2H + 1. When it approaches the model-error floor,
+  /// θ̄ partly fits the truncation error (raise the harmonics). 0 harmonics: not computed.
+  int check_harmonics = 0;
+  double truncation_change_rel = 0.0;
 };
 
 /// θ̄ = argmin χ²(θ) over the form's bounds (eq. (10) with the weighted cost of EdcObjective).

@@ -90,7 +90,10 @@ FitUncertainty fit_uncertainty(const EdcObjective& objective, const Eigen::Vecto
       }
     }
   }
-  const double scale = std::isfinite(out.reduced_chi2) ? out.reduced_chi2 : 1.0;
+  // Scaled up when the misfit exceeds the stated σ, never down: the σ floor is a stated
+  // systematic uncertainty (model discretisation, calibration) that does not average out
+  // over levels, so a fit closer than the floor does not make θ̂ more certain than it allows.
+  const double scale = std::isfinite(out.reduced_chi2) ? std::max(1.0, out.reduced_chi2) : 1.0;
   out.covariance = scale * dtheta_du.asDiagonal() * cov_unit * dtheta_du.asDiagonal();
   out.correlation = Eigen::MatrixXd::Identity(p, p);
   for (int i = 0; i < p; ++i) {

@@ -32,11 +32,12 @@ struct ParameterUncertainty {
 /// Covariance: with r(θ) the whitened residuals (EdcObjective) and J = ∂r/∂θ by central
 /// differences at the optimum θ̂,
 ///
-///   Cov(θ̂) = s² (JᵀJ)⁻¹,   s² = χ²(θ̂) / (n − p),
+///   Cov(θ̂) = s² (JᵀJ)⁻¹,   s² = max{1, χ²(θ̂) / (n − p)},
 ///
-/// the least-squares covariance scaled by the reduced χ², so that a model error larger than the
-/// σ floor widens the intervals instead of being ignored (the convention of Press et al.,
-/// "Numerical Recipes", §15.6, for σ known up to a factor). Directions in which JᵀJ is singular
+/// the least-squares covariance, scaled by the reduced χ² when the misfit exceeds the stated σ
+/// (a model error larger than the floor widens the intervals instead of being ignored; Press et
+/// al., "Numerical Recipes", §15.6) but never shrunk below it: σ's model-error floor stands for
+/// systematic error that does not average out over levels. Directions in which JᵀJ is singular
 /// to working precision get an infinite standard error.
 ///
 /// Bootstrap: replicates draw the levels of each well with replacement (multiplicity weights
@@ -62,7 +63,7 @@ struct FitUncertainty {
 struct UncertaintyOptions {
   double difference_step = 1e-3;  // unit-cube step of the central differences
   int bootstrap_replicates = 0;
-  long bootstrap_polish_evaluations = 150;
+  long bootstrap_polish_evaluations = 300;
   std::uint64_t seed = 1;
   int threads = 0;  // 0: all hardware threads
 };

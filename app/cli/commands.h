@@ -11,5 +11,7 @@ void add_simulate_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_analyze_command(CLI::App& app);
 void add_hbm_command(CLI::App& app);
+void add_fit_command(CLI::App& app);
+void add_merge_command(CLI::App& app);
 
 }  // namespace oscilab::cli

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   oscilab::cli::add_info_command(app);
   oscilab::cli::add_analyze_command(app);
   oscilab::cli::add_hbm_command(app);
+  oscilab::cli::add_fit_command(app);
+  oscilab::cli::add_merge_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -3,11 +3,15 @@
 // Labelled slow: release build only (tests/CMakeLists.txt).
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 #include <gtest/gtest.h>
 
+#include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/model/reference_models.h"
+#include "daq/recording/measurement_mapping.h"
+#include "daq/rig/virtual_rig.h"
 #include "tests/analysis/identification/twin_data.h"
 
 namespace oscilab::analysis {
@@ -75,6 +79,91 @@ TEST(EdcFitSlow, PaperGeneticAlgorithmRunsWithPaperSettings) {
   std::printf("paper GA: chi2 %.3g, eq. (8) %.3g J, worst parameter error %.1f %%, %.2f s\n",
               fit.evaluation.weighted_cost, fit.evaluation.cost_j,
               100.0 * worst_required_error(fit, objective.form().initial()), fit.seconds);
+}
+
+// Issue 6 target on data as the lab gets it: the paper's model on the virtual rig (sensor bias,
+// noise, quantisation, table creep), both wells, 0.2 → 2.7 N, analysed by the project's own
+// pipeline, fitted by CMA-ES at H = 7. The fit must explain the data at least about as well as
+// the true parameters do (mean EDC deviation per well within 1.2× the truth's: the truth is not
+// the minimiser here, since the model's H = 7 truncation and the estimator's bias differ from the
+// simulated physics), and the reported 95 % intervals must hold the true f_d(z±*) and c.
+TEST(EdcFitSlow, NoisyRigRecordsFitAsWellAsTheTruthWithTruthInsideIntervals) {
+  const Model truth = paper_model();
+  SteppedSineSchedule schedule;
+  schedule.levels_n = testing::paper_levels_n();
+  std::vector<MeasurementChannels> records;
+  for (bool positive : {true, false}) {
+    daq::RigSpec spec;
+    spec.positive_well = positive;
+    spec.seed = positive ? 21 : 22;
+    const daq::RigRecording rig = daq::record_stepped_sine(truth, schedule, spec);
+    ASSERT_EQ(rig.status, TimeSimulator::Status::Ok) << rig.message;
+    records.push_back(daq::measurement_channels(rig.recording));
+  }
+  const CampaignAnalysis campaign = analyze_campaign(records, PipelineSettings{});
+  std::vector<std::string> notes;
+  const Model base = campaign_model(truth, campaign, StiffnessSource::Model, notes);
+  const EdcObjective objective(ModelForm::paper(base), edc_dataset(campaign));
+  ASSERT_EQ(objective.level_count(), 52);
+
+  FitOptions options;
+  options.seed = 3;
+  const FitResult fit = fit_edc(objective, options);
+  ASSERT_EQ(fit.status, JobStatus::Ok) << fit.message;
+  const EdcEvaluation at_truth = objective.evaluate(objective.form().theta_of(truth));
+  std::printf("noisy rig: fitted deviation %.3f %% / %.3f %%, truth %.3f %% / %.3f %%\n",
+              fit.evaluation.mean_deviation_pct_positive,
+              fit.evaluation.mean_deviation_pct_negative, at_truth.mean_deviation_pct_positive,
+              at_truth.mean_deviation_pct_negative);
+  EXPECT_LE(fit.evaluation.mean_deviation_pct_positive, 1.2 * at_truth.mean_deviation_pct_positive);
+  EXPECT_LE(fit.evaluation.mean_deviation_pct_negative, 1.2 * at_truth.mean_deviation_pct_negative);
+
+  const Eigen::VectorXd theta_true = objective.form().theta_of(truth);
+  for (const ParameterUncertainty& p : fit.uncertainty.parameters) {
+    const int i = static_cast<int>(&p - fit.uncertainty.parameters.data());
+    std::printf("  %-12s true %.5g fitted %.5g, 95 %% [%.5g, %.5g]%s\n", p.name.c_str(),
+                theta_true(i), p.value, p.lower_95, p.upper_95,
+                p.weakly_identified ? " (weak)" : "");
+    if (p.name == "fd_zminus_n" || p.name == "fd_zplus_n" || p.name == "c_ns_m") {
+      EXPECT_GE(theta_true(i), p.lower_95) << p.name;
+      EXPECT_LE(theta_true(i), p.upper_95) << p.name;
+    }
+  }
+}
+
+// The covariance's standard errors against a second method, the bootstrap over levels, on twin
+// data with 2 % multiplicative noise (seeded): both estimate the same spread, so for the
+// well-identified parameters they agree within a factor of 2.5 (a 30-replicate bootstrap's σ
+// itself scatters by ~13 %, and the linearisation of the covariance is exact only to first
+// order).
+TEST(EdcFitSlow, CovarianceAndBootstrapAgreeOnNoisyTwinData) {
+  const Model truth = paper_model();
+  EdcDataset data = testing::twin_dataset(truth);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  for (EdcGroup& g : data.groups) {
+    for (MeasuredLevel& level : g.levels) {
+      level.edc_j *= 1.0 + noise(rng);
+      level.edc_std_j = 0.02 * level.edc_j * 4.0;  // σ_mean = 2 % with 16 cycles
+      level.cycles = 16;
+    }
+  }
+  EdcCostSettings settings;
+  settings.model_error_rel = 0.0;  // the noise is all there is
+  const EdcObjective objective(ModelForm::paper(truth), data, settings);
+  FitOptions options;
+  options.method = FitMethod::Local;  // from the truth: this test is about the uncertainty
+  options.max_evaluations = 600;
+  options.uncertainty.bootstrap_replicates = 30;
+  const FitResult fit = fit_edc(objective, options);
+  ASSERT_EQ(fit.uncertainty.bootstrap_replicates, 30);
+  for (const ParameterUncertainty& p : fit.uncertainty.parameters) {
+    std::printf("  %-12s se %.3g bootstrap %.3g%s\n", p.name.c_str(), p.standard_error,
+                p.bootstrap_std, p.weakly_identified ? (" weak: " + p.note).c_str() : "");
+    if (p.weakly_identified) continue;
+    EXPECT_LT(p.bootstrap_std / p.standard_error, 2.5) << p.name;
+    EXPECT_GT(p.bootstrap_std / p.standard_error, 1.0 / 2.5) << p.name;
+  }
 }
 
 }  // namespace

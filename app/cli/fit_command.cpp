@@ -1,0 +1,238 @@
+// oscilab-cli fit REC... --model-form paper --method ga|cmaes|local ... --out FIT.json
+// (contract §2; issue 6): identification of the friction model from measured EDCs (§4, §5).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "analysis/common/input_error.h"
+#include "analysis/identification/campaign_model.h"
+#include "analysis/identification/edc_dataset.h"
+#include "analysis/identification/edc_fit.h"
+#include "analysis/identification/edc_sensitivity.h"
+#include "analysis/identification/fit_report.h"
+#include "analysis/model/model_json.h"
+#include "analysis/pipeline/offline_analysis.h"
+#include "app/cli/commands.h"
+#include "app/cli/fit_figures.h"
+#include "app/cli/png_output.h"
+#include "app/cli/progress_bar.h"
+#include "daq/recording/measurement_mapping.h"
+
+namespace oscilab::cli {
+namespace {
+
+struct FitCommandOptions {
+  std::vector<std::string> recordings;
+  std::string model_form = "paper";
+  std::string model = "paper";
+  std::string method = "cmaes";
+  std::string stiffness = "model";
+  std::string out_path;
+  std::string figures_dir;
+  int population = 100;
+  int generations = 20;
+  double mutation = 0.2;
+  long evaluations = 2000;
+  bool polish_ga = false;
+  unsigned long long seed = 1;
+  int threads = 0;
+  int harmonics = 7;
+  int bootstrap = 0;
+  double model_error = 0.01;
+  double freq_hz = 0.0;
+  bool no_png = false;
+};
+
+void print_table(const analysis::FitResult& fit, const analysis::EdcObjective& objective) {
+  std::printf("\nidentified (%s, %ld evaluations, %.2f s):\n",
+              analysis::fit_method_name(fit.method).c_str(), fit.evaluations, fit.seconds);
+  std::printf("  %-12s %12s %12s %25s\n", "parameter", "value", "std error", "95 % interval");
+  for (std::size_t i = 0; i < fit.names.size(); ++i) {
+    const bool have = i < fit.uncertainty.parameters.size();
+    const auto* u = have ? &fit.uncertainty.parameters[i] : nullptr;
+    std::printf("  %-12s %12.5g", fit.names[i].c_str(), fit.theta(static_cast<int>(i)));
+    if (u) {
+      std::printf(" %12.3g   [%10.4g, %10.4g]", u->standard_error, u->lower_95, u->upper_95);
+      if (u->weakly_identified) std::printf("  weakly identified: %s", u->note.c_str());
+    }
+    std::printf("\n");
+  }
+  std::printf("  cost eq. (8): %.5g J; chi2 %.5g (%s)\n", fit.evaluation.cost_j,
+              fit.evaluation.weighted_cost, objective.weighted_cost_name().c_str());
+  std::printf("  mean deviation: %.2f %% (z+* well), %.2f %% (z-* well)\n",
+              fit.evaluation.mean_deviation_pct_positive,
+              fit.evaluation.mean_deviation_pct_negative);
+  if (fit.check_harmonics > 0) {
+    std::printf("  harmonic balance: S_mod changes by at most %.2g %% from H = %d to H = %d",
+                100.0 * fit.truncation_change_rel, objective.settings().hbm.harmonics,
+                fit.check_harmonics);
+    if (fit.truncation_change_rel > 0.5 * objective.settings().model_error_rel) {
+      std::printf(
+          " -- comparable to the %.2g %% model-error floor: parameters may absorb the "
+          "truncation; raise --harmonics",
+          100.0 * objective.settings().model_error_rel);
+    }
+    std::printf("\n");
+  }
+  if (fit.status != JobStatus::Ok) std::printf("  status: %s\n", fit.message.c_str());
+}
+
+void run(const FitCommandOptions& o) {
+  if (o.model_form != "paper") {
+    throw InputError("--model-form: unknown form \"" + o.model_form + "\" (paper)");
+  }
+  if (o.harmonics < 1) throw InputError("--harmonics: must be at least 1");
+  if (o.bootstrap < 0) throw InputError("--bootstrap: must be ≥ 0");
+  if (o.evaluations < 10) throw InputError("--evaluations: must be at least 10");
+  if (!(o.mutation >= 0.0 && o.mutation <= 1.0)) throw InputError("--mutation: must lie in [0, 1]");
+  if (o.population < 2) throw InputError("--population: must be at least 2");
+  if (o.generations < 0) throw InputError("--generations: must be ≥ 0");
+  const analysis::FitMethod method = analysis::parse_fit_method(o.method);
+  const analysis::StiffnessSource stiffness =
+      o.stiffness == "rfs" ? analysis::StiffnessSource::Rfs : analysis::StiffnessSource::Model;
+  if (!o.figures_dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(o.figures_dir, error);
+    if (error) throw InputError(o.figures_dir + ": cannot create: " + error.message());
+  }
+
+  std::vector<analysis::MeasurementChannels> records;
+  daq::MappingOverrides overrides;
+  if (o.freq_hz > 0) overrides.excitation_freq_hz = o.freq_hz;
+  std::vector<std::string> names;
+  for (const auto& path : o.recordings) {
+    records.push_back(daq::measurement_channels(daq::read_recording(path), overrides));
+    names.push_back(path);
+  }
+  analysis::CampaignAnalysis campaign;
+  {
+    ProgressBar bar("analyze");
+    campaign = analysis::analyze_campaign(records, {}, bar.callback());
+  }
+  std::vector<std::string> notes;
+  const analysis::Model base =
+      analysis::campaign_model(analysis::model_from_spec(o.model), campaign, stiffness, notes);
+  const analysis::EdcDataset data = analysis::edc_dataset(campaign);
+  analysis::EdcCostSettings cost;
+  cost.hbm.harmonics = o.harmonics;
+  cost.model_error_rel = o.model_error;
+  const analysis::EdcObjective objective(analysis::ModelForm::paper(base), data, cost);
+
+  std::printf("fit: %d levels (", objective.level_count());
+  for (std::size_t g = 0; g < data.groups.size(); ++g) {
+    std::printf("%s%zu in the %s well at %.4g Hz", g ? ", " : "", data.groups[g].levels.size(),
+                data.groups[g].positive_well ? "z+*" : "z-*", data.groups[g].freq_hz);
+  }
+  std::printf("), %zu left out\n", data.excluded.size());
+  for (const auto& e : data.excluded) std::printf("  left out: %s\n", e.c_str());
+  for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());
+
+  analysis::FitOptions options;
+  options.method = method;
+  options.seed = o.seed;
+  options.threads = o.threads;
+  options.max_evaluations = o.evaluations;
+  options.genetic.population = o.population;
+  options.genetic.generations = o.generations;
+  options.genetic.mutation_rate = o.mutation;
+  options.genetic.elite = std::max(1, static_cast<int>(std::lround(0.05 * o.population)));
+  options.polish_after_genetic = o.polish_ga;
+  options.uncertainty.bootstrap_replicates = o.bootstrap;
+  analysis::FitResult fit;
+  {
+    ProgressBar bar("fit");
+    const ProgressFn draw = bar.callback();
+    const long budget = method == analysis::FitMethod::Genetic
+                            ? static_cast<long>(o.population) * (o.generations + 1)
+                            : o.evaluations;
+    fit = analysis::fit_edc(objective, options, [&](const analysis::FitProgress& p) {
+      if (draw && p.stage != "uncertainty") {
+        draw(std::min(1.0, static_cast<double>(p.evaluations) / static_cast<double>(budget)));
+      }
+    });
+  }
+  print_table(fit, objective);
+
+  nlohmann::json report = analysis::fit_report_json(fit, objective, names);
+  report["notes"] = notes;
+  std::ofstream out(o.out_path);
+  out << report.dump(2) << '\n';
+  if (!out) throw InputError(o.out_path + ": write failed");
+  std::printf("fit written to %s\n", o.out_path.c_str());
+
+  if (o.figures_dir.empty()) return;
+  const std::vector<CostSlice> slices = cost_slices(objective, fit.theta, 21, o.threads);
+  const auto curves =
+      analysis::edc_sensitivity(objective, fit.theta, {0.2, 0.5, 0.7, 1.0, 1.2, 1.5}, o.threads);
+  write_fit_tables(o.figures_dir, fit, objective, slices, curves);
+  if (!o.no_png) {
+    FigureWriter writer;
+    writer.write(edc_fit_figure(fit, objective), o.figures_dir + "/edc_fit.png");
+    writer.write(convergence_figure(fit), o.figures_dir + "/convergence.png");
+    writer.write(friction_figure(fit, objective), o.figures_dir + "/friction.png");
+    writer.write(cost_slice_figure(slices), o.figures_dir + "/cost_slices.png");
+    for (bool positive : {true, false}) {
+      if (objective.data().group(positive)) {
+        writer.write(
+            sensitivity_figure(curves, positive),
+            o.figures_dir + "/sensitivity_" + (positive ? "positive" : "negative") + ".png");
+      }
+    }
+  }
+  std::printf("figures and tables written to %s/\n", o.figures_dir.c_str());
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app) {
+  auto o = std::make_shared<FitCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "fit",
+      "Identify the friction model from the EDCs of stepped-sine records (§4, §5): θ of eq. (9) "
+      "by the paper's genetic algorithm or CMA-ES with a BOBYQA polish, with uncertainty");
+  command->add_option("recordings", o->recordings, "stepped-sine recordings (both wells)")
+      ->required();
+  command->add_option("--model-form", o->model_form, "model form: paper (eq. (7), θ of eq. (9))")
+      ->capture_default_str();
+  command
+      ->add_option("--model", o->model,
+                   "base model (mass, stiffness, starting friction): paper | MODEL.json")
+      ->capture_default_str();
+  command->add_option("--method", o->method, "ga (the paper's), cmaes (with polish) or local")
+      ->capture_default_str();
+  command->add_option("--population", o->population, "GA population")->capture_default_str();
+  command->add_option("--generations", o->generations, "GA generations")->capture_default_str();
+  command->add_option("--mutation", o->mutation, "GA mutation rate")->capture_default_str();
+  command->add_flag("--polish", o->polish_ga, "polish the GA's best with BOBYQA");
+  command
+      ->add_option("--evaluations", o->evaluations,
+                   "model evaluations of cmaes (search + polish) or local")
+      ->capture_default_str();
+  command->add_option("--seed", o->seed, "random seed (same seed, same result)")
+      ->capture_default_str();
+  command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
+  command->add_option("--harmonics", o->harmonics, "harmonics H of the model's HBM")
+      ->capture_default_str();
+  command
+      ->add_option("--model-error", o->model_error,
+                   "relative model-error floor of each level's sigma in the fitted cost")
+      ->capture_default_str();
+  command->add_option("--bootstrap", o->bootstrap, "bootstrap replicates over levels (0: none)")
+      ->capture_default_str();
+  command->add_option("--stiffness", o->stiffness, "K(z) from the model or from the records' RFS")
+      ->check(CLI::IsMember({"model", "rfs"}))
+      ->capture_default_str();
+  command->add_option("--freq", o->freq_hz,
+                      "excitation frequency [Hz] (default: sidecar, else detected)");
+  command->add_option("--figures", o->figures_dir,
+                      "directory for Figs. 13-16 as PNG and their data as CSV");
+  command->add_flag("--no-png", o->no_png, "with --figures: the CSV tables only");
+  command->add_option("--out", o->out_path, "FIT.json")->required();
+  command->callback([o] { run(*o); });
+}
+
+}  // namespace oscilab::cli

@@ -1,0 +1,91 @@
+// oscilab-cli merge FIT.json... --out TABLE.csv (issue 6): many independent fits (a campaign run
+// by Slurm or GNU parallel, scripts/) joined into one table, one row per fit.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <set>
+
+#include "analysis/common/input_error.h"
+#include "analysis/identification/fit_report.h"
+#include "app/cli/commands.h"
+
+namespace oscilab::cli {
+namespace {
+
+struct MergeOptions {
+  std::vector<std::string> fits;
+  std::string out_path;
+};
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string value_or_empty(double value) {
+  if (!std::isfinite(value)) return "";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", value);
+  return buffer;
+}
+
+void run(const MergeOptions& o) {
+  std::vector<analysis::FitSummary> rows;
+  std::vector<std::string> parameters;  // union, in first-seen order
+  std::set<std::string> seen;
+  for (const auto& path : o.fits) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path + ": cannot open");
+    nlohmann::json json;
+    try {
+      in >> json;
+    } catch (const nlohmann::json::exception& error) {
+      throw InputError(path + ": not valid JSON: " + error.what());
+    }
+    rows.push_back(analysis::read_fit_summary(json, path));
+    for (const auto& [name, value] : rows.back().parameters) {
+      if (seen.insert(name).second) parameters.push_back(name);
+    }
+  }
+  std::ofstream out(o.out_path);
+  if (!out) throw InputError(o.out_path + ": cannot write");
+  out << "fit,records,method,cost_j,mean_deviation_pct_positive,mean_deviation_pct_negative,"
+         "evaluations,seconds";
+  for (const auto& p : parameters) out << ',' << p << ',' << p << "_std";
+  out << '\n';
+  for (const auto& r : rows) {
+    out << csv_field(r.source) << ',' << csv_field(r.records) << ',' << csv_field(r.method) << ','
+        << value_or_empty(r.cost_j) << ',' << value_or_empty(r.mean_deviation_pct_positive) << ','
+        << value_or_empty(r.mean_deviation_pct_negative) << ',' << r.evaluations << ','
+        << value_or_empty(r.seconds);
+    for (const auto& p : parameters) {
+      double value = std::nan(""), error = std::nan("");
+      for (const auto& [name, v] : r.parameters) {
+        if (name == p) value = v;
+      }
+      for (const auto& [name, e] : r.standard_errors) {
+        if (name == p) error = e;
+      }
+      out << ',' << value_or_empty(value) << ',' << value_or_empty(error);
+    }
+    out << '\n';
+  }
+  if (!out) throw InputError(o.out_path + ": write failed");
+  std::printf("merged %zu fits into %s\n", rows.size(), o.out_path.c_str());
+}
+
+}  // namespace
+
+void add_merge_command(CLI::App& app) {
+  auto o = std::make_shared<MergeOptions>();
+  CLI::App* command = app.add_subcommand(
+      "merge", "Join FIT JSONs of many fits (a campaign) into one CSV table, one row per fit");
+  command->add_option("fits", o->fits, "FIT.json files written by oscilab-cli fit")->required();
+  command->add_option("--out", o->out_path, "the table (CSV)")->required();
+  command->callback([o] { run(*o); });
+}
+
+}  // namespace oscilab::cli
