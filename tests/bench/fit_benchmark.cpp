@@ -1,0 +1,74 @@
+// Speed of the EDC identification (issue 6): a 2000-evaluation fit of the paper's θ (both wells,
+// 52 levels, H = 7) by CMA-ES + polish and by the paper's GA (target ≤ 10 s wall on the 2-core
+// machine for either), on all hardware threads; and how long a running fit takes to stop after
+// cancel() (target ≤ 200 ms). Noise-free twin data of the paper's model. Google Benchmark
+// reports medians over repetitions; nothing here asserts a speed.
+#include <chrono>
+#include <thread>
+
+#include <benchmark/benchmark.h>
+
+#include "analysis/identification/edc_fit.h"
+#include "analysis/model/reference_models.h"
+#include "tests/analysis/identification/twin_data.h"
+
+namespace {
+
+using namespace oscilab::analysis;
+
+const EdcObjective& objective() {
+  static const EdcObjective o(ModelForm::paper(paper_model()),
+                              testing::twin_dataset(paper_model()));
+  return o;
+}
+
+void BM_Fit2000Evaluations(benchmark::State& state) {
+  const auto method = static_cast<FitMethod>(state.range(0));
+  FitOptions options;
+  options.method = method;
+  options.compute_uncertainty = false;
+  options.check_truncation = false;
+  long evaluations = 0;
+  double cost = 0.0;
+  for (auto _ : state) {
+    const FitResult fit = fit_edc(objective(), options);
+    evaluations = fit.evaluations;
+    cost = fit.evaluation.weighted_cost;
+  }
+  state.counters["evaluations"] = static_cast<double>(evaluations);
+  state.counters["chi2"] = cost;
+  state.counters["threads"] = static_cast<double>(std::thread::hardware_concurrency());
+  state.SetLabel(fit_method_name(method) + ", both wells, 52 levels, H = 7");
+}
+BENCHMARK(BM_Fit2000Evaluations)
+    ->Arg(static_cast<int>(FitMethod::Cmaes))
+    ->Arg(static_cast<int>(FitMethod::Genetic))
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+
+// Time from cancel() to fit_edc's return, 300 ms into a CMA-ES fit (manual time: the latency).
+void BM_FitCancelLatency(benchmark::State& state) {
+  FitOptions options;
+  options.compute_uncertainty = false;
+  for (auto _ : state) {
+    oscilab::CancelToken cancel;
+    std::chrono::steady_clock::time_point cancelled_at;
+    std::thread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      cancelled_at = std::chrono::steady_clock::now();
+      cancel.cancel();
+    });
+    const FitResult fit = fit_edc(objective(), options, {}, cancel);
+    const auto returned_at = std::chrono::steady_clock::now();
+    canceller.join();
+    benchmark::DoNotOptimize(fit.theta.data());
+    state.SetIterationTime(std::chrono::duration<double>(returned_at - cancelled_at).count());
+  }
+  state.SetLabel("cancel 300 ms into a CMA-ES fit");
+}
+BENCHMARK(BM_FitCancelLatency)->Unit(benchmark::kMillisecond)->Iterations(5)->UseManualTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# oscilab-cli fit and merge from the command line, and the campaign scripts (issue 6):
+#   fit_cli_test.sh OSCILAB_CLI SOURCE_DIR
+# Small GA budgets keep it fast; the numbers themselves are checked by the GoogleTest suites.
+set -uo pipefail
+cli=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+pass() { echo "ok: $1"; }
+fail() { echo "FAILED: $1" >&2; failures=$((failures + 1)); }
+pos=$src/samples/stepped_positive.flac
+neg=$src/samples/stepped_negative.flac
+small=(--method ga --population 6 --generations 1 --seed 4)
+
+# A fit on both samples writes the contract's keys; GA evaluations = 6 + 1 × (6 − 1 elite).
+if "$cli" fit "$pos" "$neg" "${small[@]}" --out "$work/a.json" > "$work/a.log" 2>&1; then
+  pass "fit exits 0"
+else
+  fail "fit exits non-zero: $(tail -3 "$work/a.log")"
+fi
+for key in '"parameters"' '"fd_zminus_n"' '"fd_zero_n"' '"fd_zplus_n"' '"ks"' '"c_ns_m"' \
+  '"vt_m_s"' '"cost_j"' '"mean_deviation_pct"' '"positive"' '"negative"' '"evaluations": 11' \
+  '"seconds"' '"standard_errors"' '"friction_coefficients"' '"method"'; do
+  grep -q -- "$key" "$work/a.json" && pass "FIT JSON has $key" || fail "FIT JSON lacks $key"
+done
+grep -q "52 levels" "$work/a.log" && pass "fit reports 52 levels" || fail "fit level count: $(head -2 "$work/a.log")"
+
+# Same seed, same result (cost and parameters); the seconds may differ.
+"$cli" fit "$pos" "$neg" "${small[@]}" --out "$work/b.json" > /dev/null 2>&1
+if diff <(grep -v '"seconds"' "$work/a.json") <(grep -v '"seconds"' "$work/b.json") > /dev/null; then
+  pass "same seed, same FIT JSON"
+else
+  fail "same seed gave a different FIT JSON"
+fi
+
+# Bad input: one line naming the problem, exit status 2, no output file.
+expect_error() {  # expect_error WHAT PATTERN COMMAND...
+  local what=$1 pattern=$2
+  shift 2
+  local message status
+  message=$("$@" 2>&1 >/dev/null)
+  status=$?
+  if [ $status -eq 2 ] && grep -q -- "$pattern" <<< "$message"; then
+    pass "$what: $message"
+  else
+    fail "$what: status $status, message: $message"
+  fi
+}
+expect_error "unknown method" 'simplex' "$cli" fit "$pos" --method simplex --out "$work/x.json"
+expect_error "missing recording" 'nope.flac' "$cli" fit "$work/nope.flac" --out "$work/x.json"
+expect_error "unknown model form" 'model-form' "$cli" fit "$pos" --model-form cubic --out "$work/x.json"
+expect_error "mutation out of range" 'mutation' "$cli" fit "$pos" --mutation 1.5 --out "$work/x.json"
+[ ! -e "$work/x.json" ] && pass "no FIT JSON after an error" || fail "a FIT JSON was written after an error"
+echo '{"cost_j": 1}' > "$work/not_a_fit.json"
+expect_error "merge of a non-FIT JSON" 'not_a_fit.json: parameters' "$cli" merge "$work/not_a_fit.json" --out "$work/m.csv"
+echo 'not json' > "$work/garbage.json"
+expect_error "merge of garbage" 'garbage.json' "$cli" merge "$work/garbage.json" --out "$work/m.csv"
+
+# The GNU parallel path on the samples: two fits side by side, then one table.
+printf '%s\n' "# one fit per line" "$pos" "" "$pos $neg" > "$work/jobs.txt"
+if OSCILAB_CLI=$cli bash "$src/scripts/fit_parallel.sh" -j 2 "$work/jobs.txt" "$work/fits" \
+  "${small[@]}" > "$work/parallel.log" 2>&1; then
+  pass "fit_parallel.sh exits 0"
+else
+  fail "fit_parallel.sh: $(tail -5 "$work/parallel.log")"
+fi
+rows=$(($(wc -l < "$work/fits/fits.csv") - 1))
+[ "$rows" -eq 2 ] && pass "merged table has 2 fits" || fail "merged table has $rows rows"
+head -1 "$work/fits/fits.csv" | grep -q '^fit,records,method,cost_j,mean_deviation_pct_positive' &&
+  pass "merged table header" || fail "merged table header: $(head -1 "$work/fits/fits.csv")"
+grep -q "stepped_negative.flac" "$work/fits/fits.csv" && pass "table names the records" ||
+  fail "table lacks the record names"
+
+# The Slurm array script, run as task 2 outside Slurm (same job list).
+if SLURM_ARRAY_TASK_ID=2 SLURM_CPUS_PER_TASK=1 OSCILAB_CLI=$cli \
+  bash "$src/scripts/fit_campaign.slurm" "$work/jobs.txt" "$work/slurm" "${small[@]}" \
+  > "$work/slurm.log" 2>&1 && grep -q '"evaluations": 11' "$work/slurm/fit_2.json"; then
+  pass "fit_campaign.slurm task 2"
+else
+  fail "fit_campaign.slurm: $(tail -3 "$work/slurm.log")"
+fi
+
+[ $failures -eq 0 ]
