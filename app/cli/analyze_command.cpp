@@ -5,8 +5,8 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/pipeline/offline_analysis.h"
+#include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
-#include "app/cli/progress_bar.h"
 #include "daq/recording/measurement_mapping.h"
 
 namespace oscilab::cli {
@@ -137,19 +137,12 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
 }
 
 void run(const AnalyzeOptions& options) {
-  std::vector<analysis::MeasurementChannels> records;
   daq::MappingOverrides overrides;
   if (options.freq_hz > 0) overrides.excitation_freq_hz = options.freq_hz;
   if (!options.well.empty()) overrides.well_positive = options.well == "positive";
   overrides.ignore_sidecar_levels = options.detect_levels;
-  for (const auto& path : options.recordings) {
-    records.push_back(daq::measurement_channels(daq::read_recording(path), overrides));
-  }
-  analysis::CampaignAnalysis campaign;
-  {
-    ProgressBar bar("analyze");
-    campaign = analysis::analyze_campaign(records, options.settings, bar.callback());
-  }
+  const analysis::CampaignAnalysis campaign =
+      analyze_recordings(options.recordings, overrides, options.settings);
   print_report(campaign);
   if (!options.edc_path.empty()) write_edc(campaign, options.edc_path);
   if (!options.cycles_path.empty()) write_cycles(campaign, options.cycles_path);

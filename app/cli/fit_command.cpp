@@ -16,11 +16,11 @@
 #include "analysis/identification/fit_report.h"
 #include "analysis/model/model_json.h"
 #include "analysis/pipeline/offline_analysis.h"
+#include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/fit_figures.h"
 #include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
-#include "daq/recording/measurement_mapping.h"
 
 namespace oscilab::cli {
 namespace {
@@ -100,19 +100,9 @@ void run(const FitCommandOptions& o) {
     if (error) throw InputError(o.figures_dir + ": cannot create: " + error.message());
   }
 
-  std::vector<analysis::MeasurementChannels> records;
   daq::MappingOverrides overrides;
   if (o.freq_hz > 0) overrides.excitation_freq_hz = o.freq_hz;
-  std::vector<std::string> names;
-  for (const auto& path : o.recordings) {
-    records.push_back(daq::measurement_channels(daq::read_recording(path), overrides));
-    names.push_back(path);
-  }
-  analysis::CampaignAnalysis campaign;
-  {
-    ProgressBar bar("analyze");
-    campaign = analysis::analyze_campaign(records, {}, bar.callback());
-  }
+  const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, overrides, {});
   std::vector<std::string> notes;
   const analysis::Model base =
       analysis::campaign_model(analysis::model_from_spec(o.model), campaign, stiffness, notes);
@@ -157,7 +147,7 @@ void run(const FitCommandOptions& o) {
   }
   print_table(fit, objective);
 
-  nlohmann::json report = analysis::fit_report_json(fit, objective, names);
+  nlohmann::json report = analysis::fit_report_json(fit, objective, o.recordings);
   report["notes"] = notes;
   std::ofstream out(o.out_path);
   out << report.dump(2) << '\n';

@@ -24,17 +24,6 @@ const EdcObjective& twin_objective() {
   return objective;
 }
 
-// Largest relative error over the parameters the issue requires (f_d(z±*), k_s, c, v_t); f_d(0)
-// is weakly identified from EDCs and is reported, not required.
-double worst_required_error(const FitResult& fit, const Eigen::VectorXd& truth) {
-  double worst = 0.0;
-  for (int i = 0; i < truth.size(); ++i) {
-    if (fit.names[i] == "fd_zero_n") continue;
-    worst = std::max(worst, std::abs(fit.theta(i) / truth(i) - 1.0));
-  }
-  return worst;
-}
-
 // Issue 6 target: the stronger method recovers f_d(z±*), k_s, c and v_t within 1 % in at least
 // 3 of 4 seeds within 2000 model evaluations (noise-free data: the truth is the exact minimiser,
 // so 1 % measures the optimiser alone).
@@ -49,7 +38,7 @@ TEST(EdcFitSlow, CmaesRecoversPaperFrictionInThreeOfFourSeeds) {
     const FitResult fit = fit_edc(objective, options);
     EXPECT_EQ(fit.status, JobStatus::Ok) << fit.message;
     EXPECT_LE(fit.evaluations, 2000);
-    const double worst = worst_required_error(fit, truth);
+    const double worst = testing::worst_required_error(fit, truth);
     std::printf(
         "cmaes seed %d: %ld evaluations, %.2f s, chi2 %.3g, eq. (8) %.3g J, worst %.3f %%\n", seed,
         fit.evaluations, fit.seconds, fit.evaluation.weighted_cost, fit.evaluation.cost_j,
@@ -78,7 +67,7 @@ TEST(EdcFitSlow, PaperGeneticAlgorithmRunsWithPaperSettings) {
   EXPECT_LT(fit.evaluation.weighted_cost, fit.history.front().second);
   std::printf("paper GA: chi2 %.3g, eq. (8) %.3g J, worst parameter error %.1f %%, %.2f s\n",
               fit.evaluation.weighted_cost, fit.evaluation.cost_j,
-              100.0 * worst_required_error(fit, objective.form().initial()), fit.seconds);
+              100.0 * testing::worst_required_error(fit, objective.form().initial()), fit.seconds);
 }
 
 // Issue 6 target on data as the lab gets it: the paper's model on the virtual rig (sensor bias,

@@ -22,17 +22,6 @@ const EdcObjective& twin_objective() {
   return objective;
 }
 
-// Largest relative error over the parameters the issue requires (f_d(z±*), k_s, c, v_t); f_d(0)
-// is weakly identified from EDCs and is reported, not required.
-double worst_required_error(const FitResult& fit, const Eigen::VectorXd& truth) {
-  double worst = 0.0;
-  for (int i = 0; i < truth.size(); ++i) {
-    if (fit.names[i] == "fd_zero_n") continue;
-    worst = std::max(worst, std::abs(fit.theta(i) / truth(i) - 1.0));
-  }
-  return worst;
-}
-
 TEST(EdcFit, GeneticAlgorithmIsReproducibleForASeedAndThreadCount) {
   const EdcObjective& objective = twin_objective();
   FitOptions options;
@@ -74,7 +63,7 @@ TEST(EdcFit, LocalPolishFromANeighbourReturnsToTheTruth) {
   options.compute_uncertainty = false;
   const FitResult fit = fit_edc(objective, options);
   EXPECT_LE(fit.evaluations, 600);
-  EXPECT_LT(worst_required_error(fit, truth), 1e-3);
+  EXPECT_LT(testing::worst_required_error(fit, truth), 1e-3);
 }
 
 TEST(EdcFit, CancelReturnsTheBestSoFarWithCancelledStatus) {

@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/pipeline/offline_analysis.h"
+#include "daq/recording/measurement_mapping.h"
+
+namespace oscilab::cli {
+
+/// Reads the recordings (each with its sidecar) and runs the offline analysis of all of them
+/// together, with a progress bar on a terminal: the input stage of analyze, fit and diagnose.
+/// Throws InputError naming the file for a recording that cannot be read.
+analysis::CampaignAnalysis analyze_recordings(const std::vector<std::string>& paths,
+                                              const daq::MappingOverrides& overrides,
+                                              const analysis::PipelineSettings& settings);
+
+}  // namespace oscilab::cli
