@@ -1,6 +1,7 @@
 #include "analysis/identification/cmaes_search.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -59,8 +60,9 @@ SearchResult cmaes_search(int dimension, const UnitCost& cost, const CmaesOption
                           : std::max(8, 4 + static_cast<int>(3.0 * std::log(dimension)));
 
   std::vector<SearchResult> results(streams);
-  std::mutex report_mutex;
+  std::mutex report_mutex;  // guards `global` and the progress calls
   SearchProgress global{0, std::numeric_limits<double>::infinity(), {}};
+  std::atomic<long> spent_total{0};  // evaluations of all streams (each also counts its own)
 
   parallel_for(static_cast<std::size_t>(streams), streams, [&](std::size_t s) {
     SearchResult& r = results[s];
@@ -75,6 +77,7 @@ SearchResult cmaes_search(int dimension, const UnitCost& cost, const CmaesOption
           static_cast<unsigned>((options.seed * 1000003u + s * 7919u + restart) & 0xffffffffu);
       pagmo::population pop(problem, static_cast<pagmo::population::size_type>(lambda), seed);
       r.evaluations += lambda;
+      spent_total += lambda;
       // One generation per evolve() call with memory, so that cancellation, progress and the
       // budget are checked between generations.
       pagmo::algorithm algorithm{
@@ -95,9 +98,7 @@ SearchResult cmaes_search(int dimension, const UnitCost& cost, const CmaesOption
             global.best_cost = r.best_cost;
             global.best_unit = r.best_unit;
           }
-          long total = 0;
-          for (const SearchResult& other : results) total += other.evaluations;
-          global.evaluations = total;
+          global.evaluations = spent_total.load();
           if (progress) progress(global);
         }
         if (champion < run_best * (1.0 - options.restart_ftol_rel) || !std::isfinite(run_best)) {
@@ -114,6 +115,7 @@ SearchResult cmaes_search(int dimension, const UnitCost& cost, const CmaesOption
         if (cancel.cancelled() || r.evaluations + lambda > budget) break;
         pop = algorithm.evolve(pop);
         r.evaluations += lambda;
+        spent_total += lambda;
       }
     }
     r.cancelled = cancel.cancelled();
@@ -139,8 +141,8 @@ SearchResult cmaes_search(int dimension, const UnitCost& cost, const CmaesOption
   for (std::size_t i = 0; i < longest; ++i) {
     long spent = 0;
     for (const SearchResult& r : results) {
-      const std::size_t j = std::min(i, r.history.size() - 1);
       if (r.history.empty()) continue;
+      const std::size_t j = std::min(i, r.history.size() - 1);
       spent += r.history[j].first;
       best = std::min(best, r.history[j].second);
     }
