@@ -475,6 +475,18 @@ Branch Continuer::run_steps(const ProgressFn& progress, const CancelToken& cance
 Branch continue_branch(const Model& model, const ContinuationOptions& options,
                        const ProgressFn& progress, const CancelToken& cancel) {
   options.validate();
+  if (options.stability && model.state_size() > 0) {
+    // The variational equation of FloquetAnalysis has no rows for internal states, so its
+    // multipliers would describe another system: the branch is followed without stability.
+    ContinuationOptions without = options;
+    without.stability = false;
+    Continuer continuer(model, without);
+    Branch branch = continuer.run(progress, cancel);
+    branch.message += std::string(branch.message.empty() ? "" : "; ") +
+                      "stability not computed: Floquet analysis does not cover terms with "
+                      "internal state (hysteresis)";
+    return branch;
+  }
   Continuer continuer(model, options);
   return continuer.run(progress, cancel);
 }

@@ -48,15 +48,6 @@ int HbmOptions::resolved_samples() const {
 
 namespace {
 
-const Model& checked(const Model& model) {
-  if (model.state_size() > 0) {
-    throw InputError("harmonic balance: model \"" + model.name() +
-                     "\" has terms with internal state (hysteresis), which harmonic balance does "
-                     "not support yet");
-  }
-  return model;
-}
-
 HbmOptions checked(const HbmOptions& options) {
   if (options.harmonics < 1) {
     throw InputError("harmonic balance: harmonics: " + std::to_string(options.harmonics) +
@@ -72,8 +63,9 @@ HbmOptions checked(const HbmOptions& options) {
 }  // namespace
 
 HarmonicBalance::HarmonicBalance(Model model, double freq_hz, const HbmOptions& options)
-    : model_(checked(model)),
+    : model_(std::move(model)),
       options_(checked(options)),
+      march_(model_),
       grid_(options.harmonics * options.subharmonic, options.resolved_samples()) {
   set_frequency(freq_hz);
   const int n = grid_.samples();
@@ -83,6 +75,7 @@ HarmonicBalance::HarmonicBalance(Model model, double freq_hz, const HbmOptions& 
   force_.resize(n);
   stiffness_.resize(n);
   damping_.resize(n);
+  hysteretic_.setZero(n);
 }
 
 void HarmonicBalance::set_frequency(double freq_hz) {
@@ -101,10 +94,19 @@ void HarmonicBalance::evaluate_samples(const Eigen::VectorXd& x) {
   z_dot_ = base_omega() * z_tau_;  // ż = Ω dz/dτ
 }
 
+void HarmonicBalance::march_hysteresis(const Eigen::VectorXd& x) {
+  if (!march_.active()) return;
+  evaluate_samples(x);
+  march_.forces(model_, z_, z_dot_, kTwoPi / base_omega(), hysteretic_);
+}
+
 void HarmonicBalance::residual(const Eigen::VectorXd& x, double f0_n, Eigen::VectorXd& r) {
   evaluate_samples(x);
+  if (march_.active()) march_.forces(model_, z_, z_dot_, kTwoPi / base_omega(), hysteretic_);
+  // Stateless terms at each instant (stateful ones give 0 without a state) plus the marched
+  // force of the stateful ones.
   for (int n = 0; n < grid_.samples(); ++n)
-    force_[n] = model_.restoring_force(z_[n], z_dot_[n], nullptr);
+    force_[n] = model_.restoring_force(z_[n], z_dot_[n], nullptr) + hysteretic_[n];
   grid_.analyse(force_, r);
   const double m = model_.mass_kg(), w = base_omega();
   for (int h = 1; h <= grid_.harmonics(); ++h) {
@@ -153,6 +155,24 @@ void HarmonicBalance::residual_and_jacobian(const Eigen::VectorXd& x, double f0_
     jacobian(2 * h - 1, 2 * h - 1) += inertia;
     jacobian(2 * h, 2 * h) += inertia;
   }
+  if (!march_.active()) return;
+  // Stateful terms: forward differences of the projected marched force, column by column. The
+  // step is 1e-7 of the orbit's size (‖x‖∞, at least 1 µm): the marched force is smooth in x
+  // between changes of the turning-point sample, and its rounding (~1e-16 relative) stays far
+  // below the step's truncation error.
+  grid_.analyse(hysteretic_, projection_);
+  const Eigen::VectorXd base_force = hysteretic_;
+  const double step = 1e-7 * std::max(x.cwiseAbs().maxCoeff(), 1e-6);
+  Eigen::VectorXd shifted = x;
+  for (int j = 0; j < size; ++j) {
+    shifted[j] = x[j] + step;
+    march_hysteresis(shifted);
+    grid_.analyse(hysteretic_, projection_plus_);
+    jacobian.col(j) += (projection_plus_ - projection_) / step;
+    shifted[j] = x[j];
+  }
+  hysteretic_ = base_force;
+  evaluate_samples(x);  // leave z_, z_dot_ at x, as residual() does
 }
 
 void HarmonicBalance::d_residual_d_f0(Eigen::VectorXd& out) const {
@@ -254,8 +274,9 @@ HbmMeasures HarmonicBalance::measure(const Eigen::VectorXd& x, double f0_n) {
   // ∮ D dz = ∫ D ż dt over the base period 2π/Ω, by the rectangle rule (exact for trigonometric
   // polynomials of degree < N), per forcing cycle (÷ ν).
   double power_sum = 0.0;
+  if (march_.active()) march_.forces(model_, z_, z_dot_, kTwoPi / base_omega(), hysteretic_);
   for (int i = 0; i < n; ++i)
-    power_sum += model_.dissipative_force(z_[i], z_dot_[i], nullptr) * z_dot_[i];
+    power_sum += (model_.dissipative_force(z_[i], z_dot_[i], nullptr) + hysteretic_[i]) * z_dot_[i];
   const double period_s = kTwoPi / base_omega();
   out.edc_dissipation_j = power_sum * period_s / n / options_.subharmonic;
   return out;

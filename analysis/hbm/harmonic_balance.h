@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "analysis/hbm/fourier_grid.h"
+#include "analysis/hbm/hysteresis_march.h"
 #include "analysis/model/model.h"
 
 namespace oscilab::analysis {
@@ -84,14 +85,17 @@ struct HbmMeasures {
 /// and, by cos·cos = ½(cos(i−j) + cos(i+j)) etc., every entry is a sum of two DFT bins of K_n and
 /// of C_n: two forward FFTs and O(M²) additions instead of O(N M²).
 ///
-/// Only models whose terms have no internal state: hysteretic terms (state_size() > 0) need
-/// their state's periodic orbit in the ansatz, which is not implemented; the constructor throws
-/// InputError for them.
+/// Terms with internal state (hysteresis, e.g. the Dahl element) enter through their periodic
+/// steady force along the sampled orbit (HysteresisMarch): the AFT step marches their states
+/// over the N samples until periodic. Their force depends on the whole path, not on (z, ż) at one
+/// instant, so their part of the Jacobian is taken by forward differences of that marched force
+/// over the coefficients (size() + 1 marches per Jacobian, each O(N)); the stateless terms keep
+/// the analytic Jacobian above. Floquet stability does not cover stateful terms.
 ///
 /// Thread-safety: not thread-safe (owns FFT buffers); use one object per thread.
 class HarmonicBalance {
  public:
-  /// Throws InputError for a stateful model, H < 1, ν < 1, freq ≤ 0 or N ≤ 2νH.
+  /// Throws InputError for H < 1, ν < 1, freq ≤ 0 or N ≤ 2νH.
   HarmonicBalance(Model model, double freq_hz, const HbmOptions& options);
 
   const Model& model() const { return model_; }
@@ -136,16 +140,20 @@ class HarmonicBalance {
 
  private:
   void evaluate_samples(const Eigen::VectorXd& x);
+  /// The stateful terms' periodic force at the samples of x into hysteretic_ (zero without them).
+  void march_hysteresis(const Eigen::VectorXd& x);
   double half_peak_to_peak(const Eigen::VectorXd& x);
 
   Model model_;
   HbmOptions options_;
+  HysteresisMarch march_;  // the stateful terms of model_
   double freq_hz_ = 0.0;
   FourierGrid grid_;
   std::vector<std::unique_ptr<FourierGrid>> samplers_;  // one grid per sample() count used
   // Work buffers sized once.
   Eigen::VectorXd amp_z_, amp_z_dot_;
   Eigen::VectorXd z_, z_tau_, z_dot_, force_, force_coefficients_, stiffness_, damping_;
+  Eigen::VectorXd hysteretic_, hysteretic_plus_, projection_, projection_plus_;
   std::vector<std::complex<double>> stiffness_dft_, damping_dft_;
 };
 

@@ -4,9 +4,12 @@
 #include <sstream>
 
 #include "analysis/common/input_error.h"
+#include "analysis/model/coulomb_friction.h"
+#include "analysis/model/dahl_friction.h"
 #include "analysis/model/polynomial_stiffness.h"
 #include "analysis/model/position_dependent_friction.h"
 #include "analysis/model/reference_models.h"
+#include "analysis/model/velocity_power_damping.h"
 #include "analysis/model/viscous_damping.h"
 
 namespace oscilab::analysis {
@@ -68,6 +71,19 @@ std::unique_ptr<ModelTerm> term_from_json(const json& object, const std::string&
   if (type == "viscous-damping") {
     const double c = number_field(object, "c_ns_m", where);
     return build(where, [&] { return std::make_unique<ViscousDamping>(c); });
+  }
+  if (type == "quadratic-damping" || type == "cubic-damping") {
+    const int power = type == "quadratic-damping" ? 2 : 3;
+    return VelocityPowerDamping::from_json(power, object, where);
+  }
+  if (type == "coulomb-friction") {
+    return CoulombFriction::from_json(object, where);
+  }
+  if (type == "stribeck-friction") {
+    return StribeckFriction::from_json(object, where);
+  }
+  if (type == "presliding-hysteresis") {
+    return DahlFriction::from_json(object, where);
   }
   throw InputError(where + ".type: unknown term type \"" + type + "\"");
 }

@@ -45,6 +45,12 @@ class ModelTerm {
   virtual void initial_state(double /*z_m*/, double* /*state*/) const {}
   virtual void state_rate(double /*z_m*/, double /*z_dot_m_s*/, const double* /*state*/,
                           double* /*rate*/) const {}
+  /// Advances the state along the motion from (z0, ż0) to (z1, ż1), taken as a cubic Hermite
+  /// path over dt seconds: what a solver that samples a known orbit (harmonic balance) needs.
+  /// The default integrates state_rate with classical RK4 in 8 sub-steps; terms with an exact
+  /// update (a rate-independent hysteresis) override it.
+  virtual void advance_state(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
+                             double dt_s, double* state) const;
 
   /// Potential energy U(z) in J of an elastic term (U' = F at rest); 0 for dissipative terms.
   virtual double potential_j(double /*z_m*/) const { return 0.0; }
