@@ -92,7 +92,7 @@ bool MainWindow::open_recording(const QString& path) {
     return false;
   }
   last_directory_ = QFileInfo(path).absolutePath();
-  emit recording_opened(path);
+  Q_EMIT recording_opened(path);
   return true;
 }
 
@@ -116,7 +116,7 @@ void MainWindow::choose_and_open() {
 
 void MainWindow::report_error(const QString& message) {
   statusBar()->showMessage(tr("Error: %1").arg(message));
-  emit error_reported(message);
+  Q_EMIT error_reported(message);
   if (interactive_errors_) QMessageBox::critical(this, tr("Cannot open recording"), message);
 }
 

@@ -47,7 +47,7 @@ class MainWindow : public QMainWindow {
   QAction* auto_value_range_action() const { return auto_value_range_action_; }
   QAction* quit_action() const { return quit_action_; }
 
- signals:
+ Q_SIGNALS:
   /// A recording could not be opened; `message` names the file and the problem.
   void error_reported(const QString& message);
   /// A recording was opened and is shown.

@@ -103,7 +103,7 @@ void RecordView::rebuild_plots() {
     hint->setTextColor(Qt::gray);
     plot_->plotLayout()->addElement(0, 0, hint);
     plot_->replot();
-    emit cursor_text_changed(cursor_text_);
+    Q_EMIT cursor_text_changed(cursor_text_);
     return;
   }
 
@@ -189,7 +189,7 @@ void RecordView::rebuild_plots() {
     cursor_lines_.push_back(line);
     cursor_tracers_.push_back(tracer);
   }
-  emit cursor_text_changed(cursor_text_);
+  Q_EMIT cursor_text_changed(cursor_text_);
 }
 
 TimeWindow RecordView::full_window() const {
@@ -274,7 +274,7 @@ void RecordView::set_cursor_time(double t_s) {
   cursor_text_ = QString::fromStdString(format_readout(readout, *recording_, units_));
   readout_->setText(cursor_text_);
   cursor_layer_->replot();
-  emit cursor_text_changed(cursor_text_);
+  Q_EMIT cursor_text_changed(cursor_text_);
 }
 
 }  // namespace oscilab::ui

@@ -70,7 +70,7 @@ class RecordView : public QWidget {
   QCPAxisRect* channel_rect(int channel) const;
   QCPGraph* channel_graph(int channel) const;
 
- signals:
+ Q_SIGNALS:
   /// The readout changed (cursor moved, recording replaced).
   void cursor_text_changed(const QString& text);
 

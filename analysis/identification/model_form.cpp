@@ -218,4 +218,14 @@ Eigen::VectorXd ModelForm::clamp(const Eigen::VectorXd& theta) const {
   return out;
 }
 
+ModelForm ModelForm::with_initial(const Eigen::VectorXd& theta) const {
+  if (theta.size() != size()) {
+    throw InputError("model form: θ has " + std::to_string(theta.size()) + " values, expected " +
+                     std::to_string(size()));
+  }
+  ModelForm out = *this;
+  out.initial_ = clamp(theta);
+  return out;
+}
+
 }  // namespace oscilab::analysis

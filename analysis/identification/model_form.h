@@ -68,6 +68,8 @@ class ModelForm {
   Eigen::VectorXd from_unit(const Eigen::VectorXd& unit) const;
   /// θ clamped into the bounds.
   Eigen::VectorXd clamp(const Eigen::VectorXd& theta) const;
+  /// The same form starting from θ (clamped into the bounds): a refit from a known point.
+  ModelForm with_initial(const Eigen::VectorXd& theta) const;
 
  private:
   enum class BindingKind { TermParameter, FdAtZminus, FdAtZero, FdAtZplus };

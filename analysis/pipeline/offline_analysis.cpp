@@ -96,7 +96,7 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
     out.cycles = pipeline.cycles();
     out.levels = pipeline.levels();
   }
-  out.signals = motion_signals(channels, settings, mass);
+  out.motion = motion_signals(channels, settings, mass);
   return out;
 }
 
@@ -115,7 +115,7 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
   }
   std::vector<const MotionSignals*> signals;
   for (const RecordAnalysis& r : campaign.records) {
-    if (r.signals.z_absolute) signals.push_back(&r.signals);
+    if (r.motion.z_absolute) signals.push_back(&r.motion);
   }
   if (signals.empty()) {
     campaign.rfs_message = "no record measures the mass position (z's mean is unknown)";

@@ -25,7 +25,7 @@ struct RecordAnalysis {
   bool per_unit_mass = false;  // no mass_kg: forces in N/kg and energies in J/kg
   std::vector<CycleFit> cycles;
   std::vector<LevelResult> levels;
-  MotionSignals signals;
+  MotionSignals motion;            // z, ż, z̈ and R of the record (RFS)
   std::vector<std::string> notes;  // what a reader should know (detections, exclusions)
 };
 

@@ -13,5 +13,6 @@ void add_analyze_command(CLI::App& app);
 void add_hbm_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
+void add_diagnose_command(CLI::App& app);
 
 }  // namespace oscilab::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   oscilab::cli::add_hbm_command(app);
   oscilab::cli::add_fit_command(app);
   oscilab::cli::add_merge_command(app);
+  oscilab::cli::add_diagnose_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -82,4 +82,18 @@ else
   fail "fit_campaign.slurm: $(tail -3 "$work/slurm.log")"
 fi
 
+# diagnose on the samples (the paper's model itself): the baseline explains them, verdict none.
+if "$cli" diagnose "$pos" "$neg" --baseline-evaluations 300 --no-png --out "$work/diag" \
+  > "$work/diag.log" 2>&1; then
+  pass "diagnose exits 0"
+else
+  fail "diagnose: $(tail -3 "$work/diag.log")"
+fi
+for key in '"baseline"' '"cost_j"' '"steps"' '"verdict": "none"' '"final_model"' '"verdict_reason"'; do
+  grep -q -- "$key" "$work/diag/report.json" && pass "report has $key" || fail "report lacks $key"
+done
+[ -s "$work/diag/levels.csv" ] && pass "diagnose levels table" || fail "no levels.csv"
+expect_error "diagnose unknown form" 'model-form' "$cli" diagnose "$pos" --model-form cubic --out "$work/d2"
+expect_error "diagnose without mass" 'nope.flac' "$cli" diagnose "$work/nope.flac" --out "$work/d3"
+
 [ $failures -eq 0 ]

@@ -38,7 +38,7 @@ int count_pixels(const QImage& image, const QColor& color) {
 class FigureRendererTest : public QObject {
   Q_OBJECT
 
- private slots:
+ private Q_SLOTS:
   void writesPngOfTheRequestedSizeWithEachPanelsSeries() {
     QTemporaryDir dir;
     QVERIFY(dir.isValid());

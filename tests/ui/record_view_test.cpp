@@ -82,7 +82,7 @@ void send_mouse(QWidget* widget, QEvent::Type type, QPointF pos, Qt::MouseButton
 class RecordViewTest : public QObject {
   Q_OBJECT
 
- private slots:
+ private Q_SLOTS:
   void init() {
     window_ = std::make_unique<MainWindow>();
     window_->set_interactive_errors(false);

@@ -1,0 +1,372 @@
+#include "analysis/diagnosis/diagnosis.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+#include "analysis/common/input_error.h"
+#include "analysis/common/parallel_for.h"
+#include "analysis/diagnosis/effect_candidates.h"
+#include "analysis/identification/edc_dataset.h"
+
+namespace oscilab::analysis {
+namespace {
+
+// Fingerprint score of a candidate (lower ranks first). Damping laws: distance of the expected
+// slope of the energy they add from the slope of the energy the model misses, in units of that
+// slope's standard error (at least 0.25: a slope from few levels is rough). Stiffness powers: by
+// the significance of their power in the stiffness-slice residual, after every damping law whose
+// slope is within reach when the residual is not significant.
+double fingerprint_score(const EffectCandidate& c, const DiscrepancyMaps& maps) {
+  if (c.stiffness) {
+    for (const auto& test : maps.stiffness.tests) {
+      if (test.power == c.stiffness_power) return test.p_value < 1e-3 ? test.p_value : 10.0;
+    }
+    return 20.0;
+  }
+  const LogSlope& slope = maps.slopes.missing_all;
+  if (!slope.valid() || !std::isfinite(slope.standard_error)) return 5.0;
+  return std::abs(slope.slope - c.expected_slope) / std::max(slope.standard_error, 0.25);
+}
+
+std::vector<std::pair<std::string, double>> named(const ModelForm& form,
+                                                  const Eigen::VectorXd& theta) {
+  std::vector<std::pair<std::string, double>> out;
+  for (int i = 0; i < form.size(); ++i) out.emplace_back(form.parameters()[i].name, theta(i));
+  return out;
+}
+
+nlohmann::json slope_json(const LogSlope& s) {
+  const auto number = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  if (!s.valid()) return {{"points", s.points}};
+  return {{"points", s.points},
+          {"slope", s.slope},
+          {"standard_error", number(s.standard_error)},
+          {"interval_95", {number(s.lower_95), number(s.upper_95)}}};
+}
+
+nlohmann::json maps_json(const DiscrepancyMaps& maps) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (const LevelDiscrepancy& d : maps.levels) {
+    levels.push_back({{"well", d.positive_well ? "positive" : "negative"},
+                      {"f0_n", d.f0_n},
+                      {"amplitude_m", d.amplitude_m},
+                      {"edc_mes_j", d.edc_mes_j},
+                      {"edc_mod_j", d.edc_mod_j},
+                      {"sigma_j", d.sigma_j},
+                      {"residual_sigma", d.residual_sigma},
+                      {"residual_cycle_sigma", std::isfinite(d.residual_cycles)
+                                                   ? nlohmann::json(d.residual_cycles)
+                                                   : nlohmann::json(nullptr)}});
+  }
+  nlohmann::json stiffness = {{"available", maps.stiffness.available}};
+  if (maps.stiffness.available) {
+    stiffness["rms_n"] = maps.stiffness.rms_n;
+    nlohmann::json tests = nlohmann::json::array();
+    for (const auto& t : maps.stiffness.tests) {
+      tests.push_back({{"power", t.power},
+                       {"coefficient", t.coefficient},
+                       {"f_statistic", t.f_statistic},
+                       {"p_value", t.p_value}});
+    }
+    stiffness["power_tests"] = tests;
+  }
+  return {{"max_abs_residual_sigma", maps.max_abs_residual_sigma},
+          {"reduced_chi2", std::isfinite(maps.reduced_chi2) ? nlohmann::json(maps.reduced_chi2)
+                                                            : nlohmann::json(nullptr)},
+          {"edc_slope_measured",
+           {{"low", slope_json(maps.slopes.measured_low)},
+            {"high", slope_json(maps.slopes.measured_high)}}},
+          {"missing_energy_slope",
+           {{"low", slope_json(maps.slopes.missing_low)},
+            {"high", slope_json(maps.slopes.missing_high)},
+            {"all", slope_json(maps.slopes.missing_all)}}},
+          {"missing_levels", maps.slopes.missing_levels},
+          {"excess_levels", maps.slopes.excess_levels},
+          {"stiffness_residual", stiffness},
+          {"levels", levels}};
+}
+
+nlohmann::json parameters_json(const std::vector<std::pair<std::string, double>>& parameters) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, value] : parameters) out[name] = value;
+  return out;
+}
+
+}  // namespace
+
+DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form,
+                         const DiagnosisOptions& options, const ProgressFn& progress,
+                         const CancelToken& cancel) {
+  if (options.max_steps < 0) throw InputError("diagnose: max steps must be ≥ 0");
+  if (!(options.bic_threshold >= 0.0)) throw InputError("diagnose: the ΔBIC threshold must be ≥ 0");
+  const auto start = std::chrono::steady_clock::now();
+  DiagnosisResult result;
+  const EdcDataset data = edc_dataset(campaign);
+  result.excluded_levels = data.excluded;
+  const int n = data.level_count();
+  const auto report = [&](double fraction) {
+    if (progress) progress(std::clamp(fraction, 0.0, 1.0));
+  };
+
+  // Baseline: the form as given, searched globally.
+  const EdcObjective baseline_objective(form, data, options.cost);
+  FitOptions baseline_options;
+  baseline_options.max_evaluations = options.baseline_evaluations;
+  baseline_options.seed = options.seed;
+  baseline_options.threads = options.threads;
+  baseline_options.compute_uncertainty = false;
+  baseline_options.check_truncation = false;
+  result.baseline = fit_edc(baseline_objective, baseline_options, {}, cancel);
+  result.evaluations += result.baseline.evaluations;
+  report(0.25);
+  ModelForm current = form.with_initial(result.baseline.theta);
+  Eigen::VectorXd theta = result.baseline.theta;
+  EdcEvaluation evaluation = result.baseline.evaluation;
+  result.baseline_maps = discrepancy_maps(baseline_objective, theta, evaluation, campaign);
+  DiscrepancyMaps maps = result.baseline_maps;
+  const auto noise_level = [&](int parameters) {
+    const int dof = std::max(1, n - parameters);
+    return 1.0 + 3.0 * std::sqrt(2.0 / dof);
+  };
+  result.noise_reduced_chi2 = noise_level(current.size());
+
+  // The control refit: the current model alone, refitted locally with a candidate's budget. A
+  // candidate's gain is measured against it, so that a baseline search that stopped short of
+  // its optimum does not credit the first added term with the rest of the convergence.
+  const auto refit_current = [&] {
+    const EdcObjective objective(current, data, options.cost);
+    FitOptions refit;
+    refit.method = FitMethod::Local;
+    refit.max_evaluations = options.candidate_evaluations;
+    refit.threads = 1;
+    refit.compute_uncertainty = false;
+    refit.check_truncation = false;
+    const FitResult fit = fit_edc(objective, refit, {}, cancel);
+    if (fit.evaluation.weighted_cost < evaluation.weighted_cost) {
+      theta = fit.theta;
+      current = current.with_initial(theta);
+      evaluation = fit.evaluation;
+      maps = discrepancy_maps(objective, theta, evaluation, campaign);
+    }
+  };
+  for (int step = 0; step < options.max_steps && !cancel.cancelled(); ++step) {
+    if (maps.reduced_chi2 <= noise_level(current.size())) break;  // explained within its noise
+    refit_current();
+    if (maps.reduced_chi2 <= noise_level(current.size())) break;
+    std::vector<EffectCandidate> candidates = effect_candidates(current, data);
+    std::vector<double> scores;
+    for (const auto& c : candidates) scores.push_back(fingerprint_score(c, maps));
+    std::vector<std::size_t> order(candidates.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return scores[a] < scores[b]; });
+
+    DiagnosisStep record;
+    const int form_size_before = current.size();
+    record.maps_before = maps;
+    record.cost_before_j = evaluation.cost_j;
+    record.weighted_before = evaluation.weighted_cost;
+    record.reduced_chi2_before = maps.reduced_chi2;
+    record.trials.resize(order.size());
+    std::vector<std::optional<ModelForm>> forms(order.size());
+    std::mutex done_mutex;
+    int done = 0;
+    parallel_for(order.size(), options.threads, [&](std::size_t slot) {
+      const EffectCandidate& c = candidates[order[slot]];
+      CandidateTrial& trial = record.trials[slot];
+      trial.effect = c.effect;
+      trial.fingerprint_score = scores[order[slot]];
+      ModelForm extended = current;
+      extended.add_term(c.term->clone(), c.free);
+      // Multi-start: a short refit of all parameters from the current θ with each of the
+      // candidate's scan points, then the rest of the budget from the best of them. A new term
+      // that starts too strong or too weak often leaves a single local refit at its bound.
+      const long per_start = std::max<long>(
+          20, options.candidate_evaluations / (2 * static_cast<long>(c.scan.size())));
+      FitOptions refit;
+      refit.method = FitMethod::Local;
+      refit.threads = 1;
+      refit.compute_uncertainty = false;
+      refit.check_truncation = false;
+      refit.polish.initial_step = 0.05;
+      FitResult fit;
+      fit.evaluation.weighted_cost = std::numeric_limits<double>::infinity();
+      long spent = 0;
+      for (const Eigen::VectorXd& s : c.scan) {
+        if (cancel.cancelled()) break;
+        Eigen::VectorXd start(extended.size());
+        start << theta, s;
+        const EdcObjective objective(extended.with_initial(start), data, options.cost);
+        refit.max_evaluations = per_start;
+        FitResult short_fit = fit_edc(objective, refit, {}, cancel);
+        spent += short_fit.evaluations;
+        if (short_fit.evaluation.weighted_cost < fit.evaluation.weighted_cost) fit = short_fit;
+      }
+      if (!std::isfinite(fit.evaluation.weighted_cost)) {
+        trial.solved = false;
+        return;
+      }
+      if (options.candidate_evaluations > spent && !cancel.cancelled()) {
+        const EdcObjective objective(extended.with_initial(fit.theta), data, options.cost);
+        refit.max_evaluations = options.candidate_evaluations - spent;
+        refit.polish.initial_step = 0.02;
+        FitResult long_fit = fit_edc(objective, refit, {}, cancel);
+        if (long_fit.evaluation.weighted_cost < fit.evaluation.weighted_cost) fit = long_fit;
+      }
+      trial.theta = fit.theta;
+      trial.weighted_cost = fit.evaluation.weighted_cost;
+      trial.cost_j = fit.evaluation.cost_j;
+      trial.solved = fit.evaluation.ok;
+      trial.delta_bic = fit.evaluation.weighted_cost - evaluation.weighted_cost +
+                        static_cast<double>(c.free.size()) * std::log(static_cast<double>(n));
+      forms[slot] = extended;
+      const std::lock_guard lock(done_mutex);
+      ++done;
+      report(0.25 + 0.75 * (step + static_cast<double>(done) / order.size()) / options.max_steps);
+    });
+    if (cancel.cancelled()) break;
+
+    std::size_t best = order.size();
+    for (std::size_t slot = 0; slot < order.size(); ++slot) {
+      const CandidateTrial& t = record.trials[slot];
+      if (!t.solved || !forms[slot]) continue;
+      if (best == order.size() || t.delta_bic < record.trials[best].delta_bic) best = slot;
+    }
+    if (best == order.size() || !(record.trials[best].delta_bic < -options.bic_threshold)) {
+      result.steps.push_back(std::move(record));  // tried, nothing accepted
+      result.steps.back().effect = "none";
+      break;
+    }
+    const CandidateTrial& accepted = record.trials[best];
+    // The accepted model gets a longer refit of all its parameters (the candidates' refits are
+    // short so that all of them fit in the time).
+    {
+      const EdcObjective objective(forms[best]->with_initial(accepted.theta), data, options.cost);
+      FitOptions refit;
+      refit.method = FitMethod::Local;
+      refit.max_evaluations = options.accepted_evaluations;
+      refit.threads = 1;
+      refit.compute_uncertainty = false;
+      refit.check_truncation = false;
+      const FitResult fit = fit_edc(objective, refit, {}, cancel);
+      theta = fit.evaluation.weighted_cost < accepted.weighted_cost ? fit.theta : accepted.theta;
+    }
+    current = forms[best]->with_initial(theta);
+    const EdcObjective objective(current, data, options.cost);
+    evaluation = objective.evaluate(theta);
+    maps = discrepancy_maps(objective, theta, evaluation, campaign);
+    record.effect = accepted.effect;
+    record.cost_after_j = evaluation.cost_j;
+    record.weighted_after = evaluation.weighted_cost;
+    record.reduced_chi2_after = maps.reduced_chi2;
+    record.delta_bic =
+        evaluation.weighted_cost - record.weighted_before +
+        static_cast<double>(current.size() - form_size_before) * std::log(static_cast<double>(n));
+    record.parameters_after = named(current, theta);
+    if (result.verdict == "none") result.verdict = accepted.effect;
+    result.steps.push_back(std::move(record));
+  }
+  // A trailing "none" step records what was tried last; it is not an accepted effect.
+  result.final_form = current;
+  result.final_theta = theta;
+  result.final_evaluation = evaluation;
+  result.final_maps = maps;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (cancel.cancelled()) {
+    result.status = JobStatus::Cancelled;
+    result.message = "cancelled";
+  }
+  report(1.0);
+  return result;
+}
+
+nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
+                                     const std::vector<std::string>& records) {
+  const auto deviations = [](const EdcEvaluation& e) {
+    const auto number = [](double v) {
+      return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    };
+    return nlohmann::json{{"positive", number(e.mean_deviation_pct_positive)},
+                          {"negative", number(e.mean_deviation_pct_negative)}};
+  };
+  nlohmann::json out;
+  out["format"] = "oscilab-diagnosis/1";
+  out["records"] = records;
+  out["status"] = result.status == JobStatus::Ok ? "ok" : "cancelled";
+  const FitResult& b = result.baseline;
+  out["baseline"] = {{"cost_j", b.evaluation.cost_j},
+                     {"weighted_cost", b.evaluation.weighted_cost},
+                     {"reduced_chi2", result.baseline_maps.reduced_chi2},
+                     {"mean_deviation_pct", deviations(b.evaluation)},
+                     {"evaluations", b.evaluations},
+                     {"parameters", parameters_json([&] {
+                        std::vector<std::pair<std::string, double>> p;
+                        for (std::size_t i = 0; i < b.names.size(); ++i)
+                          p.emplace_back(b.names[i], b.theta(static_cast<Eigen::Index>(i)));
+                        return p;
+                      }())},
+                     {"maps", maps_json(result.baseline_maps)}};
+  nlohmann::json steps = nlohmann::json::array();
+  for (const DiagnosisStep& s : result.steps) {
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const CandidateTrial& t : s.trials) {
+      candidates.push_back({{"effect", t.effect},
+                            {"fingerprint_score", t.fingerprint_score},
+                            {"weighted_cost", t.weighted_cost},
+                            {"cost_j", t.cost_j},
+                            {"delta_bic", t.delta_bic},
+                            {"solved", t.solved}});
+    }
+    nlohmann::json evidence = {
+        {"weighted_cost_before", s.weighted_before},
+        {"reduced_chi2_before", s.reduced_chi2_before},
+        {"max_abs_residual_sigma_before", s.maps_before.max_abs_residual_sigma},
+        {"missing_energy_slope",
+         {{"low", slope_json(s.maps_before.slopes.missing_low)},
+          {"high", slope_json(s.maps_before.slopes.missing_high)},
+          {"all", slope_json(s.maps_before.slopes.missing_all)}}},
+        {"candidates", candidates}};
+    nlohmann::json step = {
+        {"effect", s.effect}, {"evidence", evidence}, {"cost_before_j", s.cost_before_j}};
+    if (s.effect != "none") {
+      step["evidence"]["delta_bic"] = s.delta_bic;
+      step["evidence"]["weighted_cost_after"] = s.weighted_after;
+      step["evidence"]["reduced_chi2_after"] = s.reduced_chi2_after;
+      step["cost_after_j"] = s.cost_after_j;
+      step["parameters_after"] = parameters_json(s.parameters_after);
+    } else {
+      step["cost_after_j"] = s.cost_before_j;  // nothing was added
+    }
+    steps.push_back(step);
+  }
+  out["steps"] = steps;
+  out["verdict"] = result.verdict;
+  if (result.verdict == "none") {
+    out["verdict_reason"] =
+        result.final_maps.reduced_chi2 <= result.noise_reduced_chi2
+            ? "the model form explains the data within its noise (reduced chi2 at or below the "
+              "noise level)"
+            : "no candidate effect improves the fit by the required evidence (dBIC threshold)";
+  }
+  out["noise_reduced_chi2"] = result.noise_reduced_chi2;
+  if (result.final_form) {
+    out["final_model"] = result.final_form->build(result.final_theta).to_json();
+    out["final"] = {{"cost_j", result.final_evaluation.cost_j},
+                    {"weighted_cost", result.final_evaluation.weighted_cost},
+                    {"reduced_chi2", result.final_maps.reduced_chi2},
+                    {"mean_deviation_pct", deviations(result.final_evaluation)},
+                    {"parameters", parameters_json(named(*result.final_form, result.final_theta))},
+                    {"maps", maps_json(result.final_maps)}};
+  }
+  out["excluded_levels"] = result.excluded_levels;
+  out["seconds"] = result.seconds;
+  out["evaluations"] = result.evaluations;
+  return out;
+}
+
+}  // namespace oscilab::analysis

@@ -1,0 +1,166 @@
+#include "analysis/diagnosis/effect_candidates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "analysis/model/coulomb_friction.h"
+#include "analysis/model/dahl_friction.h"
+#include "analysis/model/polynomial_stiffness.h"
+#include "analysis/model/velocity_power_damping.h"
+#include "analysis/model/viscous_damping.h"
+
+namespace oscilab::analysis {
+namespace {
+
+// Starting values: a fraction of the bound, log-spaced from 1e-3 to 0.3 of it.
+std::vector<Eigen::VectorXd> log_scan(double upper, int count) {
+  std::vector<Eigen::VectorXd> out;
+  for (int i = 0; i < count; ++i) {
+    const double fraction = 1e-3 * std::pow(300.0, static_cast<double>(i) / (count - 1));
+    out.push_back(Eigen::VectorXd::Constant(1, fraction * upper));
+  }
+  return out;
+}
+
+bool form_has(const ModelForm& form, const std::string& type) {
+  for (const auto& term : form.base().terms()) {
+    if (term->type() == type) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+const std::vector<std::string>& effect_vocabulary() {
+  static const std::vector<std::string> names = {"viscous-damping",
+                                                 "coulomb-friction",
+                                                 "position-dependent-friction",
+                                                 "stribeck-friction",
+                                                 "quadratic-damping",
+                                                 "cubic-damping",
+                                                 "presliding-hysteresis",
+                                                 "quadratic-stiffness",
+                                                 "cubic-stiffness",
+                                                 "quintic-stiffness",
+                                                 "none"};
+  return names;
+}
+
+std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcDataset& data) {
+  double s_max = 0.0, z_max = 0.0, f0_max = 0.0, freq_hz = 0.0;
+  for (const EdcGroup& g : data.groups) {
+    freq_hz = std::max(freq_hz, g.freq_hz);
+    for (const MeasuredLevel& m : g.levels) {
+      s_max = std::max(s_max, m.edc_j);
+      z_max = std::max(z_max, m.amplitude_m);
+      f0_max = std::max(f0_max, m.f0_n);
+    }
+  }
+  const double omega = 2.0 * std::numbers::pi * freq_hz;
+  if (!(z_max > 0.0)) z_max = 1e-3;
+  if (!(s_max > 0.0)) s_max = 1e-3;
+  if (!(f0_max > 0.0)) f0_max = 1.0;
+  std::vector<EffectCandidate> out;
+  const auto add = [&](EffectCandidate c) {
+    if (!form_has(form, c.term->type())) out.push_back(std::move(c));
+  };
+
+  {
+    // Coulomb dissipates 4 F_c Z: F_c up to twice the largest EDC over 4 Z_max. On top of the
+    // paper's f_d(z) it is a position-independent part (γ of eq. (6) absorbs much of it).
+    const double fc_max = std::min(f0_max, 2.0 * s_max / (4.0 * z_max));
+    add({"coulomb-friction",
+         std::make_unique<CoulombFriction>(0.0, 1e-3),
+         {{"fc_n", 0.0, fc_max, false}},
+         log_scan(fc_max, 6),
+         1.0});
+  }
+  if (!form_has(form, "viscous-damping")) {
+    const double c_max = 2.0 * s_max / (std::numbers::pi * omega * z_max * z_max);
+    add({"viscous-damping",
+         std::make_unique<ViscousDamping>(0.0),
+         {{"c_ns_m", 0.0, c_max, false}},
+         log_scan(c_max, 6),
+         2.0});
+  }
+  {
+    // 8/3 c2 ω² Z³ and 3π/4 c3 ω³ Z⁴ up to twice the largest EDC.
+    const double c2_max = 2.0 * s_max / (8.0 / 3.0 * omega * omega * std::pow(z_max, 3));
+    add({"quadratic-damping",
+         std::make_unique<VelocityPowerDamping>(2, 0.0),
+         {{"c2_ns2_m2", 0.0, c2_max, false}},
+         log_scan(c2_max, 6),
+         3.0});
+    const double c3_max =
+        2.0 * s_max / (0.75 * std::numbers::pi * std::pow(omega, 3) * std::pow(z_max, 4));
+    add({"cubic-damping",
+         std::make_unique<VelocityPowerDamping>(3, 0.0),
+         {{"c3_ns3_m3", 0.0, c3_max, false}},
+         log_scan(c3_max, 6),
+         4.0});
+  }
+  {
+    // Stribeck excess: force up to the largest forcing, velocity scale over two decades.
+    EffectCandidate c{"stribeck-friction",
+                      std::make_unique<StribeckFriction>(0.0, 1e-2),
+                      {{"fs_n", 0.0, f0_max, false}, {"vs_m_s", 1e-3, 0.1, true}},
+                      {},
+                      0.5};
+    for (double fs : {0.02, 0.1, 0.3}) {
+      for (double vs : {2e-3, 1e-2, 4e-2}) {
+        Eigen::VectorXd v(2);
+        v << fs * f0_max, vs;
+        c.scan.push_back(v);
+      }
+    }
+    add(std::move(c));
+  }
+  {
+    // Dahl: F_c up to the largest forcing, presliding stiffness σ0 such that the presliding
+    // length F_c/σ0 spans 1e-3 … 1 of the largest amplitude.
+    const double fc_max = std::min(f0_max, 2.0 * s_max / (4.0 * z_max));
+    const double sigma_lo = fc_max / z_max, sigma_hi = 1e4 * fc_max / z_max;
+    EffectCandidate c{
+        "presliding-hysteresis",
+        std::make_unique<DahlFriction>(0.1 * fc_max, std::sqrt(sigma_lo * sigma_hi)),
+        {{"fc_n", 1e-4 * fc_max, fc_max, true}, {"sigma0_n_m", sigma_lo, sigma_hi, true}},
+        {},
+        3.0};
+    for (double f : {0.01, 0.05, 0.2}) {
+      for (double length : {0.003, 0.03, 0.3}) {  // F_c/σ0 as a fraction of Z_max
+        Eigen::VectorXd v(2);
+        v << f * fc_max, std::clamp(f * fc_max / (length * z_max), sigma_lo, sigma_hi);
+        c.scan.push_back(v);
+      }
+    }
+    add(std::move(c));
+  }
+  // Stiffness powers c z^p: bounded so that c Z_ref^p stays within the largest forcing, with Z_ref
+  // the largest |z| the wells reach (the wells' positions plus the largest amplitude).
+  double z_ref = z_max;
+  for (const auto& well : form.base().equilibria())
+    z_ref = std::max(z_ref, std::abs(well.z_m) + z_max);
+  const struct {
+    const char* name;
+    int power;
+  } powers[] = {{"quadratic-stiffness", 2}, {"cubic-stiffness", 3}, {"quintic-stiffness", 5}};
+  for (const auto& p : powers) {
+    const double bound = f0_max / std::pow(z_ref, p.power);
+    std::vector<double> coefficients(static_cast<std::size_t>(p.power) + 1, 0.0);
+    EffectCandidate c{p.name,
+                      std::make_unique<PolynomialStiffness>(coefficients),
+                      {{"c" + std::to_string(p.power), -bound, bound, false}},
+                      {},
+                      std::numeric_limits<double>::quiet_NaN(),
+                      true,
+                      p.power};
+    for (double f : {-0.1, -0.01, 0.01, 0.1})
+      c.scan.push_back(Eigen::VectorXd::Constant(1, f * bound));
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace oscilab::analysis

@@ -1,0 +1,229 @@
+// oscilab-cli diagnose REC... --model-form paper --out DIR (contract §2; issue 9): where the fitted
+// model and the measurement disagree, which physical effect is missing, and the model with it.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "analysis/common/input_error.h"
+#include "analysis/diagnosis/diagnosis.h"
+#include "analysis/identification/campaign_model.h"
+#include "analysis/model/model_json.h"
+#include "app/cli/campaign_input.h"
+#include "app/cli/commands.h"
+#include "app/cli/png_output.h"
+#include "app/cli/progress_bar.h"
+
+namespace oscilab::cli {
+namespace {
+
+using Style = ui::FigureSeries::Style;
+
+struct DiagnoseOptions {
+  std::vector<std::string> recordings;
+  std::string model_form = "paper";
+  std::string model = "paper";
+  std::string out_dir;
+  unsigned long long seed = 1;
+  int threads = 0;
+  int harmonics = 7;
+  double model_error = 0.01;
+  double bic_threshold = 10.0;
+  int max_steps = 3;
+  long baseline_evaluations = 2000;
+  long candidate_evaluations = 800;
+  bool no_png = false;
+};
+
+// EDC residual per level in units of σ, before and after, per well (the discrepancy map).
+ui::Figure residual_figure(const analysis::DiagnosisResult& r) {
+  ui::Figure figure;
+  figure.title = "EDC residual (S_mes - S_mod) / sigma per level: baseline and final model";
+  for (bool positive : {true, false}) {
+    ui::FigurePanel panel{positive ? "z+* well" : "z-* well",
+                          "forcing amplitude f0 [N]",
+                          "residual [sigma]",
+                          {},
+                          true,
+                          ui::FigurePanel::Corner::TopRight};
+    ui::FigureSeries before{
+        "baseline (" + std::string("paper form") + ")", Style::Markers, 1, {}, {}, 7.0};
+    ui::FigureSeries after{"final (" + r.verdict + ")", Style::Markers, 0, {}, {}, 7.0};
+    for (const auto& d : r.baseline_maps.levels) {
+      if (d.positive_well != positive) continue;
+      before.x.push_back(d.f0_n);
+      before.y.push_back(d.residual_sigma);
+    }
+    for (const auto& d : r.final_maps.levels) {
+      if (d.positive_well != positive) continue;
+      after.x.push_back(d.f0_n);
+      after.y.push_back(d.residual_sigma);
+    }
+    ui::FigureSeries band{"±3 sigma", Style::DashedLine, 5, {}, {}, 1.0};
+    if (!before.x.empty()) {
+      const double lo = before.x.front(), hi = before.x.back();
+      band.x = {lo, hi, std::nan(""), lo, hi};
+      band.y = {3.0, 3.0, std::nan(""), -3.0, -3.0};
+    }
+    panel.series = {before, after, band};
+    if (!before.x.empty()) figure.panels.push_back(panel);
+  }
+  return figure;
+}
+
+// The energy the model misses against the response amplitude, log–log (its slope names the law).
+ui::Figure missing_energy_figure(const analysis::DiagnosisResult& r) {
+  ui::Figure figure;
+  figure.title = "Energy the baseline misses against the response amplitude (log10-log10)";
+  ui::FigurePanel panel{"slope ~1 Coulomb, ~2 viscous, ~3 quadratic damping / presliding, ~4 cubic",
+                        "log10 amplitude |Z1| [m]",
+                        "log10 |S_mes - S_mod| [J]",
+                        {},
+                        true,
+                        ui::FigurePanel::Corner::TopLeft};
+  ui::FigureSeries missing{"S_mes > S_mod", Style::Markers, 1, {}, {}, 7.0};
+  ui::FigureSeries excess{"S_mes < S_mod", Style::Markers, 2, {}, {}, 7.0};
+  for (const auto& d : r.baseline_maps.levels) {
+    const double difference = d.edc_mes_j - d.edc_mod_j;
+    if (!(d.amplitude_m > 0.0) || difference == 0.0) continue;
+    auto& s = difference > 0.0 ? missing : excess;
+    s.x.push_back(std::log10(d.amplitude_m));
+    s.y.push_back(std::log10(std::abs(difference)));
+  }
+  panel.series = {missing, excess};
+  figure.panels = {panel};
+  figure.panel_height_px = 460;
+  return figure;
+}
+
+void write_levels_csv(const analysis::DiagnosisResult& r, const std::string& path) {
+  std::ofstream out(path);
+  out << "well,f0_n,amplitude_m,edc_mes_j,edc_baseline_j,edc_final_j,sigma_j,"
+         "residual_baseline_sigma,residual_final_sigma\n";
+  for (std::size_t i = 0; i < r.baseline_maps.levels.size(); ++i) {
+    const auto& b = r.baseline_maps.levels[i];
+    const auto& f = r.final_maps.levels[i];
+    out << (b.positive_well ? "positive" : "negative") << ',' << b.f0_n << ',' << b.amplitude_m
+        << ',' << b.edc_mes_j << ',' << b.edc_mod_j << ',' << f.edc_mod_j << ',' << b.sigma_j << ','
+        << b.residual_sigma << ',' << f.residual_sigma << '\n';
+  }
+  if (!out) throw InputError(path + ": write failed");
+}
+
+void run(const DiagnoseOptions& o) {
+  if (o.model_form != "paper") {
+    throw InputError("--model-form: unknown form \"" + o.model_form + "\" (paper)");
+  }
+  if (o.harmonics < 1) throw InputError("--harmonics: must be at least 1");
+  if (o.max_steps < 1) throw InputError("--max-steps: must be at least 1");
+  if (o.baseline_evaluations < 10 || o.candidate_evaluations < 10) {
+    throw InputError("--baseline-evaluations, --candidate-evaluations: must be at least 10");
+  }
+  std::error_code error;
+  std::filesystem::create_directories(o.out_dir, error);
+  if (error) throw InputError(o.out_dir + ": cannot create: " + error.message());
+
+  const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, {}, {});
+  std::vector<std::string> notes;
+  const analysis::Model base = analysis::campaign_model(
+      analysis::model_from_spec(o.model), campaign, analysis::StiffnessSource::Model, notes);
+  analysis::DiagnosisOptions options;
+  options.cost.hbm.harmonics = o.harmonics;
+  options.cost.model_error_rel = o.model_error;
+  options.bic_threshold = o.bic_threshold;
+  options.max_steps = o.max_steps;
+  options.baseline_evaluations = o.baseline_evaluations;
+  options.candidate_evaluations = o.candidate_evaluations;
+  options.seed = o.seed;
+  options.threads = o.threads;
+  analysis::DiagnosisResult result;
+  {
+    ProgressBar bar("diagnose");
+    result =
+        analysis::diagnose(campaign, analysis::ModelForm::paper(base), options, bar.callback());
+  }
+
+  std::printf(
+      "baseline (paper form): cost eq. (8) %.4g J, chi2 %.4g (chi2/dof %.3g; noise "
+      "level %.3g), largest residual %.1f sigma\n",
+      result.baseline.evaluation.cost_j, result.baseline.evaluation.weighted_cost,
+      result.baseline_maps.reduced_chi2, result.noise_reduced_chi2,
+      result.baseline_maps.max_abs_residual_sigma);
+  for (const auto& step : result.steps) {
+    if (step.effect == "none") {
+      std::printf("step: no candidate passes dBIC < -%.0f (best tried: ", o.bic_threshold);
+    } else {
+      std::printf(
+          "step: %s accepted, dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g "
+          "(tried: ",
+          step.effect.c_str(), step.delta_bic, step.cost_before_j, step.cost_after_j,
+          step.weighted_before, step.weighted_after);
+    }
+    for (std::size_t i = 0; i < step.trials.size(); ++i) {
+      std::printf("%s%s %.0f", i ? ", " : "", step.trials[i].effect.c_str(),
+                  step.trials[i].delta_bic);
+    }
+    std::printf(")\n");
+  }
+  std::printf("verdict: %s (%.1f s)\n", result.verdict.c_str(), result.seconds);
+
+  nlohmann::json report = analysis::diagnosis_report_json(result, o.recordings);
+  report["notes"] = notes;
+  const std::string report_path = o.out_dir + "/report.json";
+  std::ofstream out(report_path);
+  out << report.dump(2) << '\n';
+  if (!out) throw InputError(report_path + ": write failed");
+  write_levels_csv(result, o.out_dir + "/levels.csv");
+  if (result.final_form) {
+    analysis::save_model(result.final_form->build(result.final_theta),
+                         o.out_dir + "/final_model.json");
+  }
+  if (!o.no_png) {
+    FigureWriter writer;
+    writer.write(residual_figure(result), o.out_dir + "/residuals.png");
+    writer.write(missing_energy_figure(result), o.out_dir + "/missing_energy.png");
+  }
+  std::printf("report, tables and figures written to %s/\n", o.out_dir.c_str());
+}
+
+}  // namespace
+
+void add_diagnose_command(CLI::App& app) {
+  auto o = std::make_shared<DiagnoseOptions>();
+  CLI::App* command = app.add_subcommand(
+      "diagnose",
+      "Find where the fitted model and the measurement disagree, name the missing physical "
+      "effect (contracts.md §3), add it, refit and show the gap shrink (or say none)");
+  command
+      ->add_option("recordings", o->recordings,
+                   "stepped-sine recordings of both wells (and random records for the RFS)")
+      ->required();
+  command->add_option("--model-form", o->model_form, "starting model form: paper")
+      ->capture_default_str();
+  command->add_option("--model", o->model, "base model (mass, stiffness): paper | MODEL.json")
+      ->capture_default_str();
+  command->add_option("--out", o->out_dir, "output directory (report.json, figures)")->required();
+  command->add_option("--seed", o->seed, "seed of the baseline's global search")
+      ->capture_default_str();
+  command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
+  command->add_option("--harmonics", o->harmonics, "harmonics H of the model's HBM")
+      ->capture_default_str();
+  command->add_option("--model-error", o->model_error, "relative model-error floor of sigma")
+      ->capture_default_str();
+  command->add_option("--bic-threshold", o->bic_threshold, "accept an effect when dBIC < -this")
+      ->capture_default_str();
+  command->add_option("--max-steps", o->max_steps, "effects added at most")->capture_default_str();
+  command
+      ->add_option("--baseline-evaluations", o->baseline_evaluations,
+                   "model evaluations of the baseline fit (CMA-ES + polish)")
+      ->capture_default_str();
+  command
+      ->add_option("--candidate-evaluations", o->candidate_evaluations,
+                   "model evaluations of each candidate's refit")
+      ->capture_default_str();
+  command->add_flag("--no-png", o->no_png, "tables and report only");
+  command->callback([o] { run(*o); });
+}
+
+}  // namespace oscilab::cli

@@ -1,0 +1,21 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/common/job.h"
+#include "analysis/pipeline/offline_analysis.h"
+#include "daq/recording/measurement_mapping.h"
+
+namespace oscilab::daq {
+
+/// Reads recordings (each with its sidecar) and runs the offline analysis of all of them
+/// together: the input stage of analyze, fit and diagnose, in the CLI and the app. Throws
+/// InputError naming the file for a recording that cannot be read.
+analysis::CampaignAnalysis analyze_recordings(const std::vector<std::string>& paths,
+                                              const MappingOverrides& overrides,
+                                              const analysis::PipelineSettings& settings,
+                                              const ProgressFn& progress = {},
+                                              const CancelToken& cancel = {});
+
+}  // namespace oscilab::daq
