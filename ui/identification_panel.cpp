@@ -384,6 +384,8 @@ void IdentificationPanel::show_diagnosis(const Outcome& outcome) {
   add(r.final_maps, true, tr("z+* final"), QCPScatterStyle::ssDisc);
   add(r.final_maps, false, tr("z-* final"), QCPScatterStyle::ssDisc);
   residual_plot_->rescaleAxes();
+  residual_plot_->xAxis->scaleRange(1.08);  // keep the edge points off the frame
+  residual_plot_->yAxis->scaleRange(1.25);  // and room for the legend
   residual_plot_->replot();
   if (outcome.objective) {
     plot_edc(*outcome.objective, r.final_evaluation,
@@ -426,6 +428,8 @@ void IdentificationPanel::plot_edc(const analysis::EdcObjective& objective,
     line->setPen(pen);
   }
   edc_plot_->rescaleAxes();
+  edc_plot_->xAxis->scaleRange(1.08);
+  edc_plot_->yAxis->setRangeLower(0.0);
   edc_plot_->replot();
 }
 

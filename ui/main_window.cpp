@@ -3,6 +3,7 @@
 #include <exception>
 
 #include <QAction>
+#include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMenuBar>
@@ -11,6 +12,7 @@
 #include <QToolBar>
 
 #include "analysis/common/input_error.h"
+#include "ui/identification_panel.h"
 #include "ui/record_view.h"
 
 namespace oscilab::ui {
@@ -45,6 +47,12 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
 
   record_view_ = new RecordView(this);
   setCentralWidget(record_view_);
+  identification_panel_ = new IdentificationPanel(this);
+  auto* dock = new QDockWidget(tr("Fit and diagnosis"), this);
+  dock->setObjectName("identification_dock");
+  dock->setWidget(identification_panel_);
+  identification_panel_->setMinimumWidth(520);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
 
   QMenu* file_menu = menuBar()->addMenu(tr("&File"));
   open_action_ = file_menu->addAction(tr("&Open\u2026"), this, &MainWindow::choose_and_open);
@@ -54,7 +62,8 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   quit_action_->setShortcut(QKeySequence::Quit);
 
   QMenu* view_menu = menuBar()->addMenu(tr("&View"));
-  fit_action_ = view_menu->addAction(tr("&Fit"), record_view_, &RecordView::fit);
+  view_menu->addAction(dock->toggleViewAction());
+  fit_action_ = view_menu->addAction(tr("&Whole record"), record_view_, &RecordView::fit);
   fit_action_->setShortcut(Qt::CTRL | Qt::Key_0);
   fit_action_->setToolTip(tr("Show the whole record (also: double-click the plot)"));
   auto_value_range_action_ = view_menu->addAction(tr("Fit &values to the time window"));
@@ -73,7 +82,7 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
 
   setWindowTitle(tr("Oscilab"));
   statusBar()->showMessage(tr("Open a recording with File \u25b8 Open (Ctrl+O)."));
-  resize(1200, 800);
+  resize(1500, 900);
 }
 
 MainWindow::~MainWindow() = default;
@@ -92,6 +101,7 @@ bool MainWindow::open_recording(const QString& path) {
     return false;
   }
   last_directory_ = QFileInfo(path).absolutePath();
+  identification_panel_->add_recording(path_utf8);
   Q_EMIT recording_opened(path);
   return true;
 }

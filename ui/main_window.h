@@ -13,9 +13,12 @@ class QAction;
 
 namespace oscilab::ui {
 
+class IdentificationPanel;
 class RecordView;
 
-/// The Oscilab main window: File ▸ Open a recording and review it in a RecordView.
+/// The Oscilab main window: File ▸ Open a recording and review it in a RecordView; the
+/// identification panel (a dock on the right) fits the friction model to the opened stepped-sine
+/// recordings and diagnoses what it misses.
 ///
 /// A recording that cannot be read never ends the program: the reader's message goes to the
 /// status bar, to the error_reported signal and, when interactive errors are on (the default),
@@ -42,6 +45,7 @@ class MainWindow : public QMainWindow {
   void set_interactive_errors(bool on) { interactive_errors_ = on; }
 
   RecordView* record_view() const { return record_view_; }
+  IdentificationPanel* identification_panel() const { return identification_panel_; }
   QAction* open_action() const { return open_action_; }
   QAction* fit_action() const { return fit_action_; }
   QAction* auto_value_range_action() const { return auto_value_range_action_; }
@@ -61,6 +65,7 @@ class MainWindow : public QMainWindow {
   bool interactive_errors_ = true;
   QString last_directory_;
   RecordView* record_view_ = nullptr;
+  IdentificationPanel* identification_panel_ = nullptr;
   QAction* open_action_ = nullptr;
   QAction* fit_action_ = nullptr;
   QAction* auto_value_range_action_ = nullptr;
