@@ -31,6 +31,21 @@ double fingerprint_score(const EffectCandidate& c, const DiscrepancyMaps& maps) 
   return std::abs(slope.slope - c.expected_slope) / std::max(slope.standard_error, 0.25);
 }
 
+// A local refit (BOBYQA from the form's initial θ) on one thread, no uncertainty: the diagnosis's
+// control, candidate and acceptance refits.
+FitResult local_refit(const ModelForm& form, const EdcDataset& data, const EdcCostSettings& cost,
+                      long evaluations, double initial_step, const CancelToken& cancel) {
+  const EdcObjective objective(form, data, cost);
+  FitOptions refit;
+  refit.method = FitMethod::Local;
+  refit.max_evaluations = evaluations;
+  refit.threads = 1;
+  refit.compute_uncertainty = false;
+  refit.check_truncation = false;
+  refit.polish.initial_step = initial_step;
+  return fit_edc(objective, refit, {}, cancel);
+}
+
 std::vector<std::pair<std::string, double>> named(const ModelForm& form,
                                                   const Eigen::VectorXd& theta) {
   std::vector<std::pair<std::string, double>> out;
@@ -139,19 +154,14 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   // candidate's gain is measured against it, so that a baseline search that stopped short of
   // its optimum does not credit the first added term with the rest of the convergence.
   const auto refit_current = [&] {
-    const EdcObjective objective(current, data, options.cost);
-    FitOptions refit;
-    refit.method = FitMethod::Local;
-    refit.max_evaluations = options.candidate_evaluations;
-    refit.threads = 1;
-    refit.compute_uncertainty = false;
-    refit.check_truncation = false;
-    const FitResult fit = fit_edc(objective, refit, {}, cancel);
+    const FitResult fit =
+        local_refit(current, data, options.cost, options.candidate_evaluations, 0.02, cancel);
     if (fit.evaluation.weighted_cost < evaluation.weighted_cost) {
       theta = fit.theta;
       current = current.with_initial(theta);
       evaluation = fit.evaluation;
-      maps = discrepancy_maps(objective, theta, evaluation, campaign);
+      maps =
+          discrepancy_maps(EdcObjective(current, data, options.cost), theta, evaluation, campaign);
     }
   };
   for (int step = 0; step < options.max_steps && !cancel.cancelled(); ++step) {
@@ -188,12 +198,6 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       // that starts too strong or too weak often leaves a single local refit at its bound.
       const long per_start = std::max<long>(
           20, options.candidate_evaluations / (2 * static_cast<long>(c.scan.size())));
-      FitOptions refit;
-      refit.method = FitMethod::Local;
-      refit.threads = 1;
-      refit.compute_uncertainty = false;
-      refit.check_truncation = false;
-      refit.polish.initial_step = 0.05;
       FitResult fit;
       fit.evaluation.weighted_cost = std::numeric_limits<double>::infinity();
       long spent = 0;
@@ -201,9 +205,8 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         if (cancel.cancelled()) break;
         Eigen::VectorXd start(extended.size());
         start << theta, s;
-        const EdcObjective objective(extended.with_initial(start), data, options.cost);
-        refit.max_evaluations = per_start;
-        FitResult short_fit = fit_edc(objective, refit, {}, cancel);
+        FitResult short_fit =
+            local_refit(extended.with_initial(start), data, options.cost, per_start, 0.05, cancel);
         spent += short_fit.evaluations;
         if (short_fit.evaluation.weighted_cost < fit.evaluation.weighted_cost) fit = short_fit;
       }
@@ -212,10 +215,8 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         return;
       }
       if (options.candidate_evaluations > spent && !cancel.cancelled()) {
-        const EdcObjective objective(extended.with_initial(fit.theta), data, options.cost);
-        refit.max_evaluations = options.candidate_evaluations - spent;
-        refit.polish.initial_step = 0.02;
-        FitResult long_fit = fit_edc(objective, refit, {}, cancel);
+        FitResult long_fit = local_refit(extended.with_initial(fit.theta), data, options.cost,
+                                         options.candidate_evaluations - spent, 0.02, cancel);
         if (long_fit.evaluation.weighted_cost < fit.evaluation.weighted_cost) fit = long_fit;
       }
       trial.theta = fit.theta;
@@ -246,14 +247,8 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     // The accepted model gets a longer refit of all its parameters (the candidates' refits are
     // short so that all of them fit in the time).
     {
-      const EdcObjective objective(forms[best]->with_initial(accepted.theta), data, options.cost);
-      FitOptions refit;
-      refit.method = FitMethod::Local;
-      refit.max_evaluations = options.accepted_evaluations;
-      refit.threads = 1;
-      refit.compute_uncertainty = false;
-      refit.check_truncation = false;
-      const FitResult fit = fit_edc(objective, refit, {}, cancel);
+      const FitResult fit = local_refit(forms[best]->with_initial(accepted.theta), data,
+                                        options.cost, options.accepted_evaluations, 0.02, cancel);
       theta = fit.evaluation.weighted_cost < accepted.weighted_cost ? fit.theta : accepted.theta;
     }
     current = forms[best]->with_initial(theta);
