@@ -31,6 +31,40 @@ double fingerprint_score(const EffectCandidate& c, const DiscrepancyMaps& maps) 
   return std::abs(slope.slope - c.expected_slope) / std::max(slope.standard_error, 0.25);
 }
 
+// Starting points of the three best short refits of a candidate.
+constexpr std::size_t kRefitStarts = 3;
+
+// The grid over a candidate's own parameters: per parameter 10 values (one parameter) or 5
+// (two), log-spaced over its bounds (from 1e-3 of the upper bound when the lower is 0; both signs
+// when the bounds straddle 0).
+std::vector<Eigen::VectorXd> candidate_grid(const EffectCandidate& c) {
+  const int per_axis = c.free.size() == 1 ? 10 : 5;
+  std::vector<std::vector<double>> axes;
+  for (const FreeParameter& p : c.free) {
+    std::vector<double> axis;
+    const double hi = p.upper;
+    const double lo = p.lower > 0.0 ? p.lower : 1e-3 * std::abs(hi);
+    const int count = p.lower < 0.0 ? per_axis / 2 : per_axis;
+    for (int i = 0; i < count; ++i) {
+      const double v = lo * std::pow(std::abs(hi) / lo, static_cast<double>(i) / (count - 1));
+      axis.push_back(v);
+      if (p.lower < 0.0) axis.push_back(-v);
+    }
+    axes.push_back(axis);
+  }
+  std::vector<Eigen::VectorXd> grid;
+  std::vector<std::size_t> index(axes.size(), 0);
+  for (;;) {
+    Eigen::VectorXd point(static_cast<Eigen::Index>(axes.size()));
+    for (std::size_t a = 0; a < axes.size(); ++a) point(a) = axes[a][index[a]];
+    grid.push_back(point);
+    std::size_t a = 0;
+    while (a < axes.size() && ++index[a] == axes[a].size()) index[a++] = 0;
+    if (a == axes.size()) break;
+  }
+  return grid;
+}
+
 // A local refit (BOBYQA from the form's initial θ) on one thread, no uncertainty: the diagnosis's
 // control, candidate and acceptance refits.
 FitResult local_refit(const ModelForm& form, const EdcDataset& data, const EdcCostSettings& cost,
@@ -193,18 +227,40 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       trial.fingerprint_score = scores[order[slot]];
       ModelForm extended = current;
       extended.add_term(c.term->clone(), c.free);
-      // Multi-start: a short refit of all parameters from the current θ with each of the
-      // candidate's scan points, then the rest of the budget from the best of them. A new term
-      // that starts too strong or too weak often leaves a single local refit at its bound.
-      const long per_start = std::max<long>(
-          20, options.candidate_evaluations / (2 * static_cast<long>(c.scan.size())));
-      FitResult fit;
-      fit.evaluation.weighted_cost = std::numeric_limits<double>::infinity();
-      long spent = 0;
-      for (const Eigen::VectorXd& s : c.scan) {
+      // Three stages. (1) A grid over the new term's own parameters with the others at the
+      // current θ (cheap: χ² of one evaluation each); (2) short refits of all parameters from the
+      // three best and from the candidate's scan points; (3) the rest of the budget from the
+      // best of those. A new term that starts too strong or too weak, or whose effect the current
+      // parameters partly mimic, leaves a single local refit at its bound.
+      std::vector<std::pair<double, Eigen::VectorXd>> ranked;
+      const std::vector<Eigen::VectorXd> grid = candidate_grid(c);
+      for (const Eigen::VectorXd& s : grid) {
         if (cancel.cancelled()) break;
         Eigen::VectorXd start(extended.size());
         start << theta, s;
+        start = extended.clamp(start);
+        ranked.emplace_back(
+            EdcObjective(extended, data, options.cost).evaluate(start).weighted_cost, start);
+      }
+      std::sort(ranked.begin(), ranked.end(),
+                [](const auto& a, const auto& b) { return a.first < b.first; });
+      // The grid's best at fixed θ favour a weak term (the current parameters already mimic part
+      // of the effect), so the candidate's own scan points, spread over its plausible range,
+      // start refits too.
+      std::vector<std::pair<double, Eigen::VectorXd>> starts(
+          ranked.begin(), ranked.begin() + std::min(ranked.size(), kRefitStarts));
+      for (const Eigen::VectorXd& s : c.scan) {
+        Eigen::VectorXd start(extended.size());
+        start << theta, s;
+        starts.emplace_back(0.0, extended.clamp(start));
+      }
+      long spent = static_cast<long>(grid.size());
+      const long per_start = std::max<long>(
+          20, (options.candidate_evaluations - spent) / (2 * static_cast<long>(starts.size())));
+      FitResult fit;
+      fit.evaluation.weighted_cost = std::numeric_limits<double>::infinity();
+      for (const auto& [cost, start] : starts) {
+        if (cancel.cancelled()) break;
         FitResult short_fit =
             local_refit(extended.with_initial(start), data, options.cost, per_start, 0.05, cancel);
         spent += short_fit.evaluations;

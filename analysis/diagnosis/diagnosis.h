@@ -16,10 +16,10 @@
 namespace oscilab::analysis {
 
 struct DiagnosisOptions {
-  EdcCostSettings cost;              // σ floor and harmonics of every fit
-  long baseline_evaluations = 2000;  // CMA-ES + polish of the model form as given
-  long candidate_evaluations = 800;  // BOBYQA refits of all parameters per candidate
-  long accepted_evaluations = 1500;  // the longer refit of the accepted candidate
+  EdcCostSettings cost;               // σ floor and harmonics of every fit
+  long baseline_evaluations = 2000;   // CMA-ES + polish of the model form as given
+  long candidate_evaluations = 1200;  // BOBYQA refits of all parameters per candidate
+  long accepted_evaluations = 1500;   // the longer refit of the accepted candidate
   /// Accept a candidate when ΔBIC = Δχ² + Δp ln n < −bic_threshold: 10 is "very strong"
   /// evidence on the scale of Kass & Raftery (1995, "Bayes factors").
   double bic_threshold = 10.0;

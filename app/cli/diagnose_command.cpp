@@ -32,7 +32,7 @@ struct DiagnoseOptions {
   double bic_threshold = 10.0;
   int max_steps = 3;
   long baseline_evaluations = 2000;
-  long candidate_evaluations = 800;
+  long candidate_evaluations = 1200;
   bool no_png = false;
 };
 
