@@ -1,5 +1,6 @@
 #include "ui/identification_panel.h"
 
+#include <chrono>
 #include <cmath>
 #include <exception>
 
@@ -12,6 +13,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QListWidget>
+#include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSpinBox>
@@ -147,6 +149,13 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   residual_plot_->yAxis->setLabel(tr("(S_mes - S_mod) / \u03c3"));
   residual_plot_->legend->setVisible(true);
 
+  convergence_plot_ = new QCustomPlot;
+  convergence_plot_->xAxis->setLabel(tr("model evaluations"));
+  convergence_plot_->yAxis->setLabel(tr("best \u03c7\u00b2 (log scale)"));
+  convergence_plot_->yAxis->setScaleType(QCPAxis::stLogarithmic);
+  convergence_plot_->yAxis->setTicker(QSharedPointer<QCPAxisTickerLog>::create());
+  convergence_plot_->addGraph()->setPen(QPen(kWellColor[0], 2));
+
   auto* diagnosis_page = new QWidget;
   auto* diagnosis_layout = new QVBoxLayout(diagnosis_page);
   diagnosis_layout->addWidget(verdict_label_);
@@ -155,6 +164,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   tabs_ = new QTabWidget;
   tabs_->addTab(edc_plot_, tr("EDC"));
   tabs_->addTab(parameter_table_, tr("Parameters"));
+  tabs_->addTab(convergence_plot_, tr("Convergence"));
   tabs_->addTab(diagnosis_page, tr("Diagnosis"));
 
   auto* layout = new QVBoxLayout(this);
@@ -224,6 +234,13 @@ void IdentificationPanel::set_busy(bool busy) {
   if (busy) progress_->setValue(0);
 }
 
+void IdentificationPanel::add_convergence_point(long evaluations, double best_weighted_cost) {
+  if (!(best_weighted_cost > 0.0) || !std::isfinite(best_weighted_cost)) return;
+  convergence_plot_->graph(0)->addData(static_cast<double>(evaluations), best_weighted_cost);
+  convergence_plot_->rescaleAxes();
+  convergence_plot_->replot(QCustomPlot::rpQueuedReplot);
+}
+
 void IdentificationPanel::start(bool diagnosis) {
   const std::vector<std::string> paths = recordings();
   if (paths.empty()) {
@@ -244,10 +261,12 @@ void IdentificationPanel::start(bool diagnosis) {
   diagnosis_options.baseline_evaluations = baseline_evaluations_;
   diagnosis_options.candidate_evaluations = candidate_evaluations_;
   outcome_ = outcome;
+  convergence_plot_->graph(0)->data()->clear();
   set_busy(true);
+  QPointer<IdentificationPanel> self(this);
   status_label_->setText(diagnosis ? tr("Diagnosing\u2026") : tr("Fitting\u2026"));
-  job_->start([outcome, paths, fit_options, diagnosis_options](const ProgressFn& progress,
-                                                               const CancelToken& cancel) {
+  job_->start([outcome, paths, fit_options, diagnosis_options, self](const ProgressFn& progress,
+                                                                     const CancelToken& cancel) {
     try {
       const analysis::CampaignAnalysis campaign =
           daq::analyze_recordings(paths, {}, {}, {}, cancel);
@@ -270,12 +289,22 @@ void IdentificationPanel::start(bool diagnosis) {
                                 ? static_cast<long>(fit_options.genetic.population) *
                                       (fit_options.genetic.generations + 1)
                                 : fit_options.max_evaluations;
+        // The convergence curve gets a point at most every 50 ms (20 redraws a second).
+        auto last_point = std::chrono::steady_clock::now() - std::chrono::seconds(1);
         outcome->fit = analysis::fit_edc(
             *outcome->objective, fit_options,
             [&](const analysis::FitProgress& p) {
-              if (p.stage != "uncertainty") {
-                progress(std::min(0.95, static_cast<double>(p.evaluations) / budget));
-              }
+              if (p.stage == "uncertainty") return;
+              progress(std::min(0.95, static_cast<double>(p.evaluations) / budget));
+              const auto now = std::chrono::steady_clock::now();
+              if (now - last_point < std::chrono::milliseconds(50)) return;
+              last_point = now;
+              QMetaObject::invokeMethod(
+                  self.data(),
+                  [self, evaluations = p.evaluations, cost = p.best_weighted_cost] {
+                    if (self) self->add_convergence_point(evaluations, cost);
+                  },
+                  Qt::QueuedConnection);
             },
             cancel);
       }
@@ -329,6 +358,16 @@ void IdentificationPanel::show_fit(const Outcome& outcome) {
     }
   }
   parameter_table_->resizeColumnsToContents();
+  // The whole history replaces the live points (which were thinned to 20 a second).
+  QVector<double> evaluations, best;
+  for (const auto& [e, cost] : fit.history) {
+    if (!(cost > 0.0) || !std::isfinite(cost)) continue;
+    evaluations.push_back(static_cast<double>(e));
+    best.push_back(cost);
+  }
+  convergence_plot_->graph(0)->setData(evaluations, best);
+  convergence_plot_->rescaleAxes();
+  convergence_plot_->replot();
   if (outcome.objective) plot_edc(*outcome.objective, fit.evaluation, tr("model"));
   tabs_->setCurrentIndex(0);
 }

@@ -59,6 +59,8 @@ class IdentificationPanel : public QWidget {
   QLabel* verdict_label() const { return verdict_label_; }
   QCustomPlot* edc_plot() const { return edc_plot_; }
   QCustomPlot* residual_plot() const { return residual_plot_; }
+  /// Best χ² against model evaluations, growing while a fit runs (Fig. 14).
+  QCustomPlot* convergence_plot() const { return convergence_plot_; }
   QTabWidget* tabs() const { return tabs_; }
 
  Q_SIGNALS:
@@ -70,6 +72,8 @@ class IdentificationPanel : public QWidget {
   void start(bool diagnosis);
   void on_finished(bool cancelled);
   void set_busy(bool busy);
+  /// A fit's best χ² so far (called on the UI thread, from the worker's queued reports).
+  void add_convergence_point(long evaluations, double best_weighted_cost);
   void show_fit(const Outcome& outcome);
   void show_diagnosis(const Outcome& outcome);
   void plot_edc(const analysis::EdcObjective& objective, const analysis::EdcEvaluation& model,
@@ -97,6 +101,7 @@ class IdentificationPanel : public QWidget {
   QTableWidget* step_table_ = nullptr;
   QCustomPlot* edc_plot_ = nullptr;
   QCustomPlot* residual_plot_ = nullptr;
+  QCustomPlot* convergence_plot_ = nullptr;
 };
 
 }  // namespace oscilab::ui

@@ -47,6 +47,10 @@ class IdentificationPanelTest : public QObject {
     QCOMPARE(panel.edc_plot()->graphCount(), 4);
     QCOMPARE(panel.edc_plot()->graph(0)->data()->size(), 26);
     QCOMPARE(panel.edc_plot()->graph(1)->data()->size(), 26);
+    // The convergence curve: the GA's best after generation 0 and after generation 1.
+    QCOMPARE(panel.convergence_plot()->graph(0)->data()->size(), 2);
+    QVERIFY(panel.convergence_plot()->graph(0)->data()->at(1)->value <=
+            panel.convergence_plot()->graph(0)->data()->at(0)->value);
     QVERIFY(panel.fit_button()->isEnabled());
   }
 
@@ -60,6 +64,8 @@ class IdentificationPanelTest : public QObject {
     QVERIFY(panel.busy());
     QTest::mouseClick(panel.cancel_button(), Qt::LeftButton);
     QVERIFY(done.wait(20000));
+    // Points reached the curve while the fit ran (queued from the worker, ≤ 20 a second).
+    QVERIFY(!panel.convergence_plot()->graph(0)->data()->isEmpty());
     QCOMPARE(done.takeFirst().at(0).toString(), QString("Cancelled."));
     QVERIFY(panel.fit_button()->isEnabled());
   }
