@@ -26,6 +26,32 @@ CycleAnalyzer::CycleAnalyzer(const Options& options)
   t_.resize(capacity);
   base_.resize(capacity);
   mass_.resize(capacity);
+  exclusions_.reserve(kMaxPendingExclusions);
+}
+
+void CycleAnalyzer::exclude(double start_s, double end_s) {
+  if (!(end_s >= start_s)) return;
+  if (!exclusions_.empty() && start_s <= exclusions_.back().end_s) {
+    exclusions_.back().end_s = std::max(exclusions_.back().end_s, end_s);
+    return;
+  }
+  if (exclusions_.size() == kMaxPendingExclusions) {
+    exclusions_.back().end_s = end_s;  // merged: a longer exclusion, never a missed one
+    return;
+  }
+  exclusions_.push_back({start_s, end_s});
+}
+
+bool CycleAnalyzer::touches_exclusion(double start_s, double end_s) {
+  // The fit uses one sample beyond each end of the window (cycle_fit.h).
+  const double dt = 1.0 / options_.sample_rate_hz;
+  std::size_t expired = 0;
+  while (expired < exclusions_.size() && exclusions_[expired].end_s < start_s - dt) ++expired;
+  if (expired > 0) exclusions_.erase(exclusions_.begin(), exclusions_.begin() + expired);
+  for (const TimeInterval& interval : exclusions_) {
+    if (interval.overlaps(start_s - dt, end_s + dt)) return true;
+  }
+  return false;
 }
 
 void CycleAnalyzer::push(const double* t_s, const double* base, const double* mass, int count,
@@ -50,8 +76,10 @@ void CycleAnalyzer::push(const double* t_s, const double* base, const double* ma
     ++size_;
     while (t_s[i] >= cycle_start_s_ + period_s_) {
       CycleFit fit;
-      if (fit_cycle(options_.fit, cycle_start_s_, t_.data(), base_.data(), mass_.data(), size_,
-                    fit)) {
+      if (touches_exclusion(cycle_start_s_, cycle_start_s_ + period_s_)) {
+        ++excluded_cycles_;
+      } else if (fit_cycle(options_.fit, cycle_start_s_, t_.data(), base_.data(), mass_.data(),
+                           size_, fit)) {
         completed.push_back(std::move(fit));
       }
       ++cycle_index_;

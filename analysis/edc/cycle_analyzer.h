@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "analysis/common/time_interval.h"
 #include "analysis/edc/cycle_fit.h"
 
 namespace oscilab::analysis {
@@ -29,13 +30,27 @@ class CycleAnalyzer {
   /// Start time of the cycle being filled.
   double current_cycle_start_s() const { return cycle_start_s_; }
 
+  /// Marks [start_s, end_s] as untrustworthy (a gap, non-finite or saturated samples, a
+  /// discontinuity): every cycle whose samples (one beyond each end included) touch it is left
+  /// out and counted. Call before pushing the samples it covers; intervals come in time order.
+  /// Up to kMaxPendingExclusions are held without allocating; more are merged into the last.
+  void exclude(double start_s, double end_s);
+  /// Cycles left out because they touched an excluded interval.
+  long excluded_cycles() const { return excluded_cycles_; }
+
+  static constexpr std::size_t kMaxPendingExclusions = 64;
+
  private:
   Options options_;
   double period_s_;
   double cycle_start_s_;
   long cycle_index_ = 0;
+  bool touches_exclusion(double start_s, double end_s);
+
   std::vector<double> t_, base_, mass_;  // samples from one before the cycle start onwards
   int size_ = 0;
+  std::vector<TimeInterval> exclusions_;  // pending, in time order; capacity reserved
+  long excluded_cycles_ = 0;
 };
 
 }  // namespace oscilab::analysis

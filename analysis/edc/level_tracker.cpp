@@ -221,7 +221,7 @@ void LevelTracker::close_level(std::vector<LevelResult>& finished) {
 
 void LevelTracker::push(const std::vector<CycleFit>& cycles, std::vector<LevelResult>& finished) {
   for (const CycleFit& cycle : cycles) {
-    if (!options_.windows.empty()) {
+    if (options_.windowed || !options_.windows.empty()) {
       const int window = window_of(cycle);
       if (window != level_window_ && !level_cycles_.empty()) close_level(finished);
       if (window < 0) continue;  // ramps and gaps between the sidecar's levels
@@ -236,6 +236,17 @@ void LevelTracker::push(const std::vector<CycleFit>& cycles, std::vector<LevelRe
 
 void LevelTracker::finish(std::vector<LevelResult>& finished) {
   if (!level_cycles_.empty()) close_level(finished);
+}
+
+void LevelTracker::add_window(const LevelWindow& window) {
+  options_.windowed = true;
+  options_.windows.push_back(window);
+}
+
+void LevelTracker::end_window(double end_s) {
+  if (!options_.windows.empty() && end_s < options_.windows.back().end_s) {
+    options_.windows.back().end_s = std::max(end_s, options_.windows.back().start_s);
+  }
 }
 
 std::optional<LevelResult> LevelTracker::current() const {

@@ -19,6 +19,9 @@ struct LevelWindow {
 /// How cycles are grouped into levels and judged.
 struct LevelOptions {
   std::vector<LevelWindow> windows;  // empty: levels are found from the cycles' force amplitude
+  /// Levels come from windows even while there are none yet (a live, operated excitation adds
+  /// them as it is set: LevelTracker::add_window); cycles outside every window are ramps.
+  bool windowed = false;
   double freq_hz = 0.0;
   double mass_kg = 1.0;
   MotionQuantity base_quantity = MotionQuantity::Acceleration;
@@ -72,6 +75,11 @@ class LevelTracker {
   void finish(std::vector<LevelResult>& finished);
   /// The level being filled, summarised so far (live display); empty when there is none.
   std::optional<LevelResult> current() const;
+  /// Live: a level's steady window starts (end_s may be +∞ until end_window). Windows come in
+  /// time order; the tracker becomes windowed.
+  void add_window(const LevelWindow& window);
+  /// Live: the open window ends at end_s (the next change of the excitation).
+  void end_window(double end_s);
 
  private:
   void close_level(std::vector<LevelResult>& finished);

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "analysis/common/time_interval.h"
 #include "analysis/edc/level_tracker.h"
 #include "analysis/signal/motion_quantity.h"
 
@@ -26,6 +27,9 @@ struct MeasurementChannels {
   std::optional<double> excitation_freq_hz;
   std::vector<LevelWindow> level_windows;  // steady parts of the holds, when the sidecar has them
   std::optional<bool> well_hint_positive;
+  /// Stretches not to trust (the sidecar's invalid intervals): samples there may be non-finite;
+  /// cycles touching them are left out, and restoring-force samples near them too.
+  std::vector<TimeInterval> excluded;
 };
 
 }  // namespace oscilab::analysis

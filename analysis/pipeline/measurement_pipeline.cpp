@@ -22,6 +22,7 @@ CycleAnalyzer::Options analyzer_options(const PipelineSettings& settings, const 
 LevelOptions level_options(const PipelineSettings& settings, const StreamSetup& s) {
   LevelOptions options;
   options.windows = s.level_windows;
+  options.windowed = s.windowed_levels;
   options.freq_hz = s.excitation_freq_hz;
   options.mass_kg = s.mass_kg;
   options.base_quantity = s.base_quantity;
@@ -50,9 +51,23 @@ void MeasurementPipeline::push(const SampleBlock& block) {
   for (Eigen::Index i = 0; i < n; ++i) {
     t_scratch_[static_cast<std::size_t>(i)] = block.t0_s + static_cast<double>(i) * dt;
   }
+  analyse(block.samples.col(0).data(), block.samples.col(1).data(), static_cast<int>(n));
+}
+
+void MeasurementPipeline::push(std::int64_t first_sample, const double* base, const double* mass,
+                               int count) {
+  if (count <= 0) return;
+  t_scratch_.resize(static_cast<std::size_t>(count));
+  const double dt = 1.0 / setup_.sample_rate_hz;
+  for (int i = 0; i < count; ++i) {
+    t_scratch_[static_cast<std::size_t>(i)] = static_cast<double>(first_sample + i) * dt;
+  }
+  analyse(base, mass, count);
+}
+
+void MeasurementPipeline::analyse(const double* base, const double* mass, int count) {
   completed_.clear();
-  analyzer_.push(t_scratch_.data(), block.samples.col(0).data(), block.samples.col(1).data(),
-                 static_cast<int>(n), completed_);
+  analyzer_.push(t_scratch_.data(), base, mass, count, completed_);
   cycles_.insert(cycles_.end(), completed_.begin(), completed_.end());
   tracker_.push(completed_, levels_);
 }

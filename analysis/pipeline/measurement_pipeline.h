@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct StreamSetup {
   std::vector<LevelWindow> level_windows;  // from the sidecar; empty: detect levels
   std::optional<bool> well_hint_positive;
   double t0_s = 0.0;  // first cycle start
+  /// Levels come as windows while the stream runs (add_level_window), none yet at the start:
+  /// cycles outside a window are ramps, never a detected level.
+  bool windowed_levels = false;
 };
 
 /// The one measurement engine (§4.1): SampleBlocks in, per-cycle fits and per-level EDC out.
@@ -32,6 +36,19 @@ class MeasurementPipeline {
   MeasurementPipeline(const PipelineSettings& settings, const StreamSetup& setup);
 
   void push(const SampleBlock& block);
+  /// The same for `count` samples from sample index `first_sample` on (t = index / rate, as
+  /// the offline push of a whole record computes it), base and mass values in SI. Live path:
+  /// no allocation once the buffers have grown to the largest block.
+  void push(std::int64_t first_sample, const double* base, const double* mass, int count);
+  /// Live, operated excitation: a level's steady window starts / the open one ends
+  /// (LevelTracker::add_window, end_window).
+  void add_level_window(const LevelWindow& window) { tracker_.add_window(window); }
+  void end_level_window(double end_s) { tracker_.end_window(end_s); }
+  /// Leaves out every cycle that touches [start_s, end_s] (CycleAnalyzer::exclude): call it
+  /// before pushing the samples of a gap, of non-finite or saturated samples, or of a
+  /// discontinuity.
+  void exclude(double start_s, double end_s) { analyzer_.exclude(start_s, end_s); }
+  long excluded_cycles() const { return analyzer_.excluded_cycles(); }
   /// Ends the stream: closes the level being filled.
   void finish();
 
@@ -42,6 +59,8 @@ class MeasurementPipeline {
   const StreamSetup& setup() const { return setup_; }
 
  private:
+  void analyse(const double* base, const double* mass, int count);  // times in t_scratch_
+
   StreamSetup setup_;
   CycleAnalyzer analyzer_;
   LevelTracker tracker_;

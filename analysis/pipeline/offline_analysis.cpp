@@ -1,8 +1,10 @@
 #include "analysis/pipeline/offline_analysis.h"
 
 #include <cmath>
+#include <limits>
 
 #include "analysis/common/input_error.h"
+#include "analysis/signal/gap_fill.h"
 
 namespace oscilab::analysis {
 namespace {
@@ -85,18 +87,46 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
   }
   out.setup = setup;
 
+  // Samples of invalid intervals (a live recording's gaps, bad samples) may be non-finite: fill
+  // them for the whole-record processing, and leave out every result that touches them.
+  MeasurementChannels filled = channels;
+  const long filled_samples = fill_non_finite(filled.base) + fill_non_finite(filled.mass);
+  if (!channels.excluded.empty()) {
+    out.notes.push_back(std::to_string(channels.excluded.size()) +
+                        " invalid interval(s) in the sidecar left out (" +
+                        std::to_string(filled_samples) + " non-finite samples)");
+  }
+
   if (out.stepped_sine && setup.excitation_freq_hz > 0) {
     MeasurementPipeline pipeline(settings, setup);
+    for (const TimeInterval& interval : channels.excluded) {
+      pipeline.exclude(interval.start_s, interval.end_s);
+    }
     SampleBlock block;
     block.samples.resize(channels.base.size(), 2);
-    block.samples.col(0) = channels.base;
-    block.samples.col(1) = channels.mass;
+    block.samples.col(0) = filled.base;
+    block.samples.col(1) = filled.mass;
     pipeline.push(block);
     pipeline.finish();
     out.cycles = pipeline.cycles();
     out.levels = pipeline.levels();
+    if (pipeline.excluded_cycles() > 0) {
+      out.notes.push_back(std::to_string(pipeline.excluded_cycles()) +
+                          " cycle(s) touching invalid intervals left out of the EDC");
+    }
   }
-  out.motion = motion_signals(channels, settings, mass);
+  out.motion = motion_signals(filled, settings, mass);
+  // The zero-phase filters spread a bad stretch over about one period of the integration
+  // high-pass on either side: leave those restoring-force samples out (NaN, skipped by the
+  // slices).
+  const double margin_s = 1.0 / settings.integration_highpass_hz;
+  for (const TimeInterval& interval : channels.excluded) {
+    for (Eigen::Index i = 0; i < out.motion.t_s.size(); ++i) {
+      if (interval.overlaps(out.motion.t_s[i] - margin_s, out.motion.t_s[i] + margin_s)) {
+        out.motion.restoring_force_n[i] = std::numeric_limits<double>::quiet_NaN();
+      }
+    }
+  }
   return out;
 }
 

@@ -23,6 +23,8 @@ void for_each_inner_sample(const MotionSignals& s, double trim_s, Visit visit) {
   const double t_end = s.t_s[n - 1];
   for (Eigen::Index i = 0; i < n; ++i) {
     if (s.t_s[i] < trim_s || s.t_s[i] > t_end - trim_s) continue;
+    // Samples left out by the analysis (invalid intervals) carry a non-finite force.
+    if (!std::isfinite(s.restoring_force_n[i])) continue;
     visit(i);
   }
 }

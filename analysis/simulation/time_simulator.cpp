@@ -4,38 +4,16 @@
 #include <cmath>
 #include <vector>
 
-#include <boost/numeric/odeint.hpp>
-
 #include "analysis/common/input_error.h"
+#include "analysis/simulation/time_stepper.h"
 
 namespace oscilab::analysis {
 namespace {
 
-namespace odeint = boost::numeric::odeint;
 using State = std::vector<double>;
-
-// State layout: [z, ż, W_in, W_diss, s_0 ... s_{n-1}].
-constexpr std::size_t kZ = 0, kZDot = 1, kWorkIn = 2, kDissipated = 3, kInternal = 4;
-
-struct EquationOfMotion {
-  const Model& model;
-  const TableMotion& motion;
-  long* evaluations;
-
-  void operator()(const State& x, State& dxdt, double t) const {
-    ++*evaluations;
-    const double z = x[kZ], z_dot = x[kZDot];
-    const double* s = model.state_size() > 0 ? x.data() + kInternal : nullptr;
-    const double f = -model.mass_kg() * motion.at(t).b_ddot_m_s2;  // eq. (1)
-    const double d = model.dissipative_force(z, z_dot, s);
-    const double r = model.elastic_force(z) + d;
-    dxdt[kZ] = z_dot;
-    dxdt[kZDot] = (f - r) / model.mass_kg();
-    dxdt[kWorkIn] = f * z_dot;
-    dxdt[kDissipated] = d * z_dot;
-    if (s) model.state_rate(z, z_dot, s, dxdt.data() + kInternal);
-  }
-};
+constexpr std::size_t kZ = TimeStepper::kZ, kZDot = TimeStepper::kZDot,
+                      kWorkIn = TimeStepper::kWorkIn, kDissipated = TimeStepper::kDissipated,
+                      kInternal = TimeStepper::kInternal;
 
 }  // namespace
 
@@ -68,39 +46,14 @@ TimeSimulator::Result TimeSimulator::simulate(const TableMotion& motion, const R
     v->resize(samples);
   }
 
-  State x(kInternal + static_cast<std::size_t>(model_.state_size()), 0.0);
-  x[kZ] = run.z0_m;
-  x[kZDot] = run.z_dot0_m_s;
-  const std::vector<double> s0 = model_.initial_state(run.z0_m);
-  std::copy(s0.begin(), s0.end(), x.begin() + kInternal);
-
-  EquationOfMotion system{model_, motion, &result.rhs_evaluations};
   constexpr double kDefaultMaxStepS = 2e-3;
   const double max_step =
       options_.max_step_s > 0 ? options_.max_step_s : std::min(dt_out, kDefaultMaxStepS);
-  auto stepper = odeint::make_controlled(options_.absolute_tolerance, options_.relative_tolerance,
-                                         max_step, odeint::runge_kutta_dopri5<State>());
-  // Steps land exactly on every output and probe time, so no state is interpolated: a dense
-  // output's 4th-order interpolant errs by ~(ωh)⁵ ≈ 1e-5 of the state at 2 ms steps, above the
-  // tolerance, and made EDCs depend on the output rate.
-  double t_now = 0.0;
-  double step = std::min(1e-4, max_step);
-  const auto advance_to = [&](double t_target) {
-    while (t_now < t_target) {
-      const bool clamped = step >= t_target - t_now;
-      double h = clamped ? t_target - t_now : step;
-      double t = t_now;
-      if (stepper.try_step(system, x, t, h) == odeint::success) {
-        t_now = clamped ? t_target : t;
-        // After a clamped landing keep the larger of the suggestion and the unclamped step.
-        step = clamped ? std::max(step, h) : h;
-      } else {
-        step = h;  // rejected: the controller shrank it
-        if (!(step > 1e-14)) return false;
-      }
-    }
-    return true;
-  };
+  TimeStepper stepper(model_, options_.relative_tolerance, options_.absolute_tolerance, max_step,
+                      run.z0_m, run.z_dot0_m_s);
+  const State& x = stepper.state();
+  const auto advance_to = [&](double t_target) { return stepper.advance_to(motion, t_target); };
+  const auto t_now = [&] { return stepper.time_s(); };
 
   const auto record = [&](Eigen::Index k, const State& state, double t) {
     const double z = state[kZ], z_dot = state[kZDot];
@@ -154,7 +107,7 @@ TimeSimulator::Result TimeSimulator::simulate(const TableMotion& motion, const R
         probe(x, tp);
       }
       if (!advance_to(t) || !std::isfinite(x[kZ]) || !std::isfinite(x[kZDot])) {
-        fail(t_now);
+        fail(t_now());
         break;
       }
       record(k, x, t);
@@ -171,11 +124,12 @@ TimeSimulator::Result TimeSimulator::simulate(const TableMotion& motion, const R
   while (result.status == Status::Ok && next_probe < probes) {
     const double tp = run.probe_times_s[next_probe];
     if (!advance_to(tp)) {
-      fail(t_now);
+      fail(t_now());
       break;
     }
     probe(x, tp);
   }
+  result.rhs_evaluations = stepper.rhs_evaluations();
   if (result.status != Status::Ok) {
     for (auto* v : {&result.t_s, &result.z_m, &result.z_dot_m_s, &result.z_ddot_m_s2, &result.f_n,
                     &result.restoring_force_n, &result.damping_force_n, &result.work_in_j,

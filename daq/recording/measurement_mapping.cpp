@@ -56,6 +56,9 @@ analysis::MeasurementChannels measurement_channels(const Recording& recording,
       }
     }
   }
+  for (const InvalidInterval& interval : sidecar.invalid_intervals) {
+    channels.excluded.push_back({interval.start_s, interval.end_s});
+  }
   if (overrides.excitation_freq_hz) channels.excitation_freq_hz = overrides.excitation_freq_hz;
   channels.well_hint_positive = overrides.well_positive;
   return channels;

@@ -75,7 +75,21 @@ std::string sample_place(Eigen::Index row, double sample_rate_hz, const StoredSa
   return text + ")";
 }
 
+// Whether sample `row` lies inside one of the sidecar's invalid intervals (a live recording's gap
+// or bad samples), where non-finite values are what was recorded and are allowed.
+bool declared_invalid(const Sidecar& sidecar, Eigen::Index row) {
+  const double t_s = static_cast<double>(row) / sidecar.sample_rate_hz;
+  const double half_sample_s = 0.5 / sidecar.sample_rate_hz;
+  for (const InvalidInterval& interval : sidecar.invalid_intervals) {
+    if (t_s >= interval.start_s - half_sample_s && t_s <= interval.end_s + half_sample_s) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // physical = scale × stored + offset in the channel's unit, then × unit factor → SI.
+// Non-finite samples are an error unless the sidecar declares them invalid.
 Eigen::MatrixXd calibrate(const StoredSamples& stored, const Sidecar& sidecar,
                           const std::string& path) {
   const auto channels = static_cast<Eigen::Index>(sidecar.channels.size());
@@ -90,7 +104,7 @@ Eigen::MatrixXd calibrate(const StoredSamples& stored, const Sidecar& sidecar,
       const double value = stored.values[r * channels + c];
       const double si = (channel.scale * value + channel.offset) * factor;
       samples(r, c) = si;
-      if (!std::isfinite(si)) {
+      if (!std::isfinite(si) && !declared_invalid(sidecar, r)) {
         if (first_bad < 0) first_bad = r;
         ++bad_count;
       }
@@ -108,6 +122,13 @@ Eigen::MatrixXd calibrate(const StoredSamples& stored, const Sidecar& sidecar,
                      " samples of this channel are not finite");
   }
   return samples;
+}
+
+// The interleaved stored values as a matrix: one row per sample, one column per channel.
+Eigen::MatrixXd as_matrix(const StoredSamples& stored, Eigen::Index channels) {
+  const Eigen::Index rows = static_cast<Eigen::Index>(stored.values.size()) / channels;
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      stored.values.data(), rows, channels);
 }
 
 // --- sound containers (libsndfile) ---------------------------------------------------------
@@ -210,6 +231,7 @@ Recording read_sound(const std::string& path, const Sidecar& sidecar,
   Recording recording;
   recording.sidecar = sidecar;
   recording.samples_si = calibrate(stored, sidecar, path);
+  recording.samples_stored = as_matrix(stored, recording.samples_si.cols());
   recording.source_path = path;
   recording.container = container_name(info.format);
   return recording;
@@ -460,6 +482,7 @@ Recording read_csv(const std::string& path, const Sidecar& sidecar,
   Recording recording;
   recording.sidecar = sidecar;
   recording.samples_si = calibrate(stored, sidecar, path);
+  recording.samples_stored = as_matrix(stored, recording.samples_si.cols());
   recording.source_path = path;
   std::string delimiter = layout.delimiter == '\t'  ? "tab"
                           : layout.delimiter == ' ' ? "spaces"
@@ -657,7 +680,15 @@ void write_recording(const Recording& recording, const std::string& path) {
       double value = (si / factor - channel.offset) / channel.scale;
       const std::string place = path + ": channel " + in_quotes(channel.name) + ": " +
                                 sample_place(r, sidecar.sample_rate_hz, no_lines);
-      if (!std::isfinite(si)) throw InputError(place + " is not finite");
+      const bool integer_container = (sound_format & SF_FORMAT_SUBMASK) == SF_FORMAT_PCM_24;
+      if (!std::isfinite(si)) {
+        if (integer_container || !declared_invalid(sidecar, r)) {
+          throw InputError(place + " is not finite" +
+                           (integer_container ? " (an integer container cannot hold it)" : ""));
+        }
+        stored[static_cast<std::size_t>(r * channels + c)] = si;  // what was recorded
+        continue;
+      }
       if (!std::isfinite(value)) {
         throw InputError(place + ": " + number_text(si) + " overflows with scale " +
                          number_text(channel.scale));

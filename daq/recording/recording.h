@@ -13,8 +13,11 @@ namespace oscilab::daq {
 struct Recording {
   Sidecar sidecar;
   Eigen::MatrixXd samples_si;  // rows: samples at sidecar.sample_rate_hz; cols: channels
-  std::string source_path;     // where it was read from (empty when made in memory)
-  std::string container;       // e.g. "WAV (Microsoft), 64 bit float" or "CSV"; set by the reader
+  /// The values exactly as the file stores them (before calibration), same shape; filled by the
+  /// readers (replay and streaming send these, so a re-recording is bit-exact), empty otherwise.
+  Eigen::MatrixXd samples_stored;
+  std::string source_path;  // where it was read from (empty when made in memory)
+  std::string container;    // e.g. "WAV (Microsoft), 64 bit float" or "CSV"; set by the reader
 
   Eigen::Index sample_count() const { return samples_si.rows(); }
   double duration_s() const;

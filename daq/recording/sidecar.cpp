@@ -169,9 +169,19 @@ ChannelInfo parse_channel(const json& value, const Field& field) {
   if (const json* column = find(object, "column")) {
     channel.column = bounded_int(*column, kMaxColumn, field / "column");
   }
+  if (const json* range = find(object, "range"); range && !range->is_null()) {
+    const Field here = field / "range";
+    if (!range->is_array() || range->size() != 2) {
+      here.fail("expected [min, max] in the channel's unit, got " + show(*range));
+    }
+    const double lo = finite_number((*range)[0], here[0]);
+    const double hi = finite_number((*range)[1], here[1]);
+    if (!(lo < hi)) here.fail("min must be below max, got " + show(*range));
+    channel.range = std::make_pair(lo, hi);
+  }
   for (const auto& [key, item] : object.items()) {
     if (key != "name" && key != "role" && key != "quantity" && key != "unit" && key != "scale" &&
-        key != "offset" && key != "sensor" && key != "column") {
+        key != "offset" && key != "sensor" && key != "column" && key != "range") {
       channel.extra[key] = item;
     }
   }
@@ -252,6 +262,29 @@ Excitation parse_excitation(const json& value, const Field& field) {
   return excitation;
 }
 
+std::vector<InvalidInterval> parse_invalid_intervals(const json& value, const Field& field) {
+  if (!value.is_array()) field.fail("expected an array, got " + show(value));
+  std::vector<InvalidInterval> intervals;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const Field here = field[i];
+    const json& object = object_value(value[i], here);
+    InvalidInterval interval;
+    interval.start_s = finite_number(require(object, "start_s", here), here / "start_s");
+    interval.end_s = finite_number(require(object, "end_s", here), here / "end_s");
+    if (interval.end_s < interval.start_s) {
+      (here / "end_s").fail("must not come before start_s, got " + show(object["end_s"]));
+    }
+    if (!intervals.empty() && interval.start_s < intervals.back().start_s) {
+      (here / "start_s").fail("intervals must be in time order, got " + show(object["start_s"]));
+    }
+    if (const json* reason = find(object, "reason")) {
+      interval.reason = string_value(*reason, here / "reason");
+    }
+    intervals.push_back(std::move(interval));
+  }
+  return intervals;
+}
+
 struct UnitEntry {
   const char* name;
   Quantity quantity;
@@ -328,6 +361,7 @@ ordered_json channel_to_json(const ChannelInfo& channel) {
   out["offset"] = channel.offset;
   if (!channel.sensor.empty()) out["sensor"] = channel.sensor;
   if (channel.column >= 0) out["column"] = channel.column;
+  if (channel.range) out["range"] = {channel.range->first, channel.range->second};
   if (channel.extra.is_object()) {
     for (const auto& [key, item] : channel.extra.items()) {
       if (!out.contains(key)) out[key] = item;
@@ -383,6 +417,17 @@ ordered_json to_ordered_json(const Sidecar& sidecar) {
   }
   if (sidecar.excitation) out["excitation"] = excitation_to_json(*sidecar.excitation);
   if (!sidecar.notes.empty()) out["notes"] = sidecar.notes;
+  if (!sidecar.invalid_intervals.empty()) {
+    ordered_json intervals = ordered_json::array();
+    for (const InvalidInterval& interval : sidecar.invalid_intervals) {
+      ordered_json item;
+      item["start_s"] = interval.start_s;
+      item["end_s"] = interval.end_s;
+      if (!interval.reason.empty()) item["reason"] = interval.reason;
+      intervals.push_back(std::move(item));
+    }
+    out["invalid_intervals"] = std::move(intervals);
+  }
   if (sidecar.extra.is_object()) {
     for (const auto& [key, item] : sidecar.extra.items()) {
       if (!out.contains(key)) out[key] = item;
@@ -518,9 +563,13 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
     sidecar.notes = string_value(*notes, root / "notes");
   }
 
+  if (const json* invalid = find(json_value, "invalid_intervals"); invalid && !invalid->is_null()) {
+    sidecar.invalid_intervals = parse_invalid_intervals(*invalid, root / "invalid_intervals");
+  }
+
   for (const auto& [key, item] : json_value.items()) {
     if (key != "format" && key != "sample_rate_hz" && key != "mass_kg" && key != "channels" &&
-        key != "csv" && key != "excitation" && key != "notes") {
+        key != "csv" && key != "excitation" && key != "notes" && key != "invalid_intervals") {
       sidecar.extra[key] = item;
     }
   }

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -34,6 +35,9 @@ struct ChannelInfo {
   double offset = 0.0;
   std::string sensor;
   int column = -1;  // CSV only: 0-based column in the file; -1: matched by name in the header
+  /// The sensor's or the ADC's full scale in `unit` (sidecar "range": [min, max]); a sample at
+  /// or beyond either end is saturated. Unknown: no saturation check.
+  std::optional<std::pair<double, double>> range;
   nlohmann::json extra = nlohmann::json::object();  // other keys, kept as they are
 };
 
@@ -51,6 +55,16 @@ struct Excitation {
   std::optional<double> frequency_hz;               // stepped sine
   std::vector<ExcitationLevel> levels;              // stepped sine
   nlohmann::json extra = nlohmann::json::object();  // other keys, kept as they are
+};
+
+/// A stretch of a recording whose samples must not be trusted (sidecar "invalid_intervals"): a
+/// gap in a live stream (filled with NaN), non-finite or saturated samples. Readers accept
+/// non-finite samples inside such an interval; the analysis leaves out every cycle that touches
+/// one and the restoring-force samples near it. A zero-length interval marks a discontinuity.
+struct InvalidInterval {
+  double start_s = 0.0;
+  double end_s = 0.0;
+  std::string reason;  // "gap", "non-finite", "saturated", "discontinuity", ...
 };
 
 /// How a CSV file is laid out (sidecar key "csv"). With `header` false every channel names its
@@ -72,6 +86,7 @@ struct Sidecar {
   std::optional<Excitation> excitation;
   std::string notes;
   std::optional<CsvLayout> csv;
+  std::vector<InvalidInterval> invalid_intervals;  // in time order
   nlohmann::json extra = nlohmann::json::object();
 };
 

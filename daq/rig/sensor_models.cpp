@@ -28,4 +28,15 @@ double TableCreep::at(double t_s) const {
   return c;
 }
 
+SensorChain::SensorChain(const SensorSpec& spec, std::mt19937_64& rng)
+    : spec_(spec), rng_(rng), creep_(spec.creep, rng) {}
+
+SensorChain::Reading SensorChain::read(double t_s, double b_m, double b_ddot_m_s2, double z_m) {
+  const auto& a = spec_.accelerometer;
+  const auto& v = spec_.vibrometer;
+  const double acc = b_ddot_m_s2 + a.bias_m_s2 + a.noise_rms_m_s2 * unit_normal_(rng_);
+  const double y = z_m + b_m + creep_.at(t_s) + v.noise_rms_m * unit_normal_(rng_);
+  return {quantise(acc, a.lsb_m_s2), quantise(y, v.lsb_m)};
+}
+
 }  // namespace oscilab::daq

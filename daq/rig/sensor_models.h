@@ -49,4 +49,24 @@ class TableCreep {
   double phase_[3] = {};
 };
 
+/// The rig's two sensors read at one instant: the accelerometer's b̈ + bias + noise and the
+/// vibrometer's y = z + b + creep + noise, each quantised to its lsb. Draws from the generator in
+/// a fixed order (creep phases at construction, then the two noises per sample), so a seed
+/// reproduces a recording.
+class SensorChain {
+ public:
+  struct Reading {
+    double base_acc_m_s2 = 0.0;
+    double y_m = 0.0;
+  };
+  SensorChain(const SensorSpec& spec, std::mt19937_64& rng);
+  Reading read(double t_s, double b_m, double b_ddot_m_s2, double z_m);
+
+ private:
+  SensorSpec spec_;
+  std::mt19937_64& rng_;
+  TableCreep creep_;
+  std::normal_distribution<double> unit_normal_{0.0, 1.0};
+};
+
 }  // namespace oscilab::daq

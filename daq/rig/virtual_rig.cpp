@@ -13,6 +13,15 @@ namespace {
 
 using analysis::TimeSimulator;
 
+void check(const RigSpec& spec) {
+  if (!(spec.sample_rate_hz > 0)) {
+    throw InputError("virtual rig: sample rate " + std::to_string(spec.sample_rate_hz) +
+                     " Hz must be positive");
+  }
+}
+
+}  // namespace
+
 Sidecar rig_sidecar(const analysis::Model& model, const RigSpec& spec) {
   Sidecar sidecar;
   sidecar.sample_rate_hz = spec.sample_rate_hz;
@@ -48,32 +57,23 @@ Sidecar rig_sidecar(const analysis::Model& model, const RigSpec& spec) {
   return sidecar;
 }
 
+namespace {
+
 // Samples the sensors along the simulated motion: y = z + b + creep + noise, b̈ + bias + noise.
 void measure(const analysis::TableMotion& motion, const RigSpec& spec, std::mt19937_64& rng,
              RigRecording& rig) {
   const auto& t = rig.truth.t_s;
   const Eigen::Index n = t.size();
-  const TableCreep creep(spec.sensors.creep, rng);
-  std::normal_distribution<double> unit_normal(0.0, 1.0);
-  const auto& a = spec.sensors.accelerometer;
-  const auto& v = spec.sensors.vibrometer;
+  SensorChain sensors(spec.sensors, rng);
   rig.recording.samples_si.resize(n, 2);
   rig.b_m.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const analysis::TableState table = motion.at(t[k]);
     rig.b_m[k] = table.b_m;
-    const double acc = table.b_ddot_m_s2 + a.bias_m_s2 + a.noise_rms_m_s2 * unit_normal(rng);
-    const double y =
-        rig.truth.z_m[k] + table.b_m + creep.at(t[k]) + v.noise_rms_m * unit_normal(rng);
-    rig.recording.samples_si(k, 0) = quantise(acc, a.lsb_m_s2);
-    rig.recording.samples_si(k, 1) = quantise(y, v.lsb_m);
-  }
-}
-
-void check(const RigSpec& spec) {
-  if (!(spec.sample_rate_hz > 0)) {
-    throw InputError("virtual rig: sample rate " + std::to_string(spec.sample_rate_hz) +
-                     " Hz must be positive");
+    const SensorChain::Reading reading =
+        sensors.read(t[k], table.b_m, table.b_ddot_m_s2, rig.truth.z_m[k]);
+    rig.recording.samples_si(k, 0) = reading.base_acc_m_s2;
+    rig.recording.samples_si(k, 1) = reading.y_m;
   }
 }
 

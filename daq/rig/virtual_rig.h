@@ -35,6 +35,10 @@ struct RigRecording {
   std::string message;
 };
 
+/// The sidecar of what the rig records: base_acc [m/s²] and y [m], stored as ADC counts of the
+/// sensors' lsb (so integer containers are lossless), mass, and the rig's settings.
+Sidecar rig_sidecar(const analysis::Model& model, const RigSpec& spec);
+
 /// The virtual rig (§2, §3): a model on a shaking table, an accelerometer on the table and a laser
 /// vibrometer on the mass. The table moves so that the model feels f = −m b̈; the accelerometer
 /// reads b̈ + bias + noise, the vibrometer y = z + b + creep + noise, both quantised.
