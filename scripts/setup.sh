@@ -19,7 +19,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libpagmo-dev libnlopt-cxx-dev libmatio-dev parallel
   libgtest-dev libgmock-dev libbenchmark-dev
-  qt6-base-dev libqcustomplot-dev libqcustomplot2.1-qt6
+  qt6-base-dev qt6-svg-dev libqcustomplot-dev libqcustomplot2.1-qt6
   xvfb xauth clang-format clang-tidy
 )
 DEFAULT_SAMPLE=samples/stepped_positive.flac

@@ -3,20 +3,40 @@
 #include <exception>
 
 #include <QAction>
+#include <QByteArray>
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QInputDialog>
+#include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QProgressBar>
 #include <QStatusBar>
+#include <QTabWidget>
+#include <QTimer>
 #include <QToolBar>
 
 #include "analysis/common/input_error.h"
+#include "ui/background_job.h"
 #include "ui/identification_panel.h"
 #include "ui/record_view.h"
+#include "ui/review_model.h"
+#include "ui/review_view.h"
 
 namespace oscilab::ui {
+
+/// A recording the window has opened, with the absolute path it came from.
+struct MainWindow::OpenedRecording {
+  QString path;
+  std::shared_ptr<const daq::Recording> recording;
+};
+
 namespace {
+
+const QString kRecordingFilter =
+    QObject::tr("Recordings (*.wav *.flac *.w64 *.rf64 *.aiff *.aif *.caf *.csv);;All files (*)");
+const QString kSessionFilter = QObject::tr("Oscilab sessions (*.json);;All files (*)");
 
 // "2 channels, 512 Hz, 262.00 s (134144 samples), stepped-sine at 9 Hz".
 QString summary(const daq::Recording& recording) {
@@ -45,8 +65,12 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
     : QMainWindow(parent), loader_(std::move(loader)) {
   if (!loader_) loader_ = [](const std::string& path) { return daq::read_recording(path); };
 
-  record_view_ = new RecordView(this);
-  setCentralWidget(record_view_);
+  review_view_ = new ReviewView;
+  central_tabs_ = new QTabWidget(this);
+  central_tabs_->setObjectName("central_tabs");
+  central_tabs_->setDocumentMode(true);
+  central_tabs_->addTab(review_view_, tr("Review"));
+  setCentralWidget(central_tabs_);
   identification_panel_ = new IdentificationPanel(this);
   auto* dock = new QDockWidget(tr("Fit and diagnosis"), this);
   dock->setObjectName("identification_dock");
@@ -54,80 +78,422 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   identification_panel_->setMinimumWidth(520);
   addDockWidget(Qt::RightDockWidgetArea, dock);
 
+  analysis_job_ = new BackgroundJob(this);
+  analysis_timer_ = new QTimer(this);
+  analysis_timer_->setSingleShot(true);
+  analysis_timer_->setInterval(0);
+  connect(analysis_timer_, &QTimer::timeout, this, &MainWindow::start_analysis);
+  connect(analysis_job_, &BackgroundJob::finished, this, &MainWindow::on_analysis_finished);
+  analysis_label_ = new QLabel;
+  analysis_label_->setObjectName("analysis_status");
+  analysis_progress_ = new QProgressBar;
+  analysis_progress_->setRange(0, 1000);
+  analysis_progress_->setMaximumWidth(160);
+  analysis_progress_->setTextVisible(false);
+  analysis_progress_->hide();
+  statusBar()->addPermanentWidget(analysis_label_);
+  statusBar()->addPermanentWidget(analysis_progress_);
+  connect(analysis_job_, &BackgroundJob::progress, this, [this](double fraction) {
+    analysis_progress_->setValue(static_cast<int>(1000 * fraction));
+  });
+
   QMenu* file_menu = menuBar()->addMenu(tr("&File"));
   open_action_ = file_menu->addAction(tr("&Open\u2026"), this, &MainWindow::choose_and_open);
   open_action_->setShortcut(QKeySequence::Open);
+  open_action_->setToolTip(tr("Open one or several recordings (Ctrl+O)"));
+  open_session_action_ =
+      file_menu->addAction(tr("Open &session\u2026"), this, &MainWindow::choose_and_open_session);
+  save_session_action_ =
+      file_menu->addAction(tr("Save session\u2026"), this, &MainWindow::choose_and_save_session);
+  save_session_action_->setShortcut(QKeySequence::Save);
   file_menu->addSeparator();
   quit_action_ = file_menu->addAction(tr("&Quit"), this, &QWidget::close);
   quit_action_->setShortcut(QKeySequence::Quit);
 
+  QMenu* review_menu = menuBar()->addMenu(tr("&Review"));
+  mark_action_ =
+      review_menu->addAction(tr("&Mark at cursor\u2026"), this, &MainWindow::mark_at_cursor);
+  mark_action_->setShortcut(Qt::CTRL | Qt::Key_M);
+  mark_action_->setToolTip(tr("Add a note at the cursor time (Ctrl+M)"));
+
+  RecordView* records = review_view_->record_view();
   QMenu* view_menu = menuBar()->addMenu(tr("&View"));
   view_menu->addAction(dock->toggleViewAction());
-  fit_action_ = view_menu->addAction(tr("&Whole record"), record_view_, &RecordView::fit);
+  fit_action_ = view_menu->addAction(tr("&Whole record"), records, &RecordView::fit);
   fit_action_->setShortcut(Qt::CTRL | Qt::Key_0);
   fit_action_->setToolTip(tr("Show the whole record (also: double-click the plot)"));
   auto_value_range_action_ = view_menu->addAction(tr("Fit &values to the time window"));
   auto_value_range_action_->setCheckable(true);
-  auto_value_range_action_->setChecked(record_view_->auto_value_range());
+  auto_value_range_action_->setChecked(records->auto_value_range());
   auto_value_range_action_->setToolTip(
       tr("Value axes follow the data in view; off: they keep the whole record's range"));
-  connect(auto_value_range_action_, &QAction::toggled, record_view_,
-          &RecordView::set_auto_value_range);
+  connect(auto_value_range_action_, &QAction::toggled, records, &RecordView::set_auto_value_range);
+  cursor_follows_mouse_action_ = view_menu->addAction(tr("&Cursor follows the mouse"));
+  cursor_follows_mouse_action_->setCheckable(true);
+  cursor_follows_mouse_action_->setChecked(records->cursor_follows_mouse());
+  cursor_follows_mouse_action_->setToolTip(
+      tr("Off (after a click or a level selection): the cursor stays where it was put"));
+  connect(cursor_follows_mouse_action_, &QAction::toggled, records,
+          &RecordView::set_cursor_follows_mouse);
+  connect(records, &RecordView::cursor_follows_mouse_changed, cursor_follows_mouse_action_,
+          &QAction::setChecked);
 
   QToolBar* tools = addToolBar(tr("Main"));
   tools->setObjectName("main_toolbar");
   tools->setMovable(false);
   tools->addAction(open_action_);
   tools->addAction(fit_action_);
+  tools->addAction(mark_action_);
+
+  connect(review_view_, &ReviewView::recording_shown, this, &MainWindow::update_title);
 
   setWindowTitle(tr("Oscilab"));
-  statusBar()->showMessage(tr("Open a recording with File \u25b8 Open (Ctrl+O)."));
+  statusBar()->showMessage(tr("Open recordings with File \u25b8 Open (Ctrl+O)."));
   resize(1500, 900);
 }
 
 MainWindow::~MainWindow() = default;
 
-bool MainWindow::open_recording(const QString& path) {
+RecordView* MainWindow::record_view() const { return review_view_->record_view(); }
+
+bool MainWindow::analysis_running() const {
+  return analysis_job_->running() || analysis_timer_->isActive();
+}
+
+bool MainWindow::load(const QString& path, QString& error) {
   const std::string path_utf8 = path.toStdString();
+  std::shared_ptr<daq::Recording> recording;
   try {
-    auto recording = std::make_shared<daq::Recording>(loader_(path_utf8));
+    recording = std::make_shared<daq::Recording>(loader_(path_utf8));
     if (recording->source_path.empty()) recording->source_path = path_utf8;
-    show_recording(std::move(recording));
-  } catch (const InputError& error) {
-    report_error(QString::fromStdString(error.what()));
+  } catch (const InputError& input_error) {
+    error = QString::fromStdString(input_error.what());
     return false;
-  } catch (const std::exception& error) {
-    report_error(tr("%1: cannot be read: %2").arg(path, QString::fromStdString(error.what())));
+  } catch (const std::exception& other) {
+    error = tr("%1: cannot be read: %2").arg(path, QString::fromStdString(other.what()));
     return false;
   }
+  const QString absolute = QFileInfo(path).absoluteFilePath();
+  bool replaced = false;
+  for (OpenedRecording& opened : opened_) {
+    if (opened.path == absolute) {
+      opened.recording = recording;
+      replaced = true;
+    }
+  }
+  if (!replaced) opened_.push_back({absolute, recording});
+  sync_recordings();
+  show_recording(recording);
   last_directory_ = QFileInfo(path).absolutePath();
   identification_panel_->add_recording(path_utf8);
+  schedule_analysis();
+  return true;
+}
+
+bool MainWindow::open_recording(const QString& path) {
+  QString error;
+  if (!load(path, error)) {
+    report_error(error, tr("Cannot open recording"));
+    return false;
+  }
   Q_EMIT recording_opened(path);
   return true;
 }
 
+int MainWindow::open_recordings(const QStringList& paths) {
+  std::shared_ptr<const daq::Recording> first;
+  int opened = 0;
+  for (const QString& path : paths) {
+    if (!open_recording(path)) continue;
+    ++opened;
+    for (const OpenedRecording& o : opened_) {
+      if (!first && o.path == QFileInfo(path).absoluteFilePath()) first = o.recording;
+    }
+  }
+  if (first) show_recording(first);
+  return opened;
+}
+
+QStringList MainWindow::opened_paths() const {
+  QStringList paths;
+  for (const OpenedRecording& opened : opened_) paths << opened.path;
+  return paths;
+}
+
 void MainWindow::show_recording(std::shared_ptr<const daq::Recording> recording) {
   if (!recording) return;
+  review_view_->show_recording(std::move(recording));
+}
+
+void MainWindow::update_title() {
+  const daq::Recording* recording = record_view()->recording();
+  if (!recording) {
+    setWindowTitle(tr("Oscilab"));
+    return;
+  }
   const QString name = recording->source_path.empty()
                            ? tr("untitled")
                            : QFileInfo(QString::fromStdString(recording->source_path)).fileName();
-  const QString text = name + ": " + summary(*recording);
-  record_view_->set_recording(std::move(recording));
   setWindowTitle(tr("%1 \u2014 Oscilab").arg(name));
-  statusBar()->showMessage(text);
+  statusBar()->showMessage(name + ": " + summary(*recording));
+}
+
+void MainWindow::sync_recordings() {
+  std::vector<ReviewView::Opened> recordings;
+  for (const OpenedRecording& opened : opened_) {
+    recordings.push_back({opened.path.toStdString(), opened.recording});
+  }
+  review_view_->set_recordings(std::move(recordings));
+}
+
+void MainWindow::set_analysis_settings(const analysis::PipelineSettings& settings) {
+  settings_ = settings;
+  schedule_analysis();
+}
+
+void MainWindow::schedule_analysis() { analysis_timer_->start(); }
+
+void MainWindow::start_analysis() {
+  if (analysis_job_->running()) {  // the recordings changed: this result would be stale
+    analysis_again_ = true;
+    analysis_job_->cancel();
+    return;
+  }
+  std::vector<std::shared_ptr<const daq::Recording>> recordings;
+  for (const OpenedRecording& opened : opened_) recordings.push_back(opened.recording);
+  if (recordings.empty()) {
+    analysis_.reset();
+    review_view_->set_analysis(nullptr);
+    analysis_label_->clear();
+    return;
+  }
+  auto result = std::make_shared<ReviewAnalysis>();
+  analysis_result_ = result;
+  const analysis::PipelineSettings settings = settings_;
+  analysis_progress_->setValue(0);
+  analysis_progress_->show();
+  analysis_label_->setText(tr("Analysing %1 %2\u2026")
+                               .arg(recordings.size())
+                               .arg(recordings.size() == 1 ? tr("recording") : tr("recordings")));
+  review_view_->set_analysis_running(true);
+  analysis_job_->start(
+      [result, recordings, settings](const ProgressFn& progress, const CancelToken& cancel) {
+        try {
+          *result = analyze_review(recordings, settings, progress, cancel);
+        } catch (const std::exception& error) {  // nothing may cross the thread
+          result->errors.emplace_back(error.what());
+          result->campaign.status = JobStatus::InvalidInput;
+        }
+      });
+}
+
+void MainWindow::on_analysis_finished(bool cancelled) {
+  analysis_progress_->hide();
+  if (analysis_again_) {
+    analysis_again_ = false;
+    start_analysis();
+    return;
+  }
+  if (cancelled || !analysis_result_) {
+    analysis_label_->setText(tr("Analysis cancelled"));
+    return;
+  }
+  analysis_ = std::move(analysis_result_);
+  review_view_->set_analysis(analysis_);
+  std::size_t levels = 0;
+  for (const analysis::RecordAnalysis& record : analysis_->campaign.records) {
+    levels += record.levels.size();
+  }
+  const std::size_t records = analysis_->campaign.records.size();
+  QString text = tr("Analysis: %1 %2, %3 %4")
+                     .arg(records)
+                     .arg(records == 1 ? tr("record") : tr("records"))
+                     .arg(levels)
+                     .arg(levels == 1 ? tr("level") : tr("levels"));
+  if (!analysis_->errors.empty()) {
+    text += tr(", %1 left out").arg(analysis_->errors.size());
+    statusBar()->showMessage(tr("Analysis: %1").arg(QString::fromStdString(analysis_->errors[0])));
+  }
+  analysis_label_->setText(text);
+
+  // A session's selection, now that its levels exist.
+  std::vector<LevelKey> keys;
+  for (const Session::LevelRef& ref : pending_levels_) {
+    for (std::size_t r = 0; r < analysis_->recordings.size(); ++r) {
+      for (const OpenedRecording& opened : opened_) {
+        if (opened.recording == analysis_->recordings[r] &&
+            opened.path.toStdString() == ref.recording) {
+          keys.push_back({int(r), ref.level});
+        }
+      }
+    }
+  }
+  pending_levels_.clear();
+  if (!keys.empty()) review_view_->select_levels(keys, false);
+  Q_EMIT analysis_finished();
+}
+
+Session MainWindow::current_session() const {
+  Session session;
+  for (const OpenedRecording& opened : opened_) {
+    session.recordings.push_back(opened.path.toStdString());
+  }
+  session.settings = settings_;
+  session.window_geometry_base64 = saveGeometry().toBase64().toStdString();
+  session.window_state_base64 = saveState().toBase64().toStdString();
+  session.shown_recording = review_view_->shown_path();
+  if (record_view()->recording()) {
+    session.time_window = record_view()->time_window();
+    session.cursor_s = record_view()->cursor_time();
+  }
+  if (!pending_levels_.empty()) {  // a session's selection whose analysis is not shown yet
+    session.selected_levels = pending_levels_;
+  } else if (analysis_) {
+    for (const LevelKey& key : review_view_->selected_levels()) {
+      if (key.record < 0 || std::size_t(key.record) >= analysis_->recordings.size()) continue;
+      for (const OpenedRecording& opened : opened_) {
+        if (opened.recording == analysis_->recordings[std::size_t(key.record)]) {
+          session.selected_levels.push_back({opened.path.toStdString(), key.level});
+        }
+      }
+    }
+  }
+  session.annotations = review_view_->annotations();
+  session.live = live_settings_;
+  return session;
+}
+
+bool MainWindow::save_session(const QString& path) {
+  try {
+    write_session(current_session(), path.toStdString());
+  } catch (const InputError& error) {
+    report_error(QString::fromStdString(error.what()), tr("Cannot save session"));
+    return false;
+  }
+  statusBar()->showMessage(tr("Session saved to %1").arg(path));
+  return true;
+}
+
+bool MainWindow::open_session(const QString& path) {
+  Session session;
+  try {
+    session = read_session(path.toStdString());
+  } catch (const InputError& error) {
+    report_error(QString::fromStdString(error.what()), tr("Cannot open session"));
+    return false;
+  }
+  // The file is valid: replace the review by it.
+  opened_.clear();
+  analysis_.reset();
+  pending_levels_.clear();
+  settings_ = session.settings;
+  live_settings_ = session.live;
+  if (!session.window_geometry_base64.empty()) {
+    restoreGeometry(
+        QByteArray::fromBase64(QByteArray::fromStdString(session.window_geometry_base64)));
+  }
+  if (!session.window_state_base64.empty()) {
+    restoreState(QByteArray::fromBase64(QByteArray::fromStdString(session.window_state_base64)));
+  }
+  QStringList missing;
+  for (const std::string& recording : session.recordings) {
+    const QString file = QString::fromStdString(recording);
+    QString error;
+    if (!QFileInfo::exists(file)) {
+      missing << tr("%1 (not found)").arg(QFileInfo(file).fileName());
+    } else if (!load(file, error)) {
+      missing << error;
+    }
+  }
+  sync_recordings();
+  identification_panel_->set_recordings({});
+  for (const OpenedRecording& opened : opened_) {
+    identification_panel_->add_recording(opened.path.toStdString());
+  }
+  const auto is_open = [this](const std::string& p) {
+    for (const OpenedRecording& opened : opened_) {
+      if (opened.path.toStdString() == p) return true;
+    }
+    return false;
+  };
+
+  std::shared_ptr<const daq::Recording> shown = opened_.empty() ? nullptr : opened_[0].recording;
+  for (const OpenedRecording& opened : opened_) {
+    if (opened.path.toStdString() == session.shown_recording) shown = opened.recording;
+  }
+  review_view_->set_analysis(nullptr);
+  review_view_->show_recording(shown);
+  if (shown && session.time_window) {
+    record_view()->set_time_window(session.time_window->start_s, session.time_window->end_s);
+  }
+  if (shown && session.cursor_s) {
+    record_view()->set_cursor_follows_mouse(false);
+    record_view()->set_cursor_time(*session.cursor_s);
+  }
+  std::vector<Annotation> annotations;
+  for (const Annotation& annotation : session.annotations) {
+    if (is_open(annotation.recording)) annotations.push_back(annotation);
+  }
+  review_view_->set_annotations(std::move(annotations));
+  for (const Session::LevelRef& level : session.selected_levels) {
+    if (is_open(level.recording)) pending_levels_.push_back(level);
+  }
+  schedule_analysis();
+  Q_EMIT live_settings_restored(live_settings_);
+  if (!missing.isEmpty()) {
+    report_error(tr("%1: recordings not opened: %2; the other %3 opened")
+                     .arg(path, missing.join("; "))
+                     .arg(opened_.size()),
+                 tr("Session opened in part"));
+  } else {
+    statusBar()->showMessage(
+        tr("Session %1: %2 recordings opened").arg(QFileInfo(path).fileName()).arg(opened_.size()));
+  }
+  return true;
 }
 
 void MainWindow::choose_and_open() {
-  const QString path = QFileDialog::getOpenFileName(
-      this, tr("Open recording"), last_directory_,
-      tr("Recordings (*.wav *.flac *.w64 *.rf64 *.aiff *.aif *.caf *.csv);;All files (*)"));
-  if (!path.isEmpty()) open_recording(path);
+  const QStringList paths =
+      QFileDialog::getOpenFileNames(this, tr("Open recordings"), last_directory_, kRecordingFilter);
+  if (!paths.isEmpty()) open_recordings(paths);
 }
 
-void MainWindow::report_error(const QString& message) {
+void MainWindow::choose_and_open_session() {
+  const QString path =
+      QFileDialog::getOpenFileName(this, tr("Open session"), last_directory_, kSessionFilter);
+  if (!path.isEmpty()) open_session(path);
+}
+
+void MainWindow::choose_and_save_session() {
+  const QString path = QFileDialog::getSaveFileName(
+      this, tr("Save session"), QFileInfo(last_directory_, "session.json").filePath(),
+      kSessionFilter);
+  if (!path.isEmpty()) save_session(path);
+}
+
+void MainWindow::mark_at_cursor() {
+  if (!record_view()->recording()) {
+    statusBar()->showMessage(tr("Open a recording to mark it."));
+    return;
+  }
+  const TimeWindow window = record_view()->time_window();
+  const double t_s = record_view()->cursor_time().value_or(0.5 * (window.start_s + window.end_s));
+  QString note = tr("mark %1").arg(review_view_->annotations().size() + 1);
+  if (interactive_errors_) {
+    bool ok = false;
+    note = QInputDialog::getText(this, tr("Mark"), tr("Note at t = %1 s:").arg(t_s, 0, 'f', 3),
+                                 QLineEdit::Normal, note, &ok);
+    if (!ok) return;
+  }
+  if (review_view_->add_annotation(note)) {
+    statusBar()->showMessage(tr("Marked \u201c%1\u201d at t = %2 s").arg(note).arg(t_s, 0, 'f', 3));
+  }
+}
+
+void MainWindow::report_error(const QString& message, const QString& title) {
   statusBar()->showMessage(tr("Error: %1").arg(message));
   Q_EMIT error_reported(message);
-  if (interactive_errors_) QMessageBox::critical(this, tr("Cannot open recording"), message);
+  if (interactive_errors_) QMessageBox::critical(this, title, message);
 }
 
 }  // namespace oscilab::ui

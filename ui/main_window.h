@@ -3,26 +3,46 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <QMainWindow>
 #include <QString>
+#include <QStringList>
 
+#include <nlohmann/json.hpp>
+
+#include "analysis/pipeline/pipeline_settings.h"
 #include "daq/recording/recording.h"
+#include "ui/review_session.h"
 
 class QAction;
+class QLabel;
+class QProgressBar;
+class QTabWidget;
+class QTimer;
 
 namespace oscilab::ui {
 
+class BackgroundJob;
 class IdentificationPanel;
 class RecordView;
+class ReviewView;
+struct ReviewAnalysis;
 
-/// The Oscilab main window: File ▸ Open a recording and review it in a RecordView; the
-/// identification panel (a dock on the right) fits the friction model to the opened stepped-sine
-/// recordings and diagnoses what it misses.
+/// The Oscilab main window. Its central widget is a tab widget whose first tab, "Review", is the
+/// record review (ReviewView): File ▸ Open one or several recordings, see them over time, the
+/// levels of their offline analysis with the loop of each, the restoring-force slices, and
+/// annotations; File ▸ Save/Open session keeps all of it. The identification panel (a dock on the
+/// right) fits the friction model to the opened stepped-sine recordings and diagnoses what it
+/// misses.
 ///
-/// A recording that cannot be read never ends the program: the reader's message goes to the
+/// The offline analysis of the opened recordings (analyze_review) runs on a worker thread
+/// whenever the set of recordings or the settings change, with its progress in the status bar;
+/// the UI thread never waits for it. analysis_finished() says when a result is shown.
+///
+/// A recording or session that cannot be read never ends the program: the message goes to the
 /// status bar, to the error_reported signal and, when interactive errors are on (the default),
-/// to a modal message box; the recording shown before stays.
+/// to a modal message box; what was shown before stays.
 class MainWindow : public QMainWindow {
   Q_OBJECT
 
@@ -34,41 +54,107 @@ class MainWindow : public QMainWindow {
   explicit MainWindow(QWidget* parent = nullptr, Loader loader = {});
   ~MainWindow() override;
 
-  /// Reads and shows the recording at `path`. On failure reports the error (see the class
-  /// comment) and returns false.
+  /// Reads the recording at `path`, adds it to the opened recordings (opening a path again
+  /// re-reads it) and shows it; the analysis restarts. On failure reports the error (see the
+  /// class comment) and returns false.
   bool open_recording(const QString& path);
-  /// Shows a recording already in memory; the title names its source_path, or "untitled".
+  /// Opens each of `paths` in order and shows the first that opened; returns how many opened.
+  int open_recordings(const QStringList& paths);
+  /// Shows a recording in the time plots; the title names its source_path, or "untitled".
   void show_recording(std::shared_ptr<const daq::Recording> recording);
+  /// The opened recordings' absolute paths, in the order they were opened.
+  QStringList opened_paths() const;
+
+  /// Settings of the offline analysis (the next analysis uses them; a change restarts it).
+  void set_analysis_settings(const analysis::PipelineSettings& settings);
+  const analysis::PipelineSettings& analysis_settings() const { return settings_; }
+  /// The analysis shown, or null before the first finished.
+  std::shared_ptr<const ReviewAnalysis> analysis() const { return analysis_; }
+  bool analysis_running() const;
+
+  /// Writes the session (recordings, settings, layout, view, selection, annotations, live) to
+  /// `path`. On failure reports the error and returns false.
+  bool save_session(const QString& path);
+  /// Replaces the review by the session at `path`. A bad file is reported (naming the file and
+  /// field) and changes nothing: returns false. Recordings that cannot be found are reported by
+  /// name and the others opened; the selected levels come back when the analysis finishes.
+  bool open_session(const QString& path);
+  /// The session as it would be saved now.
+  Session current_session() const;
+
+  /// Settings of the live monitor, stored in the session verbatim ("live").
+  void set_live_settings(const nlohmann::json& settings) { live_settings_ = settings; }
+  nlohmann::json live_settings() const { return live_settings_; }
 
   /// Off: errors are reported by the status bar and error_reported only, without a modal
-  /// message box (for tests and unattended screenshots).
+  /// message box, and Mark uses a default note instead of asking (for tests and screenshots).
   void set_interactive_errors(bool on) { interactive_errors_ = on; }
 
-  RecordView* record_view() const { return record_view_; }
+  /// The central tab widget: "Review" first; other pages (a live monitor) are added after it.
+  QTabWidget* central_tabs() const { return central_tabs_; }
+  ReviewView* review_view() const { return review_view_; }
+  RecordView* record_view() const;
   IdentificationPanel* identification_panel() const { return identification_panel_; }
   QAction* open_action() const { return open_action_; }
+  QAction* open_session_action() const { return open_session_action_; }
+  QAction* save_session_action() const { return save_session_action_; }
+  QAction* mark_action() const { return mark_action_; }
   QAction* fit_action() const { return fit_action_; }
   QAction* auto_value_range_action() const { return auto_value_range_action_; }
+  QAction* cursor_follows_mouse_action() const { return cursor_follows_mouse_action_; }
   QAction* quit_action() const { return quit_action_; }
 
  Q_SIGNALS:
-  /// A recording could not be opened; `message` names the file and the problem.
+  /// A recording or session could not be opened (or saved); `message` names the file and the
+  /// problem.
   void error_reported(const QString& message);
   /// A recording was opened and is shown.
   void recording_opened(const QString& path);
+  /// An analysis of the opened recordings finished and is shown.
+  void analysis_finished();
+  /// A session was opened; its "live" settings were stored and are passed on.
+  void live_settings_restored(const nlohmann::json& settings);
 
  private:
+  struct OpenedRecording;
   void choose_and_open();
-  void report_error(const QString& message);
+  void choose_and_open_session();
+  void choose_and_save_session();
+  void mark_at_cursor();
+  void report_error(const QString& message, const QString& title);
+  bool load(const QString& path, QString& error);
+  void sync_recordings();
+  void schedule_analysis();
+  void start_analysis();
+  void on_analysis_finished(bool cancelled);
+  void update_title();
 
   Loader loader_;
   bool interactive_errors_ = true;
   QString last_directory_;
-  RecordView* record_view_ = nullptr;
+  std::vector<OpenedRecording> opened_;
+  analysis::PipelineSettings settings_;
+  nlohmann::json live_settings_ = nlohmann::json::object();
+
+  BackgroundJob* analysis_job_ = nullptr;
+  QTimer* analysis_timer_ = nullptr;                 // coalesces changes into one analysis
+  bool analysis_again_ = false;                      // the recordings changed while an analysis ran
+  std::shared_ptr<ReviewAnalysis> analysis_result_;  // written by the worker
+  std::shared_ptr<const ReviewAnalysis> analysis_;   // shown
+  std::vector<Session::LevelRef> pending_levels_;    // a session's, until its analysis is shown
+
+  QTabWidget* central_tabs_ = nullptr;
+  ReviewView* review_view_ = nullptr;
   IdentificationPanel* identification_panel_ = nullptr;
+  QLabel* analysis_label_ = nullptr;
+  QProgressBar* analysis_progress_ = nullptr;
   QAction* open_action_ = nullptr;
+  QAction* open_session_action_ = nullptr;
+  QAction* save_session_action_ = nullptr;
+  QAction* mark_action_ = nullptr;
   QAction* fit_action_ = nullptr;
   QAction* auto_value_range_action_ = nullptr;
+  QAction* cursor_follows_mouse_action_ = nullptr;
   QAction* quit_action_ = nullptr;
 };
 

@@ -10,6 +10,7 @@
 #include <qcustomplot.h>
 
 #include "ui/cursor_readout.h"
+#include "ui/time_marks.h"
 
 namespace oscilab::ui {
 namespace {
@@ -21,6 +22,8 @@ constexpr std::array<QRgb, 6> kChannelColours = {0x1f77b4, 0xd62728, 0x2ca02c,
 constexpr double kMinWindowSamples = 10.0;
 // Space left above and below the data when a value axis is fitted, as a fraction of its span.
 constexpr double kValueMargin = 0.05;
+// A press and release closer than this (Manhattan distance, px) is a click, not a drag.
+constexpr double kClickTolerancePx = 4.0;
 
 // "y — laser vibrometer (mass)": the channel, its sensor and what it measures (its role).
 QString title_text(const daq::ChannelInfo& channel) {
@@ -59,6 +62,9 @@ RecordView::RecordView(QWidget* parent) : QWidget(parent) {
   layout->addWidget(plot_, 1);
 
   connect(plot_, &QCustomPlot::mouseMove, this, &RecordView::on_mouse_move);
+  connect(plot_, &QCustomPlot::mousePress, this,
+          [this](QMouseEvent* event) { press_position_ = event->position(); });
+  connect(plot_, &QCustomPlot::mouseRelease, this, &RecordView::on_mouse_release);
   connect(plot_, &QCustomPlot::mouseDoubleClick, this, [this](QMouseEvent*) { fit(); });
   rebuild_plots();
 }
@@ -90,7 +96,9 @@ void RecordView::rebuild_plots() {
   graphs_.clear();
   cursor_lines_.clear();
   cursor_tracers_.clear();
+  mark_items_.clear();
   cursor_text_.clear();
+  cursor_t_s_.reset();
   readout_->setText(tr("Move the mouse over the plots to read the values."));
 
   const bool showable =
@@ -189,7 +197,24 @@ void RecordView::rebuild_plots() {
     cursor_lines_.push_back(line);
     cursor_tracers_.push_back(tracer);
   }
+  draw_marks();
   Q_EMIT cursor_text_changed(cursor_text_);
+}
+
+void RecordView::set_marks(std::vector<Mark> marks) {
+  marks_ = std::move(marks);
+  draw_marks();
+  plot_->replot(QCustomPlot::rpQueuedReplot);
+}
+
+void RecordView::draw_marks() {
+  for (QCPAbstractItem* item : mark_items_) plot_->removeItem(item);
+  mark_items_.clear();
+  for (const Mark& mark : marks_) {
+    for (std::size_t c = 0; c < rects_.size(); ++c) {
+      add_time_mark(plot_, rects_[c], mark.t_s, c == 0 ? mark.text : QString(), mark_items_);
+    }
+  }
 }
 
 TimeWindow RecordView::full_window() const {
@@ -251,10 +276,27 @@ void RecordView::on_time_range_changed(const QCPRange& range) {
   syncing_time_axes_ = false;
   if (auto_value_range_) fit_value_axes(window);
   plot_->replot(QCustomPlot::rpQueuedReplot);
+  Q_EMIT time_window_changed(window.start_s, window.end_s);
+}
+
+void RecordView::on_mouse_release(QMouseEvent* event) {
+  if (rects_.empty() || event->button() != Qt::LeftButton) return;
+  const QPointF position = event->position();
+  if ((position - press_position_).manhattanLength() > kClickTolerancePx) return;  // a drag
+  if (plot_->axisRectAt(position) == nullptr) return;
+  set_cursor_follows_mouse(false);
+  set_cursor_time(rects_.front()->axis(QCPAxis::atBottom)->pixelToCoord(position.x()));
+  if (cursor_t_s_) Q_EMIT clicked(*cursor_t_s_);
+}
+
+void RecordView::set_cursor_follows_mouse(bool on) {
+  if (on == cursor_follows_mouse_) return;
+  cursor_follows_mouse_ = on;
+  Q_EMIT cursor_follows_mouse_changed(on);
 }
 
 void RecordView::on_mouse_move(QMouseEvent* event) {
-  if (rects_.empty()) return;
+  if (rects_.empty() || !cursor_follows_mouse_) return;
   const QPointF position = event->position();
   if (plot_->axisRectAt(position) == nullptr) return;
   set_cursor_time(rects_.front()->axis(QCPAxis::atBottom)->pixelToCoord(position.x()));
@@ -272,9 +314,11 @@ void RecordView::set_cursor_time(double t_s) {
     cursor_tracers_[c]->setVisible(true);
   }
   cursor_text_ = QString::fromStdString(format_readout(readout, *recording_, units_));
+  cursor_t_s_ = readout.t_s;
   readout_->setText(cursor_text_);
   cursor_layer_->replot();
   Q_EMIT cursor_text_changed(cursor_text_);
+  Q_EMIT cursor_moved(readout.t_s);
 }
 
 }  // namespace oscilab::ui

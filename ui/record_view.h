@@ -1,8 +1,10 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include <QPointF>
 #include <QString>
 #include <QWidget>
 
@@ -10,6 +12,7 @@
 #include "ui/display_units.h"
 #include "ui/time_window.h"
 
+class QCPAbstractItem;
 class QCPAxisRect;
 class QCPGraph;
 class QCPItemStraightLine;
@@ -29,9 +32,11 @@ namespace oscilab::ui {
 /// Mouse: the wheel zooms and a drag pans the time axis of all channels together; a
 /// double-click fits the whole record; value axes follow the data in view (optional); moving the
 /// mouse places a cursor on every plot and shows t and each channel's value in a readout line above
-/// the plots. Large records (10⁵–10⁶ samples per channel) stay responsive: graph data is loaded in
-/// one go, drawn with adaptive sampling, and the cursor lives on its own buffered layer so that
-/// moving it does not redraw the curves.
+/// the plots; a click places the cursor and holds it there (the mouse no longer moves it, see
+/// set_cursor_follows_mouse). Annotations show as labelled vertical lines. Large records (10⁵–10⁶
+/// samples per channel) stay responsive: graph data is loaded in one go, drawn with adaptive
+/// sampling, and the cursor lives on its own buffered layer so that moving it does not redraw the
+/// curves.
 ///
 /// Used from the UI thread only.
 class RecordView : public QWidget {
@@ -62,6 +67,21 @@ class RecordView : public QWidget {
 
   /// Places the cursor at the sample nearest to `t_s` and updates the readout.
   void set_cursor_time(double t_s);
+  /// The cursor's time (a sample time), or nothing before the cursor was placed.
+  std::optional<double> cursor_time() const { return cursor_t_s_; }
+  /// On (the default): the cursor follows the mouse over the plots. Off: it stays where a click,
+  /// set_cursor_time or a level selection put it. A click switches it off.
+  void set_cursor_follows_mouse(bool on);
+  bool cursor_follows_mouse() const { return cursor_follows_mouse_; }
+
+  /// A labelled vertical line at a time on every channel plot (an annotation).
+  struct Mark {
+    double t_s = 0.0;
+    QString text;
+  };
+  /// Replaces the marks drawn (they stay when the recording is replaced).
+  void set_marks(std::vector<Mark> marks);
+  const std::vector<Mark>& marks() const { return marks_; }
   /// The readout line: t and every channel's value at the cursor; empty without a cursor.
   QString cursor_text() const { return cursor_text_; }
 
@@ -73,11 +93,21 @@ class RecordView : public QWidget {
  Q_SIGNALS:
   /// The readout changed (cursor moved, recording replaced).
   void cursor_text_changed(const QString& text);
+  /// The cursor moved to `t_s` (by the mouse, a click or set_cursor_time).
+  void cursor_moved(double t_s);
+  /// A click (press and release without a drag) on a plot at time `t_s`; the cursor is there.
+  void clicked(double t_s);
+  /// set_cursor_follows_mouse changed, by a call or a click.
+  void cursor_follows_mouse_changed(bool on);
+  /// The time window shown changed (zoom, pan, fit, set_time_window).
+  void time_window_changed(double start_s, double end_s);
 
  private:
   void rebuild_plots();
   void on_time_range_changed(const QCPRange& range);
   void on_mouse_move(QMouseEvent* event);
+  void on_mouse_release(QMouseEvent* event);
+  void draw_marks();
   TimeWindow full_window() const;
   void fit_value_axes(TimeWindow window);
 
@@ -92,6 +122,11 @@ class RecordView : public QWidget {
   std::vector<QCPItemStraightLine*> cursor_lines_;
   std::vector<QCPItemTracer*> cursor_tracers_;
   QString cursor_text_;
+  std::optional<double> cursor_t_s_;
+  bool cursor_follows_mouse_ = true;
+  QPointF press_position_;
+  std::vector<Mark> marks_;
+  std::vector<QCPAbstractItem*> mark_items_;
   bool syncing_time_axes_ = false;
   bool auto_value_range_ = true;
 };

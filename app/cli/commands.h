@@ -14,5 +14,8 @@ void add_hbm_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
+void add_record_command(CLI::App& app);
+void add_stream_command(CLI::App& app);
+void add_export_command(CLI::App& app);
 
 }  // namespace oscilab::cli

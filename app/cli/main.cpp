@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
   oscilab::cli::add_fit_command(app);
   oscilab::cli::add_merge_command(app);
   oscilab::cli::add_diagnose_command(app);
+  oscilab::cli::add_record_command(app);
+  oscilab::cli::add_stream_command(app);
+  oscilab::cli::add_export_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -1,12 +1,18 @@
 // oscilab: the desktop app. `oscilab [REC...]` opens a window on recordings (the first is shown,
-// all join the fit and diagnosis panel); `oscilab --screenshot OUT.png [--cursor T]
-// [--run fit|diagnose] REC...` saves a picture of that window (after the fit or diagnosis, if
-// asked) and exits.
+// all are analysed for the review and join the fit and diagnosis panel); `oscilab --session FILE`
+// opens a saved session; `oscilab --screenshot OUT.png [--cursor T] [--window T0:T1]
+// [--level R:L,...] [--tab levels|cycles|rfs|annotations] [--mark T:NOTE] [--hide-panel]
+// [--run fit|diagnose] REC...` saves a picture of that window (after the analysis, and the fit or
+// diagnosis if asked) and exits.
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QDockWidget>
 #include <QStatusBar>
+#include <QTabWidget>
 #include <QTimer>
 
 #include <qcustomplot.h>
@@ -14,11 +20,26 @@
 #include "ui/identification_panel.h"
 #include "ui/main_window.h"
 #include "ui/record_view.h"
+#include "ui/review_view.h"
 
 namespace {
 
 // Time the event loop gets to lay out and paint the window before a screenshot, in ms.
 constexpr int kScreenshotSettleMs = 500;
+
+// "0:11,1:11" → levels (record index : level index); malformed parts are skipped.
+std::vector<oscilab::ui::LevelKey> parse_levels(const QString& text) {
+  std::vector<oscilab::ui::LevelKey> keys;
+  for (const QString& part : text.split(',', Qt::SkipEmptyParts)) {
+    const QStringList numbers = part.split(':');
+    bool ok_record = false, ok_level = false;
+    if (numbers.size() != 2) continue;
+    const int record = numbers[0].toInt(&ok_record);
+    const int level = numbers[1].toInt(&ok_level);
+    if (ok_record && ok_level) keys.push_back({record, level});
+  }
+  return keys;
+}
 
 }  // namespace
 
@@ -37,37 +58,85 @@ int main(int argc, char** argv) {
       "screenshot", "Save a PNG of the window to <png> and exit (no dialogs).", "png");
   const QCommandLineOption size_option("size", "Window size for --screenshot (default 1280x800).",
                                        "WxH", "1280x800");
+  const QCommandLineOption session_option("session", "Open the session <file>.", "file");
   const QCommandLineOption cursor_option("cursor", "Place the readout cursor at <t> seconds.", "t");
   const QCommandLineOption window_option("window", "Show the time window <t0:t1> in seconds.",
                                          "t0:t1");
+  const QCommandLineOption level_option(
+      "level", "Select levels once analysed: record:level indices, comma-separated (0:11,1:11).",
+      "levels");
+  const QCommandLineOption tab_option(
+      "tab", "Review tab to show: levels | cycles | rfs | annotations.", "tab");
+  const QCommandLineOption mark_option(
+      "mark", "Annotate the recording shown at <t> seconds with a note (t:note; repeatable).",
+      "t:note");
+  const QCommandLineOption hide_panel_option("hide-panel", "Hide the fit and diagnosis panel.");
   const QCommandLineOption run_option(
       "run", "Run a fit or a diagnosis of the recordings in the panel first: fit | diagnose.",
       "job");
-  parser.addOptions({screenshot_option, size_option, cursor_option, window_option, run_option});
+  parser.addOptions({screenshot_option, size_option, session_option, cursor_option, window_option,
+                     level_option, tab_option, mark_option, hide_panel_option, run_option});
   parser.process(app);
 
   const QString screenshot_path = parser.value(screenshot_option);
   const bool screenshot = !screenshot_path.isEmpty();
   oscilab::ui::MainWindow window;
   window.set_interactive_errors(!screenshot);
+  oscilab::ui::ReviewView* review = window.review_view();
 
   const QStringList size = parser.value(size_option).split('x');
   if (screenshot && size.size() == 2) window.resize(size[0].toInt(), size[1].toInt());
+  if (parser.isSet(hide_panel_option)) {
+    if (auto* dock = window.findChild<QDockWidget*>("identification_dock")) dock->hide();
+  }
   window.show();
 
-  const QStringList recordings = parser.positionalArguments();
   bool opened = true;
-  for (qsizetype i = recordings.size() - 1; i >= 0; --i) {  // the first ends up shown
-    opened = window.open_recording(recordings[i]) && opened;
+  if (parser.isSet(session_option)) opened = window.open_session(parser.value(session_option));
+  const QStringList recordings = parser.positionalArguments();
+  if (!recordings.isEmpty()) {
+    opened = window.open_recordings(recordings) == recordings.size() && opened;
   }
-  const QStringList window_s = parser.value(window_option).split(':');
-  if (window_s.size() == 2) {
-    window.record_view()->set_time_window(window_s[0].toDouble(), window_s[1].toDouble());
+  const QString tab = parser.value(tab_option);
+  const QStringList tabs = {"levels", "cycles", "rfs", "annotations"};
+  if (tabs.contains(tab)) review->tabs()->setCurrentIndex(int(tabs.indexOf(tab)));
+
+  // What the options ask of the review once the analysis is shown: levels, then the time window
+  // and the cursor (which a level selection would otherwise move), then the notes.
+  const auto apply_view = [&] {
+    const auto levels = parse_levels(parser.value(level_option));
+    if (!levels.empty()) review->select_levels(levels);
+    const QStringList window_s = parser.value(window_option).split(':');
+    if (window_s.size() == 2) {
+      window.record_view()->set_time_window(window_s[0].toDouble(), window_s[1].toDouble());
+    }
+    if (parser.isSet(cursor_option)) {
+      window.record_view()->set_cursor_time(parser.value(cursor_option).toDouble());
+    }
+    for (const QString& mark : parser.values(mark_option)) {
+      const qsizetype colon = mark.indexOf(':');
+      if (colon <= 0) continue;
+      review->set_cursor_time(mark.left(colon).toDouble());
+      review->add_annotation(mark.mid(colon + 1));
+    }
+    if (parser.isSet(cursor_option)) {  // the notes moved the cursor
+      window.record_view()->set_cursor_time(parser.value(cursor_option).toDouble());
+    }
+  };
+  const bool analysing = window.analysis_running();
+  if (!analysing) apply_view();
+
+  if (!screenshot) {
+    if (analysing) {
+      auto once = std::make_shared<QMetaObject::Connection>();
+      *once = QObject::connect(&window, &oscilab::ui::MainWindow::analysis_finished, &window,
+                               [once, apply_view] {
+                                 QObject::disconnect(*once);
+                                 apply_view();
+                               });
+    }
+    return QApplication::exec();
   }
-  if (parser.isSet(cursor_option)) {
-    window.record_view()->set_cursor_time(parser.value(cursor_option).toDouble());
-  }
-  if (!screenshot) return QApplication::exec();
 
   if (!opened) {
     std::fprintf(stderr, "oscilab: %s\n", qPrintable(window.statusBar()->currentMessage()));
@@ -84,18 +153,32 @@ int main(int argc, char** argv) {
       QApplication::quit();
     });
   };
+  // The picture waits for the analysis and for the job asked for, whichever ends last.
   const QString job = parser.value(run_option);
-  if (job == "fit" || job == "diagnose") {
+  const bool run_job = job == "fit" || job == "diagnose";
+  int waiting = (analysing ? 1 : 0) + (run_job ? 1 : 0);
+  const auto done = [&] {
+    if (--waiting == 0) grab();
+  };
+  bool analysed = false;
+  if (analysing) {
+    QObject::connect(&window, &oscilab::ui::MainWindow::analysis_finished, &window, [&] {
+      if (analysed) return;  // the picture shows the first analysis
+      analysed = true;
+      apply_view();
+      done();
+    });
+  }
+  if (run_job) {
     auto* panel = window.identification_panel();
-    QObject::connect(panel, &oscilab::ui::IdentificationPanel::job_finished, &window, grab);
+    QObject::connect(panel, &oscilab::ui::IdentificationPanel::job_finished, &window, done);
     if (job == "fit") {
       panel->start_fit();
     } else {
       panel->start_diagnosis();
     }
-  } else {
-    grab();
   }
+  if (waiting == 0) grab();
   QApplication::exec();
   return status;
 }

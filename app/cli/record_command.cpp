@@ -1,0 +1,150 @@
+// `oscilab-cli record --source rig|net:HOST:PORT|file:REC --out REC [--duration S]` (contract §2):
+// records a live source as it arrives, with its sidecar and event log, and prints the live EDC.
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+
+#include "analysis/common/input_error.h"
+#include "app/cli/commands.h"
+#include "app/cli/live_source_options.h"
+#include "daq/live/acquisition.h"
+
+namespace oscilab::cli {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_signal(int) { g_interrupted.store(true); }
+
+struct RecordOptions {
+  std::string source = "rig";
+  std::string out;
+  std::string edc;
+  LiveSourceOptions live;
+  double wait_s = 0.0;  // net: give up when no sender came within this (0: wait forever)
+};
+
+void print_status(const daq::AcquisitionStatus& s, bool final_line) {
+  std::fprintf(
+      stderr,
+      "%s%s  t %.1f s  samples %llu  gaps %llu (%llu samples)  dup %llu  reord %llu  "
+      "late %llu  nan %llu  sat %llu  overflow %llu  queue %zu/%zu  cycles %ld (-%ld)  "
+      "levels %zu%s",
+      final_line ? "" : "\r", s.source.c_str(), s.stream_time_s,
+      static_cast<unsigned long long>(s.samples), static_cast<unsigned long long>(s.gaps),
+      static_cast<unsigned long long>(s.gap_samples), static_cast<unsigned long long>(s.duplicates),
+      static_cast<unsigned long long>(s.reordered), static_cast<unsigned long long>(s.late),
+      static_cast<unsigned long long>(s.non_finite_samples),
+      static_cast<unsigned long long>(s.saturated_samples),
+      static_cast<unsigned long long>(s.overflowed_blocks), s.queue_fill, s.queue_capacity,
+      s.cycles, s.excluded_cycles, s.levels, final_line ? "\n" : "   ");
+}
+
+void write_edc(const std::vector<analysis::LevelResult>& levels, const std::string& path) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) throw InputError(path + ": cannot write");
+  std::fprintf(out, "well,f0_n,edc_mean_j,edc_std_j,cycles,flags\n");
+  for (const auto& l : levels) {
+    std::fprintf(out, "%s,%.9g,%.9g,%.9g,%d,%s\n", l.well.c_str(), l.f0_n, l.edc_mean_j,
+                 l.edc_std_j, l.cycles, l.flags().c_str());
+  }
+  if (std::fclose(out) != 0) throw InputError(path + ": write failed");
+}
+
+void run(const RecordOptions& o) {
+  daq::AcquisitionOptions acquisition_options;
+  auto acquisition = std::make_unique<daq::Acquisition>(make_live_source(o.source, o.live, true),
+                                                        acquisition_options);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  // A source that knows its layout (rig, replay) is recorded from its first sample; a network
+  // source from when its first sender has said what it sends.
+  bool recording = false;
+  double record_start_s = 0.0;
+  if (acquisition->source().layout()) {
+    acquisition->start_recording(o.out);
+    recording = true;
+    std::fprintf(stderr, "recording %s from %s\n", o.out.c_str(),
+                 acquisition->source().describe().c_str());
+  }
+  acquisition->start();
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  const auto started = std::chrono::steady_clock::now();
+  auto last_print = started;
+  while (!g_interrupted.load() && !acquisition->finished()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const daq::AcquisitionStatus status = acquisition->status();
+    if (!recording && status.layout_known) {
+      acquisition->start_recording(o.out);  // InputError: bad path or container
+      recording = true;
+      record_start_s = status.stream_time_s;
+      std::fprintf(stderr, "recording %s from %s\n", o.out.c_str(), status.source.c_str());
+    }
+    if (!recording && o.wait_s > 0 &&
+        std::chrono::steady_clock::now() - started > std::chrono::duration<double>(o.wait_s)) {
+      acquisition->stop();
+      throw InputError(o.source + ": no sender connected within " + std::to_string(o.wait_s) +
+                       " s");
+    }
+    if (recording && o.live.duration_s &&
+        status.stream_time_s - record_start_s >= *o.live.duration_s) {
+      break;
+    }
+    if (terminal && std::chrono::steady_clock::now() - last_print > std::chrono::seconds(1)) {
+      print_status(status, false);
+      last_print = std::chrono::steady_clock::now();
+    }
+  }
+  acquisition->stop();
+  const daq::AcquisitionStatus status = acquisition->status();
+  if (terminal) std::fputc('\n', stderr);
+  print_status(status, true);
+  if (!status.recorder_error.empty()) throw InputError(status.recorder_error);
+  const auto levels = acquisition->levels();
+  std::printf("recorded %s: %llu samples (%.1f s)%s\n", o.out.c_str(),
+              static_cast<unsigned long long>(status.recorded_samples),
+              static_cast<double>(status.recorded_samples) / std::max(status.sample_rate_hz, 1.0),
+              g_interrupted.load() ? ", stopped by a signal" : "");
+  if (!status.edc_message.empty()) std::printf("%s\n", status.edc_message.c_str());
+  std::printf(
+      "live EDC: %zu level(s), %ld cycle(s), %ld excluded; latency last %.0f ms, max %.0f ms\n",
+      levels.size(), status.cycles, status.excluded_cycles, 1e3 * status.edc_latency_s,
+      1e3 * status.edc_latency_max_s);
+  for (const auto& l : levels) {
+    std::printf("  %-8s f0 %.3f N  EDC %.6g ± %.2g mJ  %d cycles %s\n", l.well.c_str(), l.f0_n,
+                1e3 * l.edc_mean_j, 1e3 * l.edc_std_j, l.cycles, l.flags().c_str());
+  }
+  if (!o.edc.empty()) write_edc(levels, o.edc);
+}
+
+}  // namespace
+
+void add_record_command(CLI::App& app) {
+  auto o = std::make_shared<RecordOptions>();
+  CLI::App* command = app.add_subcommand(
+      "record",
+      "Record a live source as it arrives (crash-safe): samples, sidecar and event log; print "
+      "the live EDC per level");
+  command
+      ->add_option("--source", o->source,
+                   "rig (the virtual rig in real time) | net:HOST:PORT (listen for a sender; "
+                   "HOST 127.0.0.1 keeps it local) | file:REC (replay a recording)")
+      ->capture_default_str();
+  command->add_option("--out", o->out, "recording to write: .wav, .w64 or .rf64")->required();
+  command->add_option("--duration", o->live.duration_s,
+                      "stop after this many seconds of stream (default: when the source ends, or "
+                      "on SIGINT/SIGTERM)");
+  command->add_option("--edc", o->edc, "write the live EDC table (CSV) here");
+  command->add_option("--wait", o->wait_s, "net: fail when no sender came within S seconds");
+  add_live_source_options(*command, o->live);
+  command->callback([o] { run(*o); });
+}
+
+}  // namespace oscilab::cli

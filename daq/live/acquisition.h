@@ -1,0 +1,131 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "analysis/edc/cycle_fit.h"
+#include "analysis/edc/level_tracker.h"
+#include "analysis/pipeline/pipeline_settings.h"
+#include "daq/live/block_queue.h"
+#include "daq/live/sample_source.h"
+#include "daq/live/stream_event.h"
+
+namespace oscilab::daq {
+
+class LiveRecorder;
+
+/// Limits whose crossing raises an alarm (logged and shown), in SI; unset: not checked.
+struct AlarmLimits {
+  std::optional<double> max_abs_z_m;      // relative displacement amplitude
+  std::optional<double> max_abs_base_m;   // integrated table displacement: integration drift
+  std::optional<double> max_abs_force_n;  // f = −m b̈
+};
+
+struct AcquisitionOptions {
+  analysis::PipelineSettings settings;  // the same analysis as offline
+  std::size_t queue_blocks = 256;       // source → acquisition queue (8 s of 16-row blocks)
+  int reorder_window_blocks = 8;        // StreamMonitor
+  double history_s = 600.0;             // traces kept for scroll-back (10 minutes)
+  /// Derived traces (b, z, ż, R) by the live zero-phase filters (StreamingIntegrator); they
+  /// lag the measured channels by this much. Off: only measured channels and f.
+  bool derived_signals = true;
+  double derived_latency_s = 2.0;
+  std::optional<double> excitation_freq_hz;  // overrides the layout's; none there: EDC off
+  AlarmLimits alarms;
+};
+
+/// A snapshot of the live chain, for the status bar and the CLI.
+struct AcquisitionStatus {
+  std::string source;
+  bool running = false;
+  bool finished = false;  // the source ended and everything it sent was processed
+  bool layout_known = false;
+  double sample_rate_hz = 0.0;
+  double stream_time_s = 0.0;  // time of the last sample processed
+  std::uint64_t samples = 0, blocks = 0;
+  std::uint64_t gaps = 0, gap_samples = 0, lost_blocks = 0, duplicates = 0, reordered = 0, late = 0,
+                discontinuities = 0;
+  std::uint64_t non_finite_samples = 0, saturated_samples = 0;
+  std::uint64_t overflowed_blocks = 0, malformed_frames = 0, layout_mismatches = 0, connections = 0;
+  std::size_t queue_fill = 0, queue_capacity = 0;
+  bool recording = false;
+  std::string recording_path;
+  std::uint64_t recorded_samples = 0;
+  std::string recorder_error;
+  long cycles = 0, excluded_cycles = 0;
+  std::size_t levels = 0;
+  std::string edc_message;            // why there is no live EDC, when there is none
+  double edc_latency_s = 0.0;         // last cycle: arrival of its first sample → its EDC
+  double edc_latency_median_s = 0.0;  // over the last 10 000 cycles
+  double edc_latency_max_s = 0.0;
+  std::uint64_t alarms = 0;
+};
+
+/// Decimated traces for display: per bucket the min and the max of each trace (an envelope, as
+/// a scope draws), in time order; NaN where a derived trace is not computed (yet).
+struct TraceHistory {
+  std::vector<double> t_s;
+  std::vector<double> base;     // b̈ (or the base channel's quantity), SI
+  std::vector<double> mass;     // y (or the mass channel's quantity), SI
+  std::vector<double> force_n;  // f = −m b̈
+  std::vector<double> b_m, z_m, z_dot_m_s, restoring_force_n;  // derived, delayed
+  void clear();
+};
+
+/// The live chain of one source: its thread delivers blocks into a lock-free queue; the
+/// acquisition thread takes them in order (StreamMonitor: gaps, duplicates, reordering),
+/// checks every sample (non-finite, saturation), records them (LiveRecorder), calibrates them to
+/// SI, feeds the measurement pipeline (the same per-cycle EDC as offline, excluding every cycle
+/// that touches a fault) and keeps the last minutes of traces for display. Every fault is
+/// counted (status), logged (events) and recorded (invalid intervals).
+///
+/// Thread-safety: every public method may be called from any one controlling thread (the UI or
+/// the CLI); results are copied out under a mutex, per block, never per sample.
+class Acquisition {
+ public:
+  Acquisition(std::unique_ptr<SampleSource> source, AcquisitionOptions options);
+  ~Acquisition();
+  Acquisition(const Acquisition&) = delete;
+  Acquisition& operator=(const Acquisition&) = delete;
+
+  /// Starts the source and the acquisition thread.
+  void start();
+  /// Stops the source, processes what it delivered, closes the levels and the recording.
+  void stop();
+  bool finished() const { return finished_.load(std::memory_order_acquire); }
+
+  /// Records from the next block on (throws InputError for a bad path or container, or when the
+  /// layout is not known yet). Any source, while it runs.
+  void start_recording(const std::string& path);
+  void stop_recording();
+  /// An operator's mark in the event log at the current stream time.
+  void mark(const std::string& text);
+
+  SampleSource& source() { return *source_; }
+  AcquisitionStatus status() const;
+  std::optional<Sidecar> layout() const;
+  /// Finished levels so far (all pipelines, in time order) and the one being filled.
+  std::vector<analysis::LevelResult> levels() const;
+  std::optional<analysis::LevelResult> current_level() const;
+  /// Cycles fitted from index `first` on (the count grows; the UI asks for the new ones).
+  std::vector<analysis::CycleFit> cycles_since(std::size_t first) const;
+  /// Events from index `first` on.
+  std::vector<StreamEvent> events_since(std::size_t first) const;
+  /// Traces over [from_s, to_s] (stream time) decimated to at most 2 × buckets points each.
+  void history(double from_s, double to_s, int buckets, TraceHistory& out) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<SampleSource> source_;
+  std::atomic<bool> finished_{false};
+};
+
+}  // namespace oscilab::daq

@@ -1,0 +1,82 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <sndfile.h>
+
+#include "daq/live/raw_block.h"
+#include "daq/live/stream_event.h"
+#include "daq/recording/sidecar.h"
+
+namespace oscilab::daq {
+
+/// Records a live stream losslessly and crash-safely, as it arrives:
+/// - the samples exactly as delivered (stored values, float64) into a WAV, W64 or RF64 file
+///   whose header libsndfile rewrites after every write (SFC_SET_UPDATE_HEADER_AUTO), so that at
+///   any instant the file on disk is a complete, readable recording of everything written;
+///   missing samples (gaps) are written as NaN rows and declared in the sidecar's
+///   invalid_intervals, so the file keeps the stream's clock;
+/// - the sidecar (`<stem>.json`, calibration, excitation as operated, invalid intervals),
+///   replaced atomically (write + rename) when it changes, at most once a second, and at close;
+/// - the event log (`<stem>.events.jsonl`), one JSON object per line, each appended with one
+///   write(2) as it happens.
+/// A SIGKILL loses at most the block being written and the last second of sidecar changes:
+/// the test kills a recording process and reads what it left.
+///
+/// Times are recording time: stream time − the stream time of the first sample recorded.
+/// Not thread-safe: the acquisition thread owns it.
+class LiveRecorder {
+ public:
+  /// Opens the files (throws InputError naming the path: unknown container, cannot write).
+  /// `layout` says what the samples mean; `first_sample` is the stream sample recorded first.
+  LiveRecorder(const std::string& path, const Sidecar& layout, std::uint64_t first_sample);
+  ~LiveRecorder();
+  LiveRecorder(const LiveRecorder&) = delete;
+  LiveRecorder& operator=(const LiveRecorder&) = delete;
+
+  /// Appends a block's rows (stored values). False when the disk refused (the error is kept).
+  bool write(const RawBlock& block);
+  /// Appends `samples` NaN rows for samples that never arrived, declared invalid ("gap").
+  bool write_gap(std::uint64_t samples);
+  /// Declares [from, to] (stream samples, inclusive) invalid for `reason`.
+  void mark_invalid(std::uint64_t from_sample, std::uint64_t to_sample, const std::string& reason);
+  /// A level of the excitation as operated, in stream time: the excitation changed at change_s
+  /// (which ends a previous level still open), and the level is steady over [steady_from_s,
+  /// steady_to_s) (steady_to_s +∞: open until the next change).
+  void add_level(double f0_n, double frequency_hz, double change_s, double steady_from_s,
+                 double steady_to_s);
+  /// Appends an event to the log (its t_s converted to recording time).
+  void log(const StreamEvent& event);
+  /// Rewrites the sidecar when it changed and a second has passed since the last rewrite.
+  void maybe_write_sidecar();
+  /// Final sidecar and close. Idempotent.
+  void close();
+
+  const std::string& path() const { return path_; }
+  std::uint64_t samples_written() const { return samples_written_; }
+  const std::string& error() const { return error_; }
+
+ private:
+  double recording_time_s(std::uint64_t stream_sample) const;
+  double first_time_s() const { return static_cast<double>(first_sample_) / rate_hz_; }
+  void write_sidecar_now();
+
+  std::string path_, sidecar_path_, events_path_;
+  Sidecar sidecar_;
+  std::uint64_t first_sample_;
+  double rate_hz_;
+  int channels_;
+  SNDFILE* file_ = nullptr;
+  int events_fd_ = -1;
+  std::uint64_t samples_written_ = 0;
+  std::vector<double> nan_rows_;  // one block of NaN rows for gaps
+  bool sidecar_dirty_ = false;
+  std::chrono::steady_clock::time_point last_sidecar_write_;
+  bool level_open_ = false;  // the last level in sidecar_ has no end yet
+  std::string error_;
+};
+
+}  // namespace oscilab::daq

@@ -1,0 +1,187 @@
+#include "daq/live/net_source.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "daq/live/stream_protocol.h"
+
+namespace oscilab::daq {
+namespace {
+
+constexpr int kPollMs = 50;  // how often a waiting thread looks at its stop flag
+constexpr std::chrono::milliseconds kBackpressure{2000};
+constexpr double kNoTime = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+std::string layout_difference(const Sidecar& expected, const Sidecar& offered) {
+  if (std::abs(expected.sample_rate_hz - offered.sample_rate_hz) >
+      1e-9 * std::abs(expected.sample_rate_hz)) {
+    return "sample rate " + std::to_string(offered.sample_rate_hz) + " Hz, expected " +
+           std::to_string(expected.sample_rate_hz) + " Hz";
+  }
+  if (expected.channels.size() != offered.channels.size()) {
+    return std::to_string(offered.channels.size()) + " channels, expected " +
+           std::to_string(expected.channels.size());
+  }
+  for (std::size_t i = 0; i < expected.channels.size(); ++i) {
+    const ChannelInfo& e = expected.channels[i];
+    const ChannelInfo& o = offered.channels[i];
+    const std::string where = "channel " + std::to_string(i) + " (\"" + e.name + "\"): ";
+    if (e.name != o.name) return where + "named \"" + o.name + "\"";
+    if (e.role != o.role || e.quantity != o.quantity) {
+      return where + "role/quantity " + to_string(o.role) + "/" + to_string(o.quantity) +
+             ", expected " + to_string(e.role) + "/" + to_string(e.quantity);
+    }
+    if (e.unit != o.unit || e.scale != o.scale || e.offset != o.offset) {
+      return where + "calibration " + std::to_string(o.scale) + " " + o.unit + " + " +
+             std::to_string(o.offset) + ", expected " + std::to_string(e.scale) + " " + e.unit +
+             " + " + std::to_string(e.offset);
+    }
+  }
+  return "";
+}
+
+NetSource::NetSource(Options options) : options_(std::move(options)) {
+  listener_ = TcpSocket::listen_on(options_.host, options_.port);
+  port_ = listener_.local_port();
+  if (options_.expected) set_layout(*options_.expected);
+}
+
+NetSource::~NetSource() { stop(); }
+
+int NetSource::max_block_rows() const { return static_cast<int>(stream_protocol::kMaxRows); }
+
+int NetSource::max_channels() const {
+  return options_.expected ? static_cast<int>(options_.expected->channels.size())
+                           : static_cast<int>(stream_protocol::kMaxChannels);
+}
+
+std::string NetSource::describe() const {
+  return "net " + options_.host + ":" + std::to_string(port_);
+}
+
+void NetSource::interrupt() { listener_.shutdown(); }
+
+void NetSource::run() {
+  while (!stop_requested()) {
+    TcpSocket peer = listener_.accept_for(kPollMs);
+    if (!peer.valid()) continue;
+    connections_.fetch_add(1, std::memory_order_relaxed);
+    const std::string who = peer.peer();
+    post_event({kNoTime, "connected", "sender " + who});
+    connected_.store(true, std::memory_order_release);
+    const bool ended = serve(peer);
+    connected_.store(false, std::memory_order_release);
+    post_event({kNoTime, "disconnected", "sender " + who});
+    if (ended) return;
+  }
+}
+
+bool NetSource::serve(TcpSocket& peer) {
+  stream_protocol::FrameDecoder decoder;
+  std::vector<std::uint8_t> buffer(1u << 16);
+  bool greeted = false;
+  double rate_hz = 0.0;
+  for (;;) {
+    if (stop_requested()) return false;
+    const long got = peer.receive_for(buffer.data(), buffer.size(), kPollMs);
+    if (got == -1) continue;
+    if (got <= 0) return false;  // closed or failed: wait for the next sender
+    decoder.feed(buffer.data(), static_cast<std::size_t>(got));
+    stream_protocol::Frame frame;
+    while (decoder.next(frame)) {
+      using stream_protocol::FrameType;
+      if (!greeted && frame.type != FrameType::Hello) {
+        malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+        post_event({kNoTime, "malformed-frame", "the sender did not open with HELLO"});
+        return false;
+      }
+      switch (frame.type) {
+        case FrameType::Hello: {
+          const stream_protocol::Hello& hello = *frame.hello;
+          if (const std::optional<Sidecar> current = layout()) {
+            const std::string difference = layout_difference(*current, hello.sidecar);
+            if (!difference.empty()) {
+              layout_mismatches_.fetch_add(1, std::memory_order_relaxed);
+              post_event({kNoTime,
+                          "layout-mismatch",
+                          "sender refused: " + difference,
+                          {{"stream_id", hello.stream_id}}});
+              return false;
+            }
+          } else {
+            set_layout(hello.sidecar);
+          }
+          rate_hz = hello.sidecar.sample_rate_hz;
+          if (hello.stream_id != stream_id_) {
+            // A new stream: its clock starts after the last sample received.
+            if (!stream_id_.empty()) {
+              post_event(
+                  {static_cast<double>(next_sample_) / rate_hz, "discontinuity",
+                   "a new stream \"" + hello.stream_id + "\" follows \"" + stream_id_ + "\""});
+            }
+            stream_id_ = hello.stream_id;
+            sample_offset_ = static_cast<std::int64_t>(next_sample_);
+            sequence_offset_ = static_cast<std::int64_t>(next_sequence_);
+          }
+          greeted = true;
+          break;
+        }
+        case FrameType::Data: {
+          const std::uint64_t first =
+              frame.first_sample + static_cast<std::uint64_t>(sample_offset_);
+          const std::uint64_t sequence =
+              frame.sequence + static_cast<std::uint64_t>(sequence_offset_);
+          next_sample_ = std::max(next_sample_, first + static_cast<std::uint64_t>(frame.rows));
+          next_sequence_ = std::max(next_sequence_, sequence + 1);
+          // A full queue holds the sender back through TCP for a while; a consumer still
+          // behind after that loses the block (counted, and a gap downstream).
+          RawBlock* block = begin_block_within(kBackpressure);
+          if (block == nullptr) {
+            count_overflow(first);
+            break;
+          }
+          const std::size_t count =
+              static_cast<std::size_t>(frame.rows) * static_cast<std::size_t>(frame.channels);
+          for (std::size_t i = 0; i < count; ++i) {
+            block->values[i] = stream_protocol::read_f64_le(frame.data + 8 * i);
+          }
+          block->sequence = sequence;
+          block->first_sample = first;
+          block->rows = frame.rows;
+          block->channels = frame.channels;
+          end_block(*block);
+          break;
+        }
+        case FrameType::Event: {
+          StreamEvent event = *frame.event;
+          // The sender's stream times, moved onto this receiver's clock.
+          const double shift_s = static_cast<double>(sample_offset_) / rate_hz;
+          if (std::isfinite(event.t_s)) event.t_s += shift_s;
+          for (const char* key : {"steady_from_s", "steady_to_s", "from_s", "to_s"}) {
+            if (event.data.contains(key) && event.data[key].is_number()) {
+              event.data[key] = event.data[key].get<double>() + shift_s;
+            }
+          }
+          event.wall.clear();
+          post_event(std::move(event));
+          break;
+        }
+        case FrameType::Bye:
+          post_event({static_cast<double>(next_sample_) / rate_hz, "source-ended",
+                      "the sender ended its stream"});
+          return true;
+      }
+    }
+    if (!decoder.error().empty()) {
+      malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+      post_event({kNoTime, "malformed-frame", "connection closed: " + decoder.error()});
+      return false;
+    }
+  }
+}
+
+}  // namespace oscilab::daq

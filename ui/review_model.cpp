@@ -1,0 +1,257 @@
+#include "ui/review_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+
+#include "analysis/common/input_error.h"
+#include "analysis/signal/spectral_calculus.h"
+#include "daq/recording/measurement_mapping.h"
+
+namespace oscilab::ui {
+namespace {
+
+// Share of the progress bar the campaign analysis takes; the excitation forces take the rest.
+constexpr double kCampaignShare = 0.9;
+
+// The samples of one record away from its ends (zero-phase filters ring there) whose restoring
+// force the analysis kept (it marks left-out samples non-finite): analysis::stiffness_slice's
+// selection.
+template <typename Visit>
+void for_each_inner_sample(const analysis::MotionSignals& s, double trim_s, Visit visit) {
+  const Eigen::Index n = s.t_s.size();
+  if (n == 0) return;
+  const double t_end = s.t_s[n - 1];
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (s.t_s[i] < trim_s || s.t_s[i] > t_end - trim_s) continue;
+    if (!std::isfinite(s.restoring_force_n[i])) continue;
+    visit(i);
+  }
+}
+
+// Keeps every k-th point so that at most `max_points` remain.
+void thin(ScatterPoints& points, std::size_t max_points) {
+  points.selected = points.x.size();
+  if (max_points == 0 || points.x.size() <= max_points) return;
+  const std::size_t stride = (points.x.size() + max_points - 1) / max_points;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < points.x.size(); i += stride, ++kept) {
+    points.x[kept] = points.x[i];
+    points.y[kept] = points.y[i];
+  }
+  points.x.resize(kept);
+  points.y.resize(kept);
+}
+
+// The records whose z is absolute: those analysis::analyze_campaign stacks for the slices.
+std::vector<const analysis::MotionSignals*> slice_records(
+    const analysis::CampaignAnalysis& campaign) {
+  std::vector<const analysis::MotionSignals*> records;
+  for (const analysis::RecordAnalysis& r : campaign.records) {
+    if (r.motion.z_absolute) records.push_back(&r.motion);
+  }
+  return records;
+}
+
+}  // namespace
+
+ReviewAnalysis analyze_review(const std::vector<std::shared_ptr<const daq::Recording>>& recordings,
+                              const analysis::PipelineSettings& settings,
+                              const ProgressFn& progress, const CancelToken& cancel) {
+  ReviewAnalysis out;
+  std::vector<analysis::MeasurementChannels> channels;
+  for (const auto& recording : recordings) {
+    if (!recording) continue;
+    try {
+      channels.push_back(daq::measurement_channels(*recording));
+      out.recordings.push_back(recording);
+    } catch (const InputError& error) {
+      out.errors.emplace_back(error.what());
+    }
+  }
+  const ProgressFn campaign_progress = [&progress](double fraction) {
+    if (progress) progress(kCampaignShare * fraction);
+  };
+  try {
+    out.campaign = analysis::analyze_campaign(channels, settings, campaign_progress, cancel);
+  } catch (const std::exception& error) {  // InputError: a record the core cannot analyse
+    out.errors.emplace_back(error.what());
+    out.campaign = analysis::CampaignAnalysis{};
+    out.campaign.settings = settings;
+    out.campaign.status = JobStatus::InvalidInput;
+    out.recordings.clear();
+    return out;
+  }
+  if (out.campaign.status != JobStatus::Ok) return out;
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    if (cancel.cancelled()) {
+      out.campaign.status = JobStatus::Cancelled;
+      return out;
+    }
+    out.force_n.push_back(excitation_force(channels[i], settings));
+    if (progress) {
+      progress(kCampaignShare + (1.0 - kCampaignShare) * double(i + 1) / double(channels.size()));
+    }
+  }
+  if (progress) progress(1.0);
+  return out;
+}
+
+Eigen::VectorXd excitation_force(const analysis::MeasurementChannels& channels,
+                                 const analysis::PipelineSettings& settings) {
+  const double rate_hz = channels.sample_rate_hz;
+  const double mass_kg = channels.mass_kg.value_or(1.0);
+  const int measured = analysis::derivative_order(channels.base_quantity);
+  // motion_signals' band for a second derivative: low-pass inside Nyquist (its taper ends at
+  // 1.25× the cut-off); b̈ is never an integral of the base channel, so no high-pass.
+  analysis::SpectralOptions options;
+  options.lowpass_hz = std::min(settings.derivative_lowpass_hz, 0.35 * rate_hz);
+  // Samples of invalid intervals may be non-finite; a zero keeps the transform finite. The
+  // analysis leaves the restoring force out around them (non-finite R), and so do the loops.
+  Eigen::VectorXd base = channels.base;
+  for (Eigen::Index i = 0; i < base.size(); ++i) {
+    if (!std::isfinite(base[i])) base[i] = 0.0;
+  }
+  // Eq. (1): f = −m b̈.
+  return -mass_kg * analysis::spectral_derivative(base, rate_hz, 2 - measured, options);
+}
+
+std::vector<LevelRow> level_rows(int record, const std::string& record_name,
+                                 const std::vector<analysis::LevelResult>& levels,
+                                 bool per_unit_mass) {
+  std::vector<LevelRow> rows;
+  rows.reserve(levels.size());
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    const analysis::LevelResult& level = levels[i];
+    LevelRow row;
+    row.key = {record, int(i)};
+    row.record = record_name;
+    row.well = level.well;
+    row.f0_n = level.f0_n;
+    row.edc_mean_j = level.edc_mean_j;
+    row.edc_std_j = level.edc_std_j;
+    row.cycles = level.cycles;
+    row.flags = level.flags();
+    if (per_unit_mass) row.flags += row.flags.empty() ? "per-unit-mass" : ";per-unit-mass";
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+std::vector<LevelRow> level_rows(const analysis::CampaignAnalysis& campaign) {
+  std::vector<LevelRow> rows;
+  for (std::size_t r = 0; r < campaign.records.size(); ++r) {
+    const analysis::RecordAnalysis& record = campaign.records[r];
+    for (LevelRow& row : level_rows(int(r), record.name, record.levels, record.per_unit_mass)) {
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
+const analysis::LevelResult* find_level(const analysis::CampaignAnalysis& campaign, LevelKey key) {
+  if (key.record < 0 || std::size_t(key.record) >= campaign.records.size()) return nullptr;
+  const auto& levels = campaign.records[std::size_t(key.record)].levels;
+  if (key.level < 0 || std::size_t(key.level) >= levels.size()) return nullptr;
+  return &levels[std::size_t(key.level)];
+}
+
+double level_cursor_time_s(const analysis::LevelResult& level) {
+  return 0.5 * (level.start_s + level.end_s);
+}
+
+TimeWindow level_time_window(const analysis::LevelResult& level, double margin_rel) {
+  const double margin_s = margin_rel * (level.end_s - level.start_s);
+  return {level.start_s - margin_s, level.end_s + margin_s};
+}
+
+LevelLoop level_loop(const analysis::MotionSignals& motion, const Eigen::VectorXd& force_n,
+                     const analysis::LevelResult& level) {
+  LevelLoop loop;
+  loop.well = level.well;
+  loop.cycles = level.cycles;
+  const Eigen::Index n = std::min(
+      {motion.t_s.size(), motion.z_m.size(), force_n.size(), motion.restoring_force_n.size()});
+  const double* t = motion.t_s.data();
+  const Eigen::Index first = std::lower_bound(t, t + n, level.start_s) - t;
+  for (Eigen::Index i = first; i < n && t[i] <= level.end_s; ++i) {
+    if (!std::isfinite(motion.z_m[i]) || !std::isfinite(force_n[i]) ||
+        !std::isfinite(motion.restoring_force_n[i])) {
+      continue;
+    }
+    loop.t_s.push_back(t[i]);
+    loop.z_m.push_back(motion.z_m[i]);
+    loop.f_n.push_back(force_n[i]);
+  }
+  return loop;
+}
+
+double loop_area_j(const std::vector<double>& z_m, const std::vector<double>& f_n) {
+  double area_j = 0.0;
+  for (std::size_t i = 1; i < std::min(z_m.size(), f_n.size()); ++i) {
+    area_j += 0.5 * (f_n[i] + f_n[i - 1]) * (z_m[i] - z_m[i - 1]);
+  }
+  return area_j;
+}
+
+ScatterPoints stiffness_points(const analysis::CampaignAnalysis& campaign, std::size_t max_points) {
+  ScatterPoints points;
+  if (!campaign.stiffness) return points;
+  const double band_m_s = campaign.stiffness->velocity_band_m_s;
+  for (const analysis::MotionSignals* s : slice_records(campaign)) {
+    for_each_inner_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
+      if (std::abs(s->z_dot_m_s[i]) < band_m_s) {
+        points.x.push_back(s->z_m[i]);
+        points.y.push_back(s->restoring_force_n[i]);
+      }
+    });
+  }
+  thin(points, max_points);
+  return points;
+}
+
+ScatterPoints damping_points(const analysis::CampaignAnalysis& campaign,
+                             const analysis::DampingSlice& slice, std::size_t max_points) {
+  ScatterPoints points;
+  if (!campaign.stiffness) return points;
+  const analysis::PolynomialFit& fit = campaign.stiffness->fit;
+  for (const analysis::MotionSignals* s : slice_records(campaign)) {
+    for_each_inner_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
+      if (std::abs(s->z_m[i] - slice.z_center_m) < slice.position_band_m) {
+        points.x.push_back(s->z_dot_m_s[i]);
+        points.y.push_back(s->restoring_force_n[i] - fit.value(s->z_m[i]));
+      }
+    });
+  }
+  thin(points, max_points);
+  return points;
+}
+
+std::string value_with_error(double value, double error) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.4g \u00b1 %.2g", value, error);
+  return text;
+}
+
+std::string stiffness_fit_text(const analysis::StiffnessSlice& slice) {
+  const auto& c = slice.fit.coefficients;
+  const auto& e = slice.fit.std_errors;
+  const auto coefficient = [&](Eigen::Index i, double sign) {
+    const double value = i < c.size() ? sign * c[i] : 0.0;
+    const double error = i < e.size() ? e[i] : 0.0;
+    return value_with_error(value, error);
+  };
+  // Eq. (2): K(z) = k3 z³ + k2 z² − k1 z + k0, so k1 = −c1.
+  std::string text = "K(z) = k\u2083z\u00b3 + k\u2082z\u00b2 \u2212 k\u2081z + k\u2080 (eq. 2): ";
+  text += "k\u2083 = " + coefficient(3, 1.0) + " N/m\u00b3,  ";
+  text += "k\u2082 = " + coefficient(2, 1.0) + " N/m\u00b2,  ";
+  text += "k\u2081 = " + coefficient(1, -1.0) + " N/m,  ";
+  text += "k\u2080 = " + coefficient(0, 1.0) + " N";
+  char tail[96];
+  std::snprintf(tail, sizeof tail, "  (rms residual %.3g N, %ld samples)", slice.fit.residual_rms,
+                long(slice.fit.samples));
+  return text + tail;
+}
+
+}  // namespace oscilab::ui
