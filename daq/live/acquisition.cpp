@@ -198,9 +198,11 @@ void Acquisition::start_recording(const std::string& path) {
   impl_->recorder = std::make_unique<LiveRecorder>(path, *layout, impl_->history.end);
   if (impl_->last_level) {  // the level running now, from where the recording starts
     const StreamEvent& level = *impl_->last_level;
+    const double layout_freq_hz =
+        layout->excitation ? layout->excitation->frequency_hz.value_or(0.0) : 0.0;
     impl_->recorder->add_level(
-        level.data.value("f0_n", 0.0), level.data.value("frequency_hz", impl_->pipeline_freq_hz),
-        level.t_s, level.data.value("steady_from_s", level.t_s),
+        level.data.value("f0_n", 0.0), level.data.value("frequency_hz", layout_freq_hz), level.t_s,
+        level.data.value("steady_from_s", level.t_s),
         level.data.value("steady_to_s", std::numeric_limits<double>::infinity()));
   }
   impl_->status.recording = true;
@@ -470,8 +472,8 @@ void Acquisition::Impl::handle_event(StreamEvent event) {
           static_cast<std::uint64_t>(std::max(0.0, std::ceil(to_s * rate_hz))), "replayed");
     }
   } else if (event.kind == "discontinuity" && std::isfinite(event.t_s)) {
-    const auto at =
-        static_cast<std::uint64_t>(std::max(0.0, std::llround(event.t_s * rate_hz) * 1.0));
+    // The samples on either side of the jump do not belong to one motion.
+    const auto at = static_cast<std::uint64_t>(std::max(0.0, std::round(event.t_s * rate_hz)));
     exclude_samples(at > 0 ? at - 1 : 0, at);
     const std::lock_guard lock(mutex);
     ++status.discontinuities;
