@@ -11,7 +11,7 @@
 #include <qcustomplot.h>
 
 #include "analysis/common/input_error.h"
-#include "daq/export/temporary_file.h"
+#include "daq/recording/temporary_file.h"
 
 namespace oscilab::ui {
 namespace {

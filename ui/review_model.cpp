@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "analysis/common/input_error.h"
+#include "analysis/rfs/restoring_force_slices.h"
 #include "analysis/signal/spectral_calculus.h"
 #include "daq/recording/measurement_mapping.h"
 
@@ -14,21 +15,6 @@ namespace {
 
 // Share of the progress bar the campaign analysis takes; the excitation forces take the rest.
 constexpr double kCampaignShare = 0.9;
-
-// The samples of one record away from its ends (zero-phase filters ring there) whose restoring
-// force the analysis kept (it marks left-out samples non-finite): analysis::stiffness_slice's
-// selection.
-template <typename Visit>
-void for_each_inner_sample(const analysis::MotionSignals& s, double trim_s, Visit visit) {
-  const Eigen::Index n = s.t_s.size();
-  if (n == 0) return;
-  const double t_end = s.t_s[n - 1];
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (s.t_s[i] < trim_s || s.t_s[i] > t_end - trim_s) continue;
-    if (!std::isfinite(s.restoring_force_n[i])) continue;
-    visit(i);
-  }
-}
 
 // Keeps every k-th point so that at most `max_points` remain.
 void thin(ScatterPoints& points, std::size_t max_points) {
@@ -200,7 +186,7 @@ ScatterPoints stiffness_points(const analysis::CampaignAnalysis& campaign, std::
   if (!campaign.stiffness) return points;
   const double band_m_s = campaign.stiffness->velocity_band_m_s;
   for (const analysis::MotionSignals* s : slice_records(campaign)) {
-    for_each_inner_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
+    analysis::for_each_slice_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
       if (std::abs(s->z_dot_m_s[i]) < band_m_s) {
         points.x.push_back(s->z_m[i]);
         points.y.push_back(s->restoring_force_n[i]);
@@ -217,7 +203,7 @@ ScatterPoints damping_points(const analysis::CampaignAnalysis& campaign,
   if (!campaign.stiffness) return points;
   const analysis::PolynomialFit& fit = campaign.stiffness->fit;
   for (const analysis::MotionSignals* s : slice_records(campaign)) {
-    for_each_inner_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
+    analysis::for_each_slice_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
       if (std::abs(s->z_m[i] - slice.z_center_m) < slice.position_band_m) {
         points.x.push_back(s->z_dot_m_s[i]);
         points.y.push_back(s->restoring_force_n[i] - fit.value(s->z_m[i]));

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "analysis/common/input_error.h"
+#include "daq/recording/json_file.h"
 
 namespace oscilab::ui {
 namespace {
@@ -296,43 +297,13 @@ void write_session(const Session& session, const std::string& path) {
   const fs::path absolute = fs::absolute(path, error);
   const std::string dir = error ? std::string() : absolute.parent_path().string();
   const std::string text = session_to_json(session, dir).dump(2) + "\n";
-  // Written beside the target and renamed over it, so that a failed write keeps the old file.
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot write: " + std::strerror(errno));
-    out << text;
-    out.flush();
-    if (!out) throw InputError(path + ": cannot write: " + std::strerror(errno));
-  }
-  fs::rename(temporary, path, error);
-  if (error) {
-    fs::remove(temporary, error);
-    throw InputError(path + ": cannot write: " + error.message());
-  }
+  daq::write_text_file_atomically(text, path);  // a failed write keeps the old file
 }
 
 Session read_session(const std::string& path) {
+  constexpr std::uintmax_t kMaxSessionBytes = 64u << 20;  // a session is kilobytes
+  const json value = daq::read_json_file(path, kMaxSessionBytes);
   std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) throw InputError(path + ": file not found");
-  if (!fs::is_regular_file(status)) throw InputError(path + ": not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path + ": cannot read: " + std::strerror(errno));
-  json value;
-  try {
-    value = json::parse(text);
-  } catch (const json::exception& parse_error) {
-    std::string reason = parse_error.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep its line and column.
-    if (const auto end = reason.find("] ");
-        reason.rfind("[json.exception", 0) == 0 && end != std::string::npos) {
-      reason = reason.substr(end + 2);
-    }
-    throw InputError(path + ": malformed JSON: " + reason);
-  }
   const fs::path absolute = fs::absolute(path, error);
   return session_from_json(value, error ? std::string() : absolute.parent_path().string(), path);
 }

@@ -15,20 +15,6 @@ double quantile(std::vector<double> v, double q) {
   return v[k];
 }
 
-// Indices of the samples of one record away from its ends.
-template <typename Visit>
-void for_each_inner_sample(const MotionSignals& s, double trim_s, Visit visit) {
-  const Eigen::Index n = s.t_s.size();
-  if (n == 0) return;
-  const double t_end = s.t_s[n - 1];
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (s.t_s[i] < trim_s || s.t_s[i] > t_end - trim_s) continue;
-    // Samples left out by the analysis (invalid intervals) carry a non-finite force.
-    if (!std::isfinite(s.restoring_force_n[i])) continue;
-    visit(i);
-  }
-}
-
 std::vector<SliceBin> bin_samples(const std::vector<double>& x, const std::vector<double>& y,
                                   double lo, double hi, int bins) {
   std::vector<SliceBin> out(static_cast<std::size_t>(bins));
@@ -55,14 +41,14 @@ StiffnessSlice stiffness_slice(const std::vector<const MotionSignals*>& records,
                                const PipelineSettings& settings, int degree) {
   std::vector<double> speeds;
   for (const MotionSignals* s : records) {
-    for_each_inner_sample(*s, settings.edge_trim_s,
+    for_each_slice_sample(*s, settings.edge_trim_s,
                           [&](Eigen::Index i) { speeds.push_back(std::abs(s->z_dot_m_s[i])); });
   }
   StiffnessSlice slice;
   slice.velocity_band_m_s = settings.stiffness_velocity_band_rel * quantile(speeds, 0.99);
   std::vector<double> z, r;
   for (const MotionSignals* s : records) {
-    for_each_inner_sample(*s, settings.edge_trim_s, [&](Eigen::Index i) {
+    for_each_slice_sample(*s, settings.edge_trim_s, [&](Eigen::Index i) {
       if (std::abs(s->z_dot_m_s[i]) < slice.velocity_band_m_s) {
         z.push_back(s->z_m[i]);
         r.push_back(s->restoring_force_n[i]);
@@ -92,7 +78,7 @@ DampingSlice damping_slice(const std::vector<const MotionSignals*>& records,
       settings.damping_position_band_rel * (stiffness.z_max_m - stiffness.z_min_m);
   std::vector<double> v, d;
   for (const MotionSignals* s : records) {
-    for_each_inner_sample(*s, settings.edge_trim_s, [&](Eigen::Index i) {
+    for_each_slice_sample(*s, settings.edge_trim_s, [&](Eigen::Index i) {
       if (std::abs(s->z_m[i] - z_center_m) < slice.position_band_m) {
         v.push_back(s->z_dot_m_s[i]);
         d.push_back(s->restoring_force_n[i] - stiffness.fit.value(s->z_m[i]));

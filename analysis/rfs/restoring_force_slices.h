@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "analysis/pipeline/pipeline_settings.h"
@@ -31,6 +32,21 @@ struct DampingSlice {
   double position_band_m = 0.0;  // ε_d
   std::vector<SliceBin> bins;
 };
+
+/// Calls visit(i) for every sample i of a record the slices may use: away from the record's ends
+/// (within trim_s the zero-phase filters ring) and with a finite restoring force (the analysis
+/// marks samples near invalid intervals non-finite).
+template <typename Visit>
+void for_each_slice_sample(const MotionSignals& s, double trim_s, Visit visit) {
+  const Eigen::Index n = s.t_s.size();
+  if (n == 0) return;
+  const double t_end = s.t_s[n - 1];
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (s.t_s[i] < trim_s || s.t_s[i] > t_end - trim_s) continue;
+    if (!std::isfinite(s.restoring_force_n[i])) continue;
+    visit(i);
+  }
+}
 
 /// Stacks several records (the paper stacks both stepped-sine tests, §3.2). Samples within
 /// edge_trim_s of a record's ends are left out (zero-phase filters ring there). Throws

@@ -59,11 +59,11 @@ void write_edc(const std::vector<analysis::LevelResult>& levels, const std::stri
 }
 
 void run(const RecordOptions& o) {
+  std::signal(SIGINT, on_signal);  // first: a signal while setting up still ends cleanly
+  std::signal(SIGTERM, on_signal);
   daq::AcquisitionOptions acquisition_options;
   auto acquisition = std::make_unique<daq::Acquisition>(make_live_source(o.source, o.live, true),
                                                         acquisition_options);
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   // A source that knows its layout (rig, replay) is recorded from its first sample; a network
   // source from when its first sender has said what it sends.
   bool recording = false;

@@ -18,7 +18,7 @@
 #include <string_view>
 
 #include "analysis/common/input_error.h"
-#include "daq/export/temporary_file.h"
+#include "daq/recording/temporary_file.h"
 
 namespace oscilab::daq {
 namespace {

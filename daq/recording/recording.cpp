@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "analysis/common/input_error.h"
+#include "daq/recording/temporary_file.h"
 
 namespace oscilab::daq {
 namespace {
@@ -493,36 +494,6 @@ Recording read_csv(const std::string& path, const Sidecar& sidecar,
 }
 
 // --- writing -------------------------------------------------------------------------------
-
-// A temporary file beside its target, removed unless committed by a rename.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(const std::string& target) : target_(target) {
-    static std::atomic<unsigned> counter{0};
-    path_ =
-        target + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1));
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-  ~TemporaryFile() {
-    if (committed_) return;
-    std::error_code ignored;
-    fs::remove(path_, ignored);
-  }
-  const std::string& path() const { return path_; }
-
-  void commit() {
-    std::error_code error;
-    fs::rename(path_, target_, error);
-    if (error) throw InputError(target_ + ": cannot write: " + error.message());
-    committed_ = true;
-  }
-
- private:
-  std::string target_;
-  std::string path_;
-  bool committed_ = false;
-};
 
 int sound_format_for(const std::string& extension) {
   if (extension == ".wav") return SF_FORMAT_WAV | SF_FORMAT_DOUBLE;

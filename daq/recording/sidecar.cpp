@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "analysis/common/input_error.h"
+#include "daq/recording/json_file.h"
 
 namespace oscilab::daq {
 namespace {
@@ -321,36 +322,6 @@ std::string units_for(Quantity quantity) {
   return list + "V";
 }
 
-// Writes `text` to `path` through a temporary file beside it and a rename, so that the target is
-// either the old file or the complete new one.
-void write_text_atomically(const std::string& text, const std::string& path) {
-  static std::atomic<unsigned> counter{0};
-  const std::string temporary =
-      path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1));
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw InputError(path + ": cannot write: " + std::strerror(errno));
-    }
-    out << text;
-    out.flush();
-    if (!out) {
-      const std::string reason = std::strerror(errno);
-      out.close();
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw InputError(path + ": cannot write: " + reason);
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw InputError(path + ": cannot write: " + error.message());
-  }
-}
-
 ordered_json channel_to_json(const ChannelInfo& channel) {
   ordered_json out;
   out["name"] = channel.name;
@@ -583,33 +554,7 @@ std::string sidecar_path_for(const std::string& recording_path) {
 }
 
 Sidecar read_sidecar(const std::string& sidecar_path) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  const fs::file_status status = fs::status(sidecar_path, error);
-  if (!fs::exists(status)) throw InputError(sidecar_path + ": file not found");
-  if (!fs::is_regular_file(status)) throw InputError(sidecar_path + ": not a regular file");
-  const std::uintmax_t size = fs::file_size(sidecar_path, error);
-  if (!error && size > kMaxSidecarBytes) {
-    throw InputError(sidecar_path + ": " + std::to_string(size) +
-                     " bytes is too large for a sidecar");
-  }
-  std::ifstream in(sidecar_path, std::ios::binary);
-  if (!in) throw InputError(sidecar_path + ": cannot open: " + std::strerror(errno));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(sidecar_path + ": cannot read: " + std::strerror(errno));
-  json value;
-  try {
-    value = json::parse(text);
-  } catch (const json::exception& parse_error) {
-    std::string reason = parse_error.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep its line and column.
-    if (const auto end = reason.find("] ");
-        reason.rfind("[json.exception", 0) == 0 && end != std::string::npos) {
-      reason = reason.substr(end + 2);
-    }
-    throw InputError(sidecar_path + ": malformed JSON: " + reason);
-  }
-  return parse_sidecar(value, sidecar_path);
+  return parse_sidecar(read_json_file(sidecar_path, kMaxSidecarBytes), sidecar_path);
 }
 
 void write_sidecar(const Sidecar& sidecar, const std::string& sidecar_path) {
@@ -622,7 +567,7 @@ void write_sidecar(const Sidecar& sidecar, const std::string& sidecar_path) {
   } catch (const json::exception& error) {
     throw InputError(sidecar_path + ": cannot write the sidecar: " + error.what());
   }
-  write_text_atomically(text, sidecar_path);
+  write_text_file_atomically(text, sidecar_path);
 }
 
 }  // namespace oscilab::daq

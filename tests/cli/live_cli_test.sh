@@ -55,7 +55,8 @@ fi
 # SIGTERM ends a real-time recording cleanly, with what was recorded so far.
 "$cli" record --source rig --out "$work/term.wav" > "$work/term.log" 2>&1 &
 recorder=$!
-sleep 2
+for _ in $(seq 100); do [ -s "$work/term.wav" ] && break; sleep 0.1; done
+sleep 1
 kill -TERM $recorder
 if wait $recorder; then pass "SIGTERM: exit 0"; else fail "SIGTERM: $(tail -2 "$work/term.log")"; fi
 grep -q "stopped by a signal" "$work/term.log" && pass "SIGTERM: says so" || fail "SIGTERM log: $(cat "$work/term.log")"

@@ -5,7 +5,7 @@
 namespace oscilab::daq {
 
 /// A file written under a temporary name beside its target and renamed into place by commit(),
-/// so that a failed export leaves neither a half-written target nor the temporary behind (the
+/// so that a failed write leaves neither a half-written target nor the temporary behind (the
 /// destructor removes an uncommitted temporary). Not thread-safe; one writer per instance.
 class TemporaryFile {
  public:

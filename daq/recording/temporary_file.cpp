@@ -1,4 +1,4 @@
-#include "daq/export/temporary_file.h"
+#include "daq/recording/temporary_file.h"
 
 #include <atomic>
 #include <filesystem>

@@ -1,0 +1,54 @@
+#include "daq/recording/json_file.h"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+
+#include "analysis/common/input_error.h"
+#include "daq/recording/temporary_file.h"
+
+namespace oscilab::daq {
+
+nlohmann::json read_json_file(const std::string& path, std::uintmax_t max_bytes) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) throw InputError(path + ": file not found");
+  if (!fs::is_regular_file(status)) throw InputError(path + ": not a regular file");
+  const std::uintmax_t size = fs::file_size(path, error);
+  if (!error && size > max_bytes) {
+    throw InputError(path + ": " + std::to_string(size) + " bytes is too large for this file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path + ": cannot read: " + std::strerror(errno));
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& parse_error) {
+    std::string reason = parse_error.what();
+    // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep its line and column.
+    if (const auto end = reason.find("] ");
+        reason.rfind("[json.exception", 0) == 0 && end != std::string::npos) {
+      reason = reason.substr(end + 2);
+    }
+    throw InputError(path + ": malformed JSON: " + reason);
+  }
+}
+
+void write_text_file_atomically(const std::string& text, const std::string& path) {
+  TemporaryFile file(path);
+  {
+    std::ofstream out(file.path(), std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(path + ": cannot write: " + std::strerror(errno));
+    out << text;
+    out.flush();
+    if (!out) throw InputError(path + ": cannot write: " + std::strerror(errno));
+  }
+  file.commit();
+}
+
+}  // namespace oscilab::daq
