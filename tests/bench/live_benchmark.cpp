@@ -63,11 +63,11 @@ RigSource::Options stepped(double speed, double duration_s) {
 }
 
 // 512 Hz in real time: the rig integrates the model and reads its sensors (the source), the
-// acquisition does everything else. 8 s of stream per run.
+// acquisition does everything else. 5 s of stream per run.
 void BM_LiveChainRealTime512Hz(benchmark::State& state) {
   const std::string path = temp_recording("realtime");
   for (auto _ : state) {
-    Acquisition acquisition(std::make_unique<RigSource>(analysis::paper_model(), stepped(1.0, 8.0)),
+    Acquisition acquisition(std::make_unique<RigSource>(analysis::paper_model(), stepped(1.0, 5.0)),
                             {});
     const double cpu0 = process_cpu_s();
     const double wall_s = run_recorded(acquisition, path);
