@@ -158,7 +158,7 @@ Acquisition::Acquisition(std::unique_ptr<SampleSource> source, AcquisitionOption
   if (!(options.history_s > 0) || options.reorder_window_blocks < 1 || options.queue_blocks < 2) {
     throw InputError("acquisition: history, reorder window and queue must be positive");
   }
-  impl_->options = std::move(options);
+  impl_->options = options;
   impl_->source = source_.get();
   impl_->status.source = source_->describe();
 }

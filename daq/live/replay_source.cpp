@@ -158,7 +158,8 @@ void ReplaySource::run() {
     if (RawBlock* block = begin_block(speed == 0)) {
       for (int r = 0; r < rows; ++r) {
         for (int c = 0; c < channels; ++c) {
-          block->values[static_cast<std::size_t>(r * channels + c)] =
+          block->values[static_cast<std::size_t>(r) * static_cast<std::size_t>(channels) +
+                        static_cast<std::size_t>(c)] =
               recording_.samples_stored(file_sample + r, c);
         }
       }

@@ -48,7 +48,8 @@ RigSource::RigSource(analysis::Model model, Options options)
     throw InputError("virtual rig: duration must be positive");
   }
   // Validates the frequency and ramp once, with the message the operator will see.
-  analysis::OperatedSineMotion(model_.mass_kg(), options_.frequency_hz, options_.ramp_s);
+  [[maybe_unused]] const analysis::OperatedSineMotion check(model_.mass_kg(), options_.frequency_hz,
+                                                            options_.ramp_s);
   current_ = {0.0, 0.0, options_.frequency_hz};
 
   Sidecar sidecar = rig_sidecar(model_, rig);

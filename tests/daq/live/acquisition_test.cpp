@@ -308,7 +308,11 @@ TEST(Acquisition, NetworkStreamSurvivesReconnectsHostileFramesAndWrongLayouts) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   wait_disconnected();
-  while (!acquisition.layout()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  // Record from here: once the 100 blocks sent so far are processed.
+  for (int i = 0; i < 2000 && acquisition.status().samples < 100u * 32u; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(acquisition.status().samples, 100u * 32u);
   acquisition.start_recording((dir / "net.wav").string());
   {  // a hostile peer: a header announcing 4 GiB, then garbage
     TcpSocket socket = TcpSocket::connect_to("127.0.0.1", port);
