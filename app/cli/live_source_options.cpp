@@ -10,7 +10,7 @@
 
 namespace oscilab::cli {
 
-void add_live_source_options(CLI::App& command, LiveSourceOptions& o) {
+void add_live_source_options(CLI::App& command, LiveSourceOptions& o, bool net) {
   command.add_option("--model", o.model, "rig: paper | illustrative | MODEL.json")
       ->capture_default_str();
   command.add_option("--well", o.well, "rig: positive | negative (the well it starts in)")
@@ -29,6 +29,7 @@ void add_live_source_options(CLI::App& command, LiveSourceOptions& o) {
       .add_option("--speed", o.speed,
                   "rig and replay: x real time (0: as fast as the consumer takes it)")
       ->capture_default_str();
+  if (!net) return;
   command.add_option("--sidecar", o.sidecar,
                      "net: the layout to expect (a sidecar JSON); senders that differ are refused");
 }

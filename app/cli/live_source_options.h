@@ -25,8 +25,8 @@ struct LiveSourceOptions {
   std::optional<double> duration_s;
 };
 
-/// Adds the options above to a command.
-void add_live_source_options(CLI::App& command, LiveSourceOptions& options);
+/// Adds the options above to a command (`--sidecar` only where a network source is possible).
+void add_live_source_options(CLI::App& command, LiveSourceOptions& options, bool net);
 
 /// The source `spec` names: "rig", "file:REC" or a bare REC path (replay), "net:HOST:PORT"
 /// (listen). Throws InputError naming the option or the file.

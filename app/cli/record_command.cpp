@@ -143,7 +143,7 @@ void add_record_command(CLI::App& app) {
                       "on SIGINT/SIGTERM)");
   command->add_option("--edc", o->edc, "write the live EDC table (CSV) here");
   command->add_option("--wait", o->wait_s, "net: fail when no sender came within S seconds");
-  add_live_source_options(*command, o->live);
+  add_live_source_options(*command, o->live, true);
   command->callback([o] { run(*o); });
 }
 

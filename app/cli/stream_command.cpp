@@ -126,7 +126,7 @@ void add_stream_command(CLI::App& app) {
                    "when the receiver goes away, try to reconnect for this many seconds")
       ->capture_default_str();
   command->add_option("--duration", o->live.duration_s, "rig: stop after this many seconds");
-  add_live_source_options(*command, o->live);
+  add_live_source_options(*command, o->live, false);
   command->callback([o] { run(*o); });
 }
 
