@@ -113,6 +113,7 @@ struct Acquisition::Impl {
   std::deque<BlockArrival> arrivals;
   std::uint64_t next_sample = 0;
   bool alarm_armed[3] = {true, true, true};
+  std::uint64_t below_limit_samples[3] = {0, 0, 0};
 
   // --- shared, under mutex ---
   mutable std::mutex mutex;
@@ -149,6 +150,7 @@ struct Acquisition::Impl {
   void check_alarms(std::uint64_t sample, double z, double b, double f);
   void collect_cycles();
   void apply_recording_requests();
+  void copy_monitor_counters();  // StreamMonitor's counts into the status, per block
   double time_of(std::uint64_t sample) const { return static_cast<double>(sample) / rate_hz; }
 };
 
@@ -701,6 +703,7 @@ void Acquisition::Impl::check_alarms(std::uint64_t sample, double z, double b, d
     if (!limit[k] || !std::isfinite(value[k])) continue;
     if (alarm_armed[k] && std::abs(value[k]) > *limit[k]) {
       alarm_armed[k] = false;
+      below_limit_samples[k] = 0;
       {
         const std::lock_guard lock(mutex);
         ++status.alarms;
@@ -708,8 +711,14 @@ void Acquisition::Impl::check_alarms(std::uint64_t sample, double z, double b, d
       log({time_of(sample), "alarm",
            std::string(what[k]) + " = " + std::to_string(std::abs(value[k])) + " exceeds " +
                std::to_string(*limit[k])});
-    } else if (!alarm_armed[k] && std::abs(value[k]) < 0.9 * *limit[k]) {
-      alarm_armed[k] = true;  // re-armed once well below the limit
+    } else if (!alarm_armed[k]) {
+      // Re-armed once the value has stayed well below the limit for a second: a quantity that
+      // swings through zero every cycle (f, b) raises one alarm per excursion, not per cycle.
+      if (std::abs(value[k]) < 0.9 * *limit[k]) {
+        if (++below_limit_samples[k] >= static_cast<std::uint64_t>(rate_hz)) alarm_armed[k] = true;
+      } else {
+        below_limit_samples[k] = 0;
+      }
     }
   }
 }
@@ -749,6 +758,18 @@ void Acquisition::Impl::collect_cycles() {
     status.edc_latency_s = latency_s;
     status.edc_latency_max_s = std::max(status.edc_latency_max_s, latency_s);
   }
+}
+
+void Acquisition::Impl::copy_monitor_counters() {
+  if (!monitor) return;
+  const StreamMonitor::Counters& c = monitor->counters();
+  const std::lock_guard lock(mutex);
+  status.gaps = c.gaps;
+  status.gap_samples = c.gap_samples;
+  status.lost_blocks = c.lost_blocks;
+  status.duplicates = c.duplicates;
+  status.reordered = c.reordered;
+  status.late = c.late;
 }
 
 void Acquisition::Impl::apply_recording_requests() {
@@ -797,6 +818,7 @@ void Acquisition::Impl::run(Acquisition& owner) {
     }
     monitor->push(*block);
     queue->pop();
+    copy_monitor_counters();
     apply_recording_requests();
   }
   if (monitor) monitor->flush();
@@ -807,17 +829,9 @@ void Acquisition::Impl::run(Acquisition& owner) {
   handle_events();
   finish_pipeline();
   log({time_of(next_sample), "stop", source->describe()});
+  copy_monitor_counters();
   {
     const std::lock_guard lock(mutex);
-    if (monitor) {
-      const StreamMonitor::Counters& c = monitor->counters();
-      status.gaps = c.gaps;
-      status.gap_samples = c.gap_samples;
-      status.lost_blocks = c.lost_blocks;
-      status.duplicates = c.duplicates;
-      status.reordered = c.reordered;
-      status.late = c.late;
-    }
     pending_stop_recording = true;
   }
   apply_recording_requests();

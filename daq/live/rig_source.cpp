@@ -131,8 +131,11 @@ void RigSource::run() {
     {
       std::optional<ExcitationStep> command;
       {
+        // Taken and made current under one lock, so excitation() never shows the old value
+        // between the two.
         const std::lock_guard lock(command_mutex_);
         command.swap(pending_);
+        if (command) current_ = {block_start_s, command->f0_n, command->frequency_hz};
       }
       if (command) apply(block_start_s, command->f0_n, command->frequency_hz);
     }
