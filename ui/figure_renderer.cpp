@@ -71,10 +71,14 @@ void add_series(QCPAxisRect* rect, QCPLegend* legend, const FigureSeries& series
 
 }  // namespace
 
-std::string render_figure_png(const Figure& figure, const std::string& path) {
-  if (QApplication::instance() == nullptr) return path + ": no QApplication to render with";
-  if (figure.panels.empty()) return path + ": figure has no panels";
-  QCustomPlot plot;
+int figure_height_px(const Figure& figure) {
+  return figure.panel_height_px * static_cast<int>(figure.panels.size()) +
+         (figure.title.empty() ? 0 : 30);
+}
+
+void render_figure(QCustomPlot& plot, const Figure& figure) {
+  plot.clearPlottables();
+  plot.clearItems();
   plot.setAutoAddPlottableToLegend(false);
   plot.plotLayout()->clear();
   QFont font = plot.font();
@@ -146,9 +150,14 @@ std::string render_figure_png(const Figure& figure, const std::string& path) {
       y->setRange(values.lower - dv, values.upper + dv);
     }
   }
-  const int height = figure.panel_height_px * static_cast<int>(figure.panels.size()) +
-                     (figure.title.empty() ? 0 : 30);
-  if (!plot.savePng(QString::fromStdString(path), figure.width_px, height, 1.0)) {
+}
+
+std::string render_figure_png(const Figure& figure, const std::string& path) {
+  if (QApplication::instance() == nullptr) return path + ": no QApplication to render with";
+  if (figure.panels.empty()) return path + ": figure has no panels";
+  QCustomPlot plot;
+  render_figure(plot, figure);
+  if (!plot.savePng(QString::fromStdString(path), figure.width_px, figure_height_px(figure), 1.0)) {
     return path + ": cannot write PNG";
   }
   return {};

@@ -4,7 +4,16 @@
 
 #include "ui/figure.h"
 
+class QCustomPlot;
+
 namespace oscilab::ui {
+
+/// Lays `figure` out in `plot` (replacing what it showed): the title, then each panel's title and
+/// axes with their labels, grid, legend and series, autoscaled with a margin. For a widget in a
+/// window as for the offscreen PNG below.
+void render_figure(QCustomPlot& plot, const Figure& figure);
+/// The height the figure is drawn at: panel_height_px per panel and 30 px for the title.
+int figure_height_px(const Figure& figure);
 
 /// Renders a Figure offscreen with QCustomPlot and saves it as PNG. Needs a QApplication (the
 /// plot is a QWidget; the "offscreen" platform is enough, no display). Branch curves are drawn

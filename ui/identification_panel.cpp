@@ -1,10 +1,12 @@
 #include "ui/identification_panel.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
 
 #include <QComboBox>
+#include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -19,6 +21,7 @@
 #include <QSpinBox>
 #include <QTabWidget>
 #include <QTableWidget>
+#include <QTimer>
 #include <QVBoxLayout>
 
 #include <qcustomplot.h>
@@ -29,6 +32,11 @@
 #include "analysis/model/reference_models.h"
 #include "daq/recording/campaign_reader.h"
 #include "ui/background_job.h"
+#include "ui/figure_dialog.h"
+#include "ui/figure_renderer.h"
+#include "ui/fit_figures.h"
+#include "ui/fit_json.h"
+#include "ui/response_dialog.h"
 
 namespace oscilab::ui {
 
@@ -36,9 +44,11 @@ namespace oscilab::ui {
 struct IdentificationPanel::Outcome {
   bool diagnosis = false;
   std::string error;  // InputError text: bad recordings
-  std::unique_ptr<analysis::EdcObjective> objective;
+  std::shared_ptr<const analysis::EdcObjective> objective;
   analysis::FitResult fit;
   analysis::DiagnosisResult diagnosis_result;
+  std::vector<std::string> records;  // the recordings fitted, as given
+  std::vector<std::string> notes;    // how the base model was set up (campaign_model)
 };
 
 namespace {
@@ -55,9 +65,52 @@ QString number(double value, int digits = 4) {
   return std::isfinite(value) ? QString::number(value, 'g', digits) : QStringLiteral("—");
 }
 
+// The live EDC curve is redrawn at most 5 times a second (issue 8).
+constexpr auto kPreviewInterval = std::chrono::milliseconds(200);
+
+// S^mod of the model at θ at every measured level, per group (0 where it is not solved), J. Runs
+// on the fit's worker: about one model evaluation (the level responses of both wells, ~3 ms),
+// through edc_at so that the fit's own evaluation count stays that of the search.
+std::vector<std::vector<double>> model_edc(const analysis::EdcObjective& objective,
+                                           const Eigen::VectorXd& theta) {
+  std::vector<std::vector<double>> out;
+  const analysis::Model model = objective.form().build(theta);  // InputError: caught by caller
+  for (const analysis::EdcGroup& group : objective.data().groups) {
+    std::vector<double> f0_n;
+    for (const analysis::MeasuredLevel& level : group.levels) f0_n.push_back(level.f0_n);
+    out.push_back(objective.edc_at(model, group.positive_well, group.freq_hz, f0_n));
+  }
+  return out;
+}
+
+// A parameter of θ as Table 3 names it, with its unit (other forms' names as they are).
+QString table3_label(const std::string& name) {
+  if (name == "fd_zminus_n") return QStringLiteral("f_d(z\u208b*) [N]");
+  if (name == "fd_zero_n") return QStringLiteral("f_d(0) [N]");
+  if (name == "fd_zplus_n") return QStringLiteral("f_d(z\u208a*) [N]");
+  if (name == "ks") return QStringLiteral("k_s [-]");
+  if (name == "c_ns_m") return QStringLiteral("c [N s/m]");
+  if (name == "vt_m_s") return QStringLiteral("v_t [m/s]");
+  return QString::fromStdString(name);
+}
+
+// Tab names of the fit's figures (ui/fit_figures.h stems).
+QString figure_tab_name(const std::string& stem) {
+  if (stem == "edc_fit") return QObject::tr("EDC (Fig. 15)");
+  if (stem == "convergence") return QObject::tr("Convergence (Fig. 14)");
+  if (stem == "friction") return QObject::tr("Friction f_d(z)");
+  if (stem == "cost_slices") return QObject::tr("Cost slices (Fig. 13)");
+  if (stem == "sensitivity_positive") return QObject::tr("Sensitivity z+* (Fig. 16)");
+  if (stem == "sensitivity_negative") return QObject::tr("Sensitivity z-* (Fig. 16)");
+  return QString::fromStdString(stem);
+}
+
 }  // namespace
 
 IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
+  qRegisterMetaType<std::shared_ptr<const FitPreview>>();
+  connect(this, &IdentificationPanel::fit_preview, this, &IdentificationPanel::show_preview,
+          Qt::QueuedConnection);
   job_ = new BackgroundJob(this);
   connect(job_, &BackgroundJob::progress, this,
           [this](double f) { progress_->setValue(static_cast<int>(1000 * f)); });
@@ -117,6 +170,35 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   buttons->addWidget(fit_button_);
   buttons->addWidget(diagnose_button_);
   buttons->addWidget(cancel_button_);
+
+  figures_button_ = new QPushButton(tr("Figures\u2026"));
+  figures_button_->setToolTip(
+      tr("Figs. 13\u201316 of the last fit: cost slices, convergence, "
+         "EDC, sensitivity, f_d(z)"));
+  export_button_ = new QPushButton(tr("Export results\u2026"));
+  export_button_->setToolTip(
+      tr("Write the FIT JSON (as oscilab-cli fit), the figures (PNG) and their data (CSV) into a "
+         "folder"));
+  branch_button_ = new QPushButton(tr("HBM branch\u2026"));
+  branch_button_->setToolTip(
+      tr("Harmonic-balance branches of the fitted model in f0 at the test "
+         "frequency, one per well, with stability and folds (Fig. 11)"));
+  map_button_ = new QPushButton(tr("Bifurcation map\u2026"));
+  map_button_->setToolTip(
+      tr("Bifurcation map of the fitted model by time simulation, over its HBM branches "
+         "(Fig. 17)"));
+  connect(figures_button_, &QPushButton::clicked, this, &IdentificationPanel::show_figures);
+  connect(export_button_, &QPushButton::clicked, this, [this] {
+    const QString dir = QFileDialog::getExistingDirectory(this, tr("Export results into"));
+    if (!dir.isEmpty()) export_results(dir);
+  });
+  connect(branch_button_, &QPushButton::clicked, this, [this] { open_branch_dialog(); });
+  connect(map_button_, &QPushButton::clicked, this, [this] { open_map_dialog(); });
+  auto* result_buttons = new QHBoxLayout;
+  result_buttons->addWidget(figures_button_);
+  result_buttons->addWidget(export_button_);
+  result_buttons->addWidget(branch_button_);
+  result_buttons->addWidget(map_button_);
   progress_ = new QProgressBar;
   progress_->setRange(0, 1000);
   progress_->setTextVisible(false);
@@ -171,12 +253,16 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   layout->addWidget(records);
   layout->addWidget(settings);
   layout->addLayout(buttons);
+  layout->addLayout(result_buttons);
   layout->addWidget(progress_);
   layout->addWidget(status_label_);
   layout->addWidget(tabs_, 1);
+  update_result_buttons();
 }
 
-IdentificationPanel::~IdentificationPanel() = default;
+// The worker emits fit_preview on this object: it must have ended before anything of the panel
+// goes (BackgroundJob's destructor cancels and joins).
+IdentificationPanel::~IdentificationPanel() { delete job_; }
 
 void IdentificationPanel::set_recordings(const std::vector<std::string>& paths) {
   record_list_->clear();
@@ -232,6 +318,23 @@ void IdentificationPanel::set_busy(bool busy) {
   add_button_->setEnabled(!busy);
   cancel_button_->setEnabled(busy);
   if (busy) progress_->setValue(0);
+  update_result_buttons();
+}
+
+void IdentificationPanel::update_result_buttons() {
+  const bool ready = fitted_ != nullptr && !cancel_button_->isEnabled();  // and not busy
+  figures_button_->setEnabled(ready);
+  export_button_->setEnabled(ready);
+  branch_button_->setEnabled(fitted_ != nullptr);  // the dialogs have workers of their own
+  map_button_->setEnabled(fitted_ != nullptr);
+}
+
+const analysis::FitResult* IdentificationPanel::fit_result() const {
+  return fitted_ ? &fitted_->fit : nullptr;
+}
+
+std::shared_ptr<const analysis::EdcObjective> IdentificationPanel::fit_objective() const {
+  return fitted_ ? fitted_->objective : nullptr;
 }
 
 void IdentificationPanel::add_convergence_point(long evaluations, double best_weighted_cost) {
@@ -242,6 +345,7 @@ void IdentificationPanel::add_convergence_point(long evaluations, double best_we
 }
 
 void IdentificationPanel::start(bool diagnosis) {
+  if (job_->running()) return;
   const std::vector<std::string> paths = recordings();
   if (paths.empty()) {
     status_label_->setText(tr("No recordings: add the stepped-sine records of both wells."));
@@ -260,17 +364,21 @@ void IdentificationPanel::start(bool diagnosis) {
   analysis::DiagnosisOptions diagnosis_options;
   diagnosis_options.baseline_evaluations = baseline_evaluations_;
   diagnosis_options.candidate_evaluations = candidate_evaluations_;
+  outcome->records = paths;
   outcome_ = outcome;
+  job_kind_ = diagnosis ? JobKind::Diagnosis : JobKind::Fit;
   convergence_plot_->graph(0)->data()->clear();
+  progress_->setRange(0, 1000);
   set_busy(true);
   QPointer<IdentificationPanel> self(this);
+  IdentificationPanel* panel = this;  // outlives the worker (see the destructor)
   status_label_->setText(diagnosis ? tr("Diagnosing\u2026") : tr("Fitting\u2026"));
-  job_->start([outcome, paths, fit_options, diagnosis_options, self](const ProgressFn& progress,
-                                                                     const CancelToken& cancel) {
+  job_->start([outcome, paths, fit_options, diagnosis_options, self, panel](
+                  const ProgressFn& progress, const CancelToken& cancel) {
     try {
       const analysis::CampaignAnalysis campaign =
           daq::analyze_recordings(paths, {}, {}, {}, cancel);
-      std::vector<std::string> notes;
+      std::vector<std::string>& notes = outcome->notes;
       const analysis::Model base = analysis::campaign_model(
           analysis::paper_model(), campaign, analysis::StiffnessSource::Model, notes);
       const analysis::ModelForm form = analysis::ModelForm::paper(base);
@@ -279,24 +387,44 @@ void IdentificationPanel::start(bool diagnosis) {
             analysis::diagnose(campaign, form, diagnosis_options, progress, cancel);
         const auto& r = outcome->diagnosis_result;
         if (r.final_form) {
-          outcome->objective = std::make_unique<analysis::EdcObjective>(
+          outcome->objective = std::make_shared<const analysis::EdcObjective>(
               *r.final_form, analysis::edc_dataset(campaign), diagnosis_options.cost);
         }
       } else {
-        outcome->objective = std::make_unique<analysis::EdcObjective>(
+        const auto objective = std::make_shared<const analysis::EdcObjective>(
             form, analysis::edc_dataset(campaign), analysis::EdcCostSettings{});
+        outcome->objective = objective;
         const long budget = fit_options.method == analysis::FitMethod::Genetic
                                 ? static_cast<long>(fit_options.genetic.population) *
                                       (fit_options.genetic.generations + 1)
                                 : fit_options.max_evaluations;
-        // The convergence curve gets a point at most every 50 ms (20 redraws a second).
-        auto last_point = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+        // The convergence curve gets a point at most every 50 ms (20 redraws a second), the
+        // live EDC curve of the best θ every 200 ms. The searches call this one at a time.
+        const auto long_ago = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+        auto last_point = long_ago;
+        auto last_preview = long_ago;
         outcome->fit = analysis::fit_edc(
-            *outcome->objective, fit_options,
+            *objective, fit_options,
             [&](const analysis::FitProgress& p) {
               if (p.stage == "uncertainty") return;
               progress(std::min(0.95, static_cast<double>(p.evaluations) / budget));
               const auto now = std::chrono::steady_clock::now();
+              if (now - last_preview >= kPreviewInterval && !cancel.cancelled() &&
+                  p.best_theta.size() == objective->form().size()) {
+                auto preview = std::make_shared<FitPreview>();
+                preview->evaluations = p.evaluations;
+                preview->best_weighted_cost = p.best_weighted_cost;
+                preview->theta = p.best_theta;
+                preview->objective = objective;
+                try {
+                  preview->edc_mod_j = model_edc(*objective, p.best_theta);
+                  Q_EMIT panel->fit_preview(std::move(preview));
+                } catch (const InputError&) {
+                  // θ outside a term's domain: no curve this time.
+                }
+                // From the end of this one, so that sent previews are ≥ 200 ms apart.
+                last_preview = std::chrono::steady_clock::now();
+              }
               if (now - last_point < std::chrono::milliseconds(50)) return;
               last_point = now;
               QMetaObject::invokeMethod(
@@ -317,9 +445,18 @@ void IdentificationPanel::start(bool diagnosis) {
 }
 
 void IdentificationPanel::on_finished(bool cancelled) {
+  if (job_kind_ == JobKind::FigureData) {
+    on_figure_data_finished(cancelled);
+    return;
+  }
+  const std::shared_ptr<Outcome> outcome = outcome_;
+  if (!cancelled && outcome->error.empty() && !outcome->diagnosis &&
+      outcome->fit.status != JobStatus::Cancelled) {
+    fitted_ = outcome;  // the figures and dialogs follow the new fit
+    figure_data_.reset();
+  }
   set_busy(false);
   progress_->setValue(1000);
-  const std::shared_ptr<Outcome> outcome = outcome_;
   QString message;
   if (!outcome->error.empty()) {
     message = tr("Error: %1").arg(QString::fromStdString(outcome->error));
@@ -355,7 +492,10 @@ void IdentificationPanel::show_fit(const Outcome& outcome) {
   const analysis::FitResult& fit = outcome.fit;
   parameter_table_->setRowCount(static_cast<int>(fit.names.size()));
   for (int i = 0; i < static_cast<int>(fit.names.size()); ++i) {
-    parameter_table_->setItem(i, 0, cell(QString::fromStdString(fit.names[i])));
+    QTableWidgetItem* name = cell(table3_label(fit.names[i]));
+    name->setToolTip(QString::fromStdString(fit.names[i]));  // its key in the FIT JSON
+    name->setData(Qt::UserRole, QString::fromStdString(fit.names[i]));
+    parameter_table_->setItem(i, 0, name);
     parameter_table_->setItem(i, 1, cell(number(fit.theta(i), 5)));
     if (i < static_cast<int>(fit.uncertainty.parameters.size())) {
       const auto& u = fit.uncertainty.parameters[i];
@@ -376,7 +516,7 @@ void IdentificationPanel::show_fit(const Outcome& outcome) {
   convergence_plot_->graph(0)->setData(evaluations, best);
   convergence_plot_->rescaleAxes();
   convergence_plot_->replot();
-  if (outcome.objective) plot_edc(*outcome.objective, fit.evaluation, tr("model"));
+  if (outcome.objective) plot_edc(*outcome.objective, fit.evaluation.edc_mod_j, tr("model"));
   tabs_->setCurrentIndex(0);
 }
 
@@ -435,18 +575,29 @@ void IdentificationPanel::show_diagnosis(const Outcome& outcome) {
   residual_plot_->yAxis->scaleRange(1.25);  // and room for the legend
   residual_plot_->replot();
   if (outcome.objective) {
-    plot_edc(*outcome.objective, r.final_evaluation,
+    plot_edc(*outcome.objective, r.final_evaluation.edc_mod_j,
              tr("model (%1)").arg(QString::fromStdString(r.verdict)));
   }
   tabs_->setCurrentIndex(2);
 }
 
+void IdentificationPanel::show_preview(std::shared_ptr<const FitPreview> preview) {
+  // A preview queued before its fit ended arrives before the fit's result; one of an older job
+  // is dropped.
+  if (!preview || job_kind_ != JobKind::Fit || !job_->running() || !outcome_ ||
+      outcome_->objective != preview->objective) {
+    return;
+  }
+  plot_edc(*preview->objective, preview->edc_mod_j,
+           tr("best so far (%1 evaluations)").arg(preview->evaluations));
+}
+
 void IdentificationPanel::plot_edc(const analysis::EdcObjective& objective,
-                                   const analysis::EdcEvaluation& model,
+                                   const std::vector<std::vector<double>>& edc_mod_j,
                                    const QString& model_name) {
-  edc_plot_->clearGraphs();
+  edc_plot_->clearPlottables();  // graphs and their error bars
   const auto& groups = objective.data().groups;
-  for (std::size_t g = 0; g < groups.size() && g < model.edc_mod_j.size(); ++g) {
+  for (std::size_t g = 0; g < groups.size() && g < edc_mod_j.size(); ++g) {
     const bool positive = groups[g].positive_well;
     const QString well = positive ? tr("z+* well") : tr("z-* well");
     QVector<double> f0, measured, error, predicted;
@@ -455,7 +606,7 @@ void IdentificationPanel::plot_edc(const analysis::EdcObjective& objective,
       f0.push_back(m.f0_n);
       measured.push_back(1e3 * m.edc_j);
       error.push_back(3e3 * m.edc_std_j);  // ±3σ as the paper's Fig. 10
-      predicted.push_back(1e3 * model.edc_mod_j[g][i]);
+      predicted.push_back(1e3 * edc_mod_j[g][i]);
     }
     QCPGraph* points = edc_plot_->addGraph();
     points->setName(well + tr(" measured \u00b13\u03c3"));
@@ -477,7 +628,177 @@ void IdentificationPanel::plot_edc(const analysis::EdcObjective& objective,
   edc_plot_->rescaleAxes();
   edc_plot_->xAxis->scaleRange(1.08);
   edc_plot_->yAxis->setRangeLower(0.0);
-  edc_plot_->replot();
+  edc_plot_->replot(QCustomPlot::rpQueuedReplot);
+}
+
+void IdentificationPanel::with_figure_data(std::function<void()> then, const QString& export_dir) {
+  if (!fitted_) {
+    status_label_->setText(tr("Fit first: the figures show the last fit."));
+    if (!export_dir.isEmpty()) Q_EMIT export_finished(status_label_->text(), false);
+    return;
+  }
+  if (job_->running()) {
+    status_label_->setText(tr("Busy: wait for the running job or cancel it."));
+    if (!export_dir.isEmpty()) Q_EMIT export_finished(status_label_->text(), false);
+    return;
+  }
+  if (figure_data_ && export_dir.isEmpty()) {
+    then();
+    return;
+  }
+  job_kind_ = JobKind::FigureData;
+  after_figure_data_ = std::move(then);
+  export_dir_ = export_dir;
+  const std::shared_ptr<const Outcome> fitted = fitted_;
+  const std::shared_ptr<const FitFigureData> existing = figure_data_;
+  auto data = std::make_shared<FitFigureData>();
+  auto error = std::make_shared<std::string>();
+  figure_data_job_ = data;
+  figure_data_error_ = error;
+  const std::string dir = export_dir.toStdString();
+  progress_->setRange(0, 0);  // busy indicator: the slices and curves report no fraction
+  set_busy(true);
+  status_label_->setText(existing ? tr("Writing the results\u2026")
+                                  : tr("Computing the cost slices and sensitivity curves\u2026"));
+  job_->start([fitted, existing, data, error, dir](const ProgressFn&, const CancelToken& cancel) {
+    try {
+      *data =
+          existing ? *existing : fit_figure_data(*fitted->objective, fitted->fit.theta, 0, cancel);
+      if (!dir.empty() && !cancel.cancelled()) {
+        write_fit_json(dir + "/fit.json", fitted->fit, *fitted->objective, fitted->records,
+                       fitted->notes);
+        write_fit_tables(dir, fitted->fit, *fitted->objective, data->slices, data->curves);
+      }
+    } catch (const std::exception& e) {  // InputError: a file that cannot be written
+      *error = e.what();
+    }
+  });
+}
+
+void IdentificationPanel::on_figure_data_finished(bool cancelled) {
+  job_kind_ = JobKind::Fit;
+  progress_->setRange(0, 1000);
+  set_busy(false);
+  progress_->setValue(1000);
+  const bool exporting = !export_dir_.isEmpty();
+  std::function<void()> then = std::move(after_figure_data_);
+  after_figure_data_ = nullptr;
+  if (!figure_data_error_->empty()) {
+    const QString message = tr("Error: %1").arg(QString::fromStdString(*figure_data_error_));
+    status_label_->setText(message);
+    if (exporting) Q_EMIT export_finished(message, false);
+    return;
+  }
+  if (cancelled) {
+    status_label_->setText(tr("Cancelled."));
+    if (exporting) Q_EMIT export_finished(tr("Cancelled."), false);
+    return;
+  }
+  figure_data_ = figure_data_job_;
+  status_label_->clear();
+  if (then) then();
+}
+
+void IdentificationPanel::show_figures() {
+  with_figure_data([this] {
+    std::vector<std::pair<QString, Figure>> figures;
+    for (NamedFigure& f : fit_figures(fitted_->fit, *fitted_->objective, *figure_data_)) {
+      figures.emplace_back(figure_tab_name(f.stem), std::move(f.figure));
+    }
+    if (!figures_dialog_) {
+      figures_dialog_ = new FigureDialog(this);
+      figures_dialog_->setWindowTitle(tr("Figures of the fit"));
+    }
+    figures_dialog_->set_figures(figures);
+    figures_dialog_->show();
+    figures_dialog_->raise();
+    status_label_->setText(tr("Figures of the fit: %1 (Figs. 13\u201316).").arg(figures.size()));
+    Q_EMIT figures_shown();
+  });
+}
+
+void IdentificationPanel::export_results(const QString& dir) {
+  if (!fitted_) {
+    with_figure_data({}, dir);  // says why not
+    return;
+  }
+  if (!QDir().mkpath(dir)) {
+    const QString message = tr("Error: %1: cannot create the folder").arg(dir);
+    status_label_->setText(message);
+    Q_EMIT export_finished(message, false);
+    return;
+  }
+  with_figure_data(
+      [this, dir] {
+        auto figures = std::make_shared<const std::vector<NamedFigure>>(
+            fit_figures(fitted_->fit, *fitted_->objective, *figure_data_));
+        write_figure_pngs(dir, figures, 0);
+      },
+      dir);
+}
+
+// One PNG per turn of the event loop (each renders in tens of ms on the UI thread, where
+// QCustomPlot lives), so that the window stays responsive.
+void IdentificationPanel::write_figure_pngs(const QString& dir,
+                                            std::shared_ptr<const std::vector<NamedFigure>> figures,
+                                            std::size_t next) {
+  if (next == figures->size()) {
+    const QString message = tr("Results written to %1: fit.json, %2 figures (PNG) and their "
+                               "tables (CSV).")
+                                .arg(dir)
+                                .arg(figures->size());
+    status_label_->setText(message);
+    Q_EMIT export_finished(message, true);
+    return;
+  }
+  const NamedFigure& f = (*figures)[next];
+  const std::string error = render_figure_png(
+      f.figure, QDir(dir).filePath(QString::fromStdString(f.stem + ".png")).toStdString());
+  if (!error.empty()) {
+    const QString message = tr("Error: %1").arg(QString::fromStdString(error));
+    status_label_->setText(message);
+    Q_EMIT export_finished(message, false);
+    return;
+  }
+  QTimer::singleShot(0, this,
+                     [this, dir, figures, next] { write_figure_pngs(dir, figures, next + 1); });
+}
+
+ResponseDialog* IdentificationPanel::open_branch_dialog() { return open_response_dialog(false); }
+ResponseDialog* IdentificationPanel::open_map_dialog() { return open_response_dialog(true); }
+
+ResponseDialog* IdentificationPanel::open_response_dialog(bool map) {
+  if (!fitted_) {
+    status_label_->setText(tr("Fit first: the branches and the map are of the fitted model."));
+    return nullptr;
+  }
+  const analysis::EdcObjective& objective = *fitted_->objective;
+  ResponseDialog::Setup setup;
+  try {
+    setup.model =
+        std::make_shared<const analysis::Model>(objective.form().build(fitted_->fit.theta));
+  } catch (const InputError& error) {
+    status_label_->setText(tr("Error: %1").arg(QString::fromStdString(error.what())));
+    return nullptr;
+  }
+  double largest_f0_n = 0.0;
+  for (const analysis::EdcGroup& group : objective.data().groups) {
+    setup.wells.push_back({group.positive_well, group.freq_hz});
+    for (const analysis::MeasuredLevel& level : group.levels) {
+      largest_f0_n = std::max(largest_f0_n, level.f0_n);
+    }
+  }
+  // The paper's range (Fig. 11: 0.1 to 3.7 N), wider when the test went further.
+  setup.start_n = 0.1;
+  setup.end_n = std::max(3.7, 1.25 * largest_f0_n);
+  setup.harmonics = objective.settings().hbm.harmonics;
+  setup.model_name = tr("fitted model").toStdString();
+  auto* dialog = new ResponseDialog(map ? ResponseDialog::Kind::Map : ResponseDialog::Kind::Branch,
+                                    std::move(setup), this);
+  dialog->setAttribute(Qt::WA_DeleteOnClose);
+  dialog->show();
+  dialog->start();
+  return dialog;
 }
 
 }  // namespace oscilab::ui

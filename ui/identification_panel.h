@@ -1,9 +1,11 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include <QMetaType>
 #include <QWidget>
 
 #include "analysis/diagnosis/diagnosis.h"
@@ -22,6 +24,22 @@ class QTabWidget;
 namespace oscilab::ui {
 
 class BackgroundJob;
+class FigureDialog;
+class ResponseDialog;
+struct FitFigureData;
+struct NamedFigure;
+
+/// The best model of a running fit so far, made on the fit's worker thread and handed to the UI
+/// thread by a queued signal: its EDC at every measured level (issue 8, live progress).
+struct FitPreview {
+  long evaluations = 0;
+  double best_weighted_cost = 0.0;  // χ² of the best θ so far
+  Eigen::VectorXd theta;            // the best θ so far
+  /// The measured levels (immutable; shared with the worker, which only evaluates it).
+  std::shared_ptr<const analysis::EdcObjective> objective;
+  /// S^mod at the best θ, per group and level of objective->data() (0: not solved), J.
+  std::vector<std::vector<double>> edc_mod_j;
+};
 
 /// The fit and model-gap panel (issues 6 and 9): recordings of a stepped-sine campaign, a fit of
 /// the paper's θ (eq. (9)) by CMA-ES or the paper's GA, and a diagnosis that names the missing
@@ -29,6 +47,16 @@ class BackgroundJob;
 /// parameters with standard errors and 95 % intervals (Table 3 style), the EDC per well measured
 /// against the model (Fig. 15), the diagnosis's verdict and steps with the EDC residuals in σ
 /// before and after. The computing is the analysis core's (fit_edc, diagnose); the panel shows.
+///
+/// While a fit runs, the EDC tab draws the model EDC of the best θ so far over the measured
+/// points, at most 5 times a second (the worker computes it and sends a FitPreview). After a
+/// fit (issue 8): "Figures…" shows Figs. 13–16 (ui/fit_figures), "Export results…" writes the
+/// FIT JSON of `oscilab-cli fit` and the figures as PNG + CSV into a folder, "HBM branch…" and
+/// "Bifurcation map…" open the fitted model's branches and map (ResponseDialog). The data the
+/// figures need beyond the fit (cost slices, sensitivity curves) is computed once, on demand, on
+/// the worker with progress and cancel.
+///
+/// Thread-safety: UI thread only; fit_preview is emitted from the worker thread (queued).
 class IdentificationPanel : public QWidget {
   Q_OBJECT
 
@@ -50,6 +78,20 @@ class IdentificationPanel : public QWidget {
   void cancel();
   bool busy() const;
 
+  /// The last fit that finished (not cancelled), with its objective; null before.
+  const analysis::FitResult* fit_result() const;
+  std::shared_ptr<const analysis::EdcObjective> fit_objective() const;
+  /// Opens the figures of the last fit (computing their data first when needed, on the worker).
+  void show_figures();
+  /// Writes the last fit's FIT JSON (fit.json), figures (PNG) and tables (CSV) into `dir`,
+  /// computing the figure data first when needed; export_finished says how it went.
+  void export_results(const QString& dir);
+  /// The HBM branches (continuation in f0 at the test frequency, one per well) and the
+  /// bifurcation map of the fitted model, each in its own dialog (computed when opened).
+  ResponseDialog* open_branch_dialog();
+  ResponseDialog* open_map_dialog();
+  FigureDialog* figures_dialog() const { return figures_dialog_; }
+
   QPushButton* fit_button() const { return fit_button_; }
   QPushButton* diagnose_button() const { return diagnose_button_; }
   QPushButton* cancel_button() const { return cancel_button_; }
@@ -62,25 +104,55 @@ class IdentificationPanel : public QWidget {
   /// Best χ² against model evaluations, growing while a fit runs (Fig. 14).
   QCustomPlot* convergence_plot() const { return convergence_plot_; }
   QTabWidget* tabs() const { return tabs_; }
+  QPushButton* figures_button() const { return figures_button_; }
+  QPushButton* export_button() const { return export_button_; }
+  QPushButton* branch_button() const { return branch_button_; }
+  QPushButton* map_button() const { return map_button_; }
 
  Q_SIGNALS:
   /// A fit or a diagnosis ended (finished, cancelled or failed); `message` says which.
   void job_finished(const QString& message);
+  /// The best model so far of a running fit. Emitted on the worker thread at most 5 times a
+  /// second; the panel draws it through a queued connection.
+  void fit_preview(std::shared_ptr<const oscilab::ui::FitPreview> preview);
+  /// The figures dialog shows the figures of the last fit.
+  void figures_shown();
+  /// An export of results ended; `ok` false with the reason in `message`.
+  void export_finished(const QString& message, bool ok);
 
  private:
   struct Outcome;
+  enum class JobKind { Fit, Diagnosis, FigureData };
   void start(bool diagnosis);
   void on_finished(bool cancelled);
   void set_busy(bool busy);
+  void update_result_buttons();
+  /// Runs `then` once the figure data of the last fit exists (at once, or after the worker
+  /// computed it; not at all when that is cancelled). With `export_dir`, the worker also writes
+  /// the FIT JSON and the CSV tables there.
+  void with_figure_data(std::function<void()> then, const QString& export_dir = {});
+  void on_figure_data_finished(bool cancelled);
+  void write_figure_pngs(const QString& dir,
+                         std::shared_ptr<const std::vector<NamedFigure>> figures, std::size_t next);
+  void show_preview(std::shared_ptr<const oscilab::ui::FitPreview> preview);
+  ResponseDialog* open_response_dialog(bool map);
   /// A fit's best χ² so far (called on the UI thread, from the worker's queued reports).
   void add_convergence_point(long evaluations, double best_weighted_cost);
   void show_fit(const Outcome& outcome);
   void show_diagnosis(const Outcome& outcome);
-  void plot_edc(const analysis::EdcObjective& objective, const analysis::EdcEvaluation& model,
-                const QString& model_name);
+  void plot_edc(const analysis::EdcObjective& objective,
+                const std::vector<std::vector<double>>& edc_mod_j, const QString& model_name);
 
   BackgroundJob* job_ = nullptr;
+  JobKind job_kind_ = JobKind::Fit;
   std::shared_ptr<Outcome> outcome_;
+  std::shared_ptr<const Outcome> fitted_;  // the last finished fit, for figures and dialogs
+  std::shared_ptr<const FitFigureData> figure_data_;  // of fitted_, once computed
+  std::shared_ptr<FitFigureData> figure_data_job_;    // written by the worker
+  std::shared_ptr<std::string> figure_data_error_;    // written by the worker
+  std::function<void()> after_figure_data_;
+  QString export_dir_;
+  FigureDialog* figures_dialog_ = nullptr;
   long baseline_evaluations_ = 2000;
   long candidate_evaluations_ = 800;
 
@@ -93,6 +165,10 @@ class IdentificationPanel : public QWidget {
   QPushButton* fit_button_ = nullptr;
   QPushButton* diagnose_button_ = nullptr;
   QPushButton* cancel_button_ = nullptr;
+  QPushButton* figures_button_ = nullptr;
+  QPushButton* export_button_ = nullptr;
+  QPushButton* branch_button_ = nullptr;
+  QPushButton* map_button_ = nullptr;
   QProgressBar* progress_ = nullptr;
   QLabel* status_label_ = nullptr;
   QLabel* verdict_label_ = nullptr;
@@ -105,3 +181,5 @@ class IdentificationPanel : public QWidget {
 };
 
 }  // namespace oscilab::ui
+
+Q_DECLARE_METATYPE(std::shared_ptr<const oscilab::ui::FitPreview>)

@@ -18,8 +18,12 @@
 #include <QToolBar>
 
 #include "analysis/common/input_error.h"
+#include "analysis/identification/edc_fit.h"
+#include "analysis/identification/edc_objective.h"
 #include "ui/background_job.h"
+#include "ui/export_menu.h"
 #include "ui/identification_panel.h"
+#include "ui/live_monitor.h"
 #include "ui/record_view.h"
 #include "ui/review_model.h"
 #include "ui/review_view.h"
@@ -70,6 +74,14 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   central_tabs_->setObjectName("central_tabs");
   central_tabs_->setDocumentMode(true);
   central_tabs_->addTab(review_view_, tr("Review"));
+  // The live monitor (issue 8); the session keeps its settings ("live").
+  auto* live_monitor = new LiveMonitor;
+  live_monitor->setObjectName("live_monitor");
+  central_tabs_->addTab(live_monitor, tr("Live"));
+  live_settings_ = live_monitor->settings().to_json();
+  connect(live_monitor, &LiveMonitor::settings_changed, this,
+          [this](const nlohmann::json& settings) { set_live_settings(settings); });
+  connect(this, &MainWindow::live_settings_restored, live_monitor, &LiveMonitor::apply_settings);
   setCentralWidget(central_tabs_);
   identification_panel_ = new IdentificationPanel(this);
   auto* dock = new QDockWidget(tr("Fit and diagnosis"), this);
@@ -77,6 +89,24 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   dock->setWidget(identification_panel_);
   identification_panel_->setMinimumWidth(520);
   addDockWidget(Qt::RightDockWidgetArea, dock);
+  // From the rig to a fitted model: a finished live recording opens for review and fitting, and
+  // each fitted model's EDC is drawn over the live measurement.
+  connect(live_monitor, &LiveMonitor::recording_finished, this, [this](const QString& path) {
+    if (open_recording(path))
+      statusBar()->showMessage(tr("Recorded %1: opened for review").arg(path));
+  });
+  connect(identification_panel_, &IdentificationPanel::job_finished, live_monitor,
+          [this, live_monitor] {
+            const analysis::FitResult* result = identification_panel_->fit_result();
+            const auto objective = identification_panel_->fit_objective();
+            if (result == nullptr || !objective || result->theta.size() == 0) return;
+            try {
+              live_monitor->set_prediction_model(
+                  std::make_shared<const analysis::Model>(objective->form().build(result->theta)),
+                  tr("fitted model"));
+            } catch (const std::exception&) {  // a form that cannot build θ̄ keeps the model drawn
+            }
+          });
 
   analysis_job_ = new BackgroundJob(this);
   analysis_timer_ = new QTimer(this);
@@ -106,6 +136,7 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   save_session_action_ =
       file_menu->addAction(tr("Save session\u2026"), this, &MainWindow::choose_and_save_session);
   save_session_action_->setShortcut(QKeySequence::Save);
+  export_menu_ = new ExportMenu(this, file_menu);
   file_menu->addSeparator();
   quit_action_ = file_menu->addAction(tr("&Quit"), this, &QWidget::close);
   quit_action_->setShortcut(QKeySequence::Quit);

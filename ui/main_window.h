@@ -24,6 +24,7 @@ class QTimer;
 namespace oscilab::ui {
 
 class BackgroundJob;
+class ExportMenu;
 class IdentificationPanel;
 class RecordView;
 class ReviewView;
@@ -89,12 +90,15 @@ class MainWindow : public QMainWindow {
   /// Off: errors are reported by the status bar and error_reported only, without a modal
   /// message box, and Mark uses a default note instead of asking (for tests and screenshots).
   void set_interactive_errors(bool on) { interactive_errors_ = on; }
+  bool interactive_errors() const { return interactive_errors_; }
 
   /// The central tab widget: "Review" first; other pages (a live monitor) are added after it.
   QTabWidget* central_tabs() const { return central_tabs_; }
   ReviewView* review_view() const { return review_view_; }
   RecordView* record_view() const;
   IdentificationPanel* identification_panel() const { return identification_panel_; }
+  /// File ▸ Export: plots, the level table, the recording shown, the EDC table.
+  ExportMenu* export_menu() const { return export_menu_; }
   QAction* open_action() const { return open_action_; }
   QAction* open_session_action() const { return open_session_action_; }
   QAction* save_session_action() const { return save_session_action_; }
@@ -156,6 +160,7 @@ class MainWindow : public QMainWindow {
   QAction* auto_value_range_action_ = nullptr;
   QAction* cursor_follows_mouse_action_ = nullptr;
   QAction* quit_action_ = nullptr;
+  ExportMenu* export_menu_ = nullptr;
 };
 
 }  // namespace oscilab::ui

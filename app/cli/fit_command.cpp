@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <thread>
@@ -12,15 +11,14 @@
 #include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/edc_fit.h"
-#include "analysis/identification/edc_sensitivity.h"
-#include "analysis/identification/fit_report.h"
 #include "analysis/model/model_json.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
-#include "app/cli/fit_figures.h"
 #include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
+#include "ui/fit_figures.h"
+#include "ui/fit_json.h"
 
 namespace oscilab::cli {
 namespace {
@@ -147,30 +145,16 @@ void run(const FitCommandOptions& o) {
   }
   print_table(fit, objective);
 
-  nlohmann::json report = analysis::fit_report_json(fit, objective, o.recordings);
-  report["notes"] = notes;
-  std::ofstream out(o.out_path);
-  out << report.dump(2) << '\n';
-  if (!out) throw InputError(o.out_path + ": write failed");
+  ui::write_fit_json(o.out_path, fit, objective, o.recordings, notes);
   std::printf("fit written to %s\n", o.out_path.c_str());
 
   if (o.figures_dir.empty()) return;
-  const std::vector<CostSlice> slices = cost_slices(objective, fit.theta, 21, o.threads);
-  const auto curves =
-      analysis::edc_sensitivity(objective, fit.theta, {0.2, 0.5, 0.7, 1.0, 1.2, 1.5}, o.threads);
-  write_fit_tables(o.figures_dir, fit, objective, slices, curves);
+  const ui::FitFigureData figure_data = ui::fit_figure_data(objective, fit.theta, o.threads);
+  ui::write_fit_tables(o.figures_dir, fit, objective, figure_data.slices, figure_data.curves);
   if (!o.no_png) {
     FigureWriter writer;
-    writer.write(edc_fit_figure(fit, objective), o.figures_dir + "/edc_fit.png");
-    writer.write(convergence_figure(fit), o.figures_dir + "/convergence.png");
-    writer.write(friction_figure(fit, objective), o.figures_dir + "/friction.png");
-    writer.write(cost_slice_figure(slices), o.figures_dir + "/cost_slices.png");
-    for (bool positive : {true, false}) {
-      if (objective.data().group(positive)) {
-        writer.write(
-            sensitivity_figure(curves, positive),
-            o.figures_dir + "/sensitivity_" + (positive ? "positive" : "negative") + ".png");
-      }
+    for (const ui::NamedFigure& figure : ui::fit_figures(fit, objective, figure_data)) {
+      writer.write(figure.figure, o.figures_dir + "/" + figure.stem + ".png");
     }
   }
   std::printf("figures and tables written to %s/\n", o.figures_dir.c_str());

@@ -2,9 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -15,10 +13,10 @@
 #include "analysis/simulation/amplitude_sweep.h"
 #include "analysis/simulation/bifurcation_map.h"
 #include "app/cli/commands.h"
-#include "app/cli/hbm_figures.h"
 #include "app/cli/option_parsing.h"
 #include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
+#include "ui/hbm_figures.h"
 
 namespace oscilab::cli {
 namespace {
@@ -45,42 +43,8 @@ struct HbmCommandOptions {
   bool follow_period_doubling = false;
 };
 
-// One branch of the CSV: which well and the period of its orbits in forcing periods.
-struct CsvBranch {
-  const analysis::Branch* branch;
-  std::string well;
-  int period;
-};
-
-// The branch CSV of one well, or of both with a `well` column appended, and with `period` (1, 2,
-// 4 … forcing periods) appended after it when period-doubled branches are followed (contract §2
-// allows extra columns; the contract's own come first and keep their order).
-void write_branches(const std::vector<CsvBranch>& branches, bool well_column, bool period_column,
-                    const std::string& path) {
-  if (branches.size() == 1 && !well_column && !period_column) {
-    analysis::write_branch_csv(*branches[0].branch, path);
-    return;
-  }
-  std::ofstream file(path);
-  if (!file) throw InputError(path + ": cannot write");
-  for (std::size_t i = 0; i < branches.size(); ++i) {
-    std::ostringstream text;
-    analysis::write_branch_csv(*branches[i].branch, text);
-    std::istringstream lines(text.str());
-    std::string line;
-    std::getline(lines, line);
-    if (i == 0) {
-      file << line << (well_column ? ",well" : "") << (period_column ? ",period" : "") << '\n';
-    }
-    while (std::getline(lines, line)) {
-      file << line;
-      if (well_column) file << ',' << branches[i].well;
-      if (period_column) file << ',' << branches[i].period;
-      file << '\n';
-    }
-  }
-  if (!file) throw InputError(path + ": write failed");
-}
+using ui::CsvBranch;
+using ui::NamedBranch;
 
 // Switches onto the period-doubled branch at the first period doubling of `branch` (ansatz ν)
 // and, once more, at the first one of the new branch (period 4T at most), appending them to `out`.
@@ -193,7 +157,7 @@ void run(const HbmCommandOptions& o) {
       follow_period_doublings(model, branches[i], options, wells[i], doubled, csv);
     }
   }
-  write_branches(csv, wells.size() > 1, o.follow_period_doubling, o.out);
+  ui::write_branches_csv(csv, wells.size() > 1, o.follow_period_doubling, o.out);
   std::printf("wrote %s\n", o.out.c_str());
   for (const analysis::Branch& branch : branches) {
     if (branch.status != JobStatus::Ok) {
@@ -212,7 +176,7 @@ void run(const HbmCommandOptions& o) {
                 o.harmonics,
                 o.subharmonic > 1 ? (", nu = " + std::to_string(o.subharmonic)).c_str() : "");
   if (!o.png.empty()) {
-    figures->write(branch_figure(title, named), o.png + "-branch.png");
+    figures->write(ui::branch_figure(title, named), o.png + "-branch.png");
     std::printf("wrote %s-branch.png\n", o.png.c_str());
   }
 
@@ -241,7 +205,7 @@ void run(const HbmCommandOptions& o) {
       std::snprintf(sweep_title, sizeof sweep_title,
                     "%s, time integration: f0 swept 0 -> %g -> 0 N at %.3g N/s", title,
                     sweep_options.f0_max_n, sweep_options.f0_max_n / o.sweep_time);
-      figures->write(sweep_figure(sweep_title, branches[0], sweep), o.png + "-sweep.png");
+      figures->write(ui::sweep_figure(sweep_title, branches[0], sweep), o.png + "-sweep.png");
       std::printf("wrote %s-sweep.png\n", o.png.c_str());
     }
   }
@@ -281,7 +245,7 @@ void run(const HbmCommandOptions& o) {
       std::snprintf(map_title, sizeof map_title,
                     "%s: bifurcation map, time simulation stepped %g N, %d periods per level",
                     title, o.map_step, o.map_hold);
-      figures->write(map_figure(map_title, named, map), o.png + "-map.png");
+      figures->write(ui::map_figure(map_title, named, map), o.png + "-map.png");
       std::printf("wrote %s-map.png\n", o.png.c_str());
     }
   }

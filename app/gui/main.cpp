@@ -2,8 +2,9 @@
 // all are analysed for the review and join the fit and diagnosis panel); `oscilab --session FILE`
 // opens a saved session; `oscilab --screenshot OUT.png [--cursor T] [--window T0:T1]
 // [--level R:L,...] [--tab levels|cycles|rfs|annotations] [--mark T:NOTE] [--hide-panel]
-// [--run fit|diagnose] REC...` saves a picture of that window (after the analysis, and the fit or
-// diagnosis if asked) and exits.
+// [--run fit|diagnose] [--dialog hbm|map|figures] REC...` saves a picture of that window (after
+// the analysis, and the fit or diagnosis if asked; with --dialog, of that dialog of the fit
+// panel once computed) and exits. `--live rig|REC` shows the Live tab running that source.
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -17,9 +18,12 @@
 
 #include <qcustomplot.h>
 
+#include "ui/figure_dialog.h"
 #include "ui/identification_panel.h"
+#include "ui/live_monitor.h"
 #include "ui/main_window.h"
 #include "ui/record_view.h"
+#include "ui/response_dialog.h"
 #include "ui/review_view.h"
 
 namespace {
@@ -74,8 +78,19 @@ int main(int argc, char** argv) {
   const QCommandLineOption run_option(
       "run", "Run a fit or a diagnosis of the recordings in the panel first: fit | diagnose.",
       "job");
+  const QCommandLineOption dialog_option(
+      "dialog",
+      "With --run fit and --screenshot: open a dialog of the fit panel once the fit ended and "
+      "save its picture instead: hbm (the HBM branches) | map (the bifurcation map) | figures.",
+      "dialog");
+  const QCommandLineOption live_option(
+      "live",
+      "Show the Live tab running <source>: rig (the virtual rig stepping 0.2 to 2.7 N at 20x) "
+      "or a recording to replay at 10x; with --screenshot, the picture is taken after 7 s.",
+      "source");
   parser.addOptions({screenshot_option, size_option, session_option, cursor_option, window_option,
-                     level_option, tab_option, mark_option, hide_panel_option, run_option});
+                     level_option, tab_option, mark_option, hide_panel_option, run_option,
+                     dialog_option, live_option});
   parser.process(app);
 
   const QString screenshot_path = parser.value(screenshot_option);
@@ -169,13 +184,74 @@ int main(int argc, char** argv) {
       done();
     });
   }
+  // --dialog: once the fit ended, the dialog is opened and computed, and its picture taken.
+  const QString dialog = parser.value(dialog_option);
+  const auto grab_dialog = [&](QWidget* shown) {
+    if (shown != nullptr && parser.isSet(size_option) && size.size() == 2) {
+      shown->resize(size[0].toInt(), size[1].toInt());  // --size is the dialog's
+    }
+    QTimer::singleShot(kScreenshotSettleMs, &window, [&, shown] {
+      if (shown == nullptr || !shown->grab().save(screenshot_path)) {
+        std::fprintf(stderr, "oscilab: cannot write %s\n", qPrintable(screenshot_path));
+        status = 1;
+      }
+      QApplication::quit();
+    });
+  };
+  const auto open_dialog = [&] {
+    auto* panel = window.identification_panel();
+    if (dialog == "figures") {
+      QObject::connect(panel, &oscilab::ui::IdentificationPanel::figures_shown, &window,
+                       [&, panel] { grab_dialog(panel->figures_dialog()); });
+      panel->show_figures();
+      return;
+    }
+    oscilab::ui::ResponseDialog* shown =
+        dialog == "map" ? panel->open_map_dialog() : panel->open_branch_dialog();
+    if (shown == nullptr) {
+      grab_dialog(nullptr);
+      return;
+    }
+    QObject::connect(shown, &oscilab::ui::ResponseDialog::computed, &window,
+                     [&, shown] { grab_dialog(shown); });
+  };
   if (run_job) {
     auto* panel = window.identification_panel();
-    QObject::connect(panel, &oscilab::ui::IdentificationPanel::job_finished, &window, done);
+    QObject::connect(panel, &oscilab::ui::IdentificationPanel::job_finished, &window, [&] {
+      if (dialog.isEmpty() || job != "fit") {
+        done();
+      } else {
+        open_dialog();
+      }
+    });
     if (job == "fit") {
       panel->start_fit();
     } else {
       panel->start_diagnosis();
+    }
+  }
+  // --live: the Live tab with a source running; the picture after 7 s of it.
+  if (parser.isSet(live_option)) {
+    auto* live = window.findChild<oscilab::ui::LiveMonitor*>("live_monitor");
+    window.central_tabs()->setCurrentWidget(live);
+    oscilab::ui::LiveSettings settings = live->settings();
+    const QString source = parser.value(live_option);
+    settings.source =
+        source == "rig" ? oscilab::ui::LiveSourceKind::Rig : oscilab::ui::LiveSourceKind::Replay;
+    settings.replay_path = source.toStdString();
+    settings.speed = source == "rig" ? 20.0 : 10.0;
+    live->set_settings(settings);
+    // §3.2's levels, 6 s each: 7 s at 20x reach the 23rd.
+    if (source == "rig") {
+      live->set_rig_schedule(oscilab::ui::stepped_schedule(0.2, 2.7, 0.1, 6, 1, 9));
+    }
+    if (!live->start()) {
+      std::fprintf(stderr, "oscilab: %s\n", qPrintable(live->message()));
+      return 1;
+    }
+    if (screenshot) {
+      ++waiting;
+      QTimer::singleShot(7000, &window, done);
     }
   }
   if (waiting == 0) grab();

@@ -1,4 +1,4 @@
-#include "app/cli/fit_figures.h"
+#include "ui/fit_figures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,10 +9,10 @@
 #include "analysis/common/parallel_for.h"
 #include "analysis/model/position_dependent_friction.h"
 
-namespace oscilab::cli {
+namespace oscilab::ui {
 namespace {
 
-using Style = ui::FigureSeries::Style;
+using Style = FigureSeries::Style;
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMj = 1e3;  // J → mJ
 constexpr double kMm = 1e3;  // m → mm
@@ -42,7 +42,8 @@ struct CsvFile {
 }  // namespace
 
 std::vector<CostSlice> cost_slices(const analysis::EdcObjective& objective,
-                                   const Eigen::VectorXd& theta, int points, int threads) {
+                                   const Eigen::VectorXd& theta, int points, int threads,
+                                   const CancelToken& cancel) {
   const auto& form = objective.form();
   std::vector<CostSlice> slices(form.size());
   struct Job {
@@ -65,6 +66,7 @@ std::vector<CostSlice> cost_slices(const analysis::EdcObjective& objective,
     slices[i].cost_j.assign(points, kNan);
   }
   oscilab::parallel_for(jobs.size(), threads, [&](std::size_t j) {
+    if (cancel.cancelled()) return;
     const analysis::EdcEvaluation e = objective.evaluate(jobs[j].theta);
     slices[jobs[j].parameter].weighted_cost[jobs[j].point] = e.weighted_cost;
     slices[jobs[j].parameter].cost_j[jobs[j].point] = e.cost_j;
@@ -72,23 +74,49 @@ std::vector<CostSlice> cost_slices(const analysis::EdcObjective& objective,
   return slices;
 }
 
-ui::Figure edc_fit_figure(const analysis::FitResult& fit, const analysis::EdcObjective& objective) {
-  ui::Figure figure;
+FitFigureData fit_figure_data(const analysis::EdcObjective& objective, const Eigen::VectorXd& theta,
+                              int threads, const CancelToken& cancel) {
+  FitFigureData data;
+  data.slices = cost_slices(objective, theta, 21, threads, cancel);
+  if (!cancel.cancelled()) {
+    data.curves =
+        analysis::edc_sensitivity(objective, theta, {0.2, 0.5, 0.7, 1.0, 1.2, 1.5}, threads);
+  }
+  return data;
+}
+
+std::vector<NamedFigure> fit_figures(const analysis::FitResult& fit,
+                                     const analysis::EdcObjective& objective,
+                                     const FitFigureData& data) {
+  std::vector<NamedFigure> figures = {{"edc_fit", edc_fit_figure(fit, objective)},
+                                      {"convergence", convergence_figure(fit)},
+                                      {"friction", friction_figure(fit, objective)},
+                                      {"cost_slices", cost_slice_figure(data.slices)}};
+  for (bool positive : {true, false}) {
+    if (objective.data().group(positive)) {
+      figures.push_back({std::string("sensitivity_") + (positive ? "positive" : "negative"),
+                         sensitivity_figure(data.curves, positive)});
+    }
+  }
+  return figures;
+}
+
+Figure edc_fit_figure(const analysis::FitResult& fit, const analysis::EdcObjective& objective) {
+  Figure figure;
   figure.title = "Energy dissipated per cycle: measured and fitted (Fig. 15)";
-  ui::FigurePanel edc{"",   "forcing amplitude f0 [N]",      "EDC [mJ]", {},
-                      true, ui::FigurePanel::Corner::TopLeft};
-  ui::FigurePanel deviation{
-      "",   "forcing amplitude f0 [N]",       "(S_mod - S_mes) / S_mes [%]", {},
-      true, ui::FigurePanel::Corner::TopRight};
+  FigurePanel edc{"",   "forcing amplitude f0 [N]",  "EDC [mJ]", {},
+                  true, FigurePanel::Corner::TopLeft};
+  FigurePanel deviation{"",   "forcing amplitude f0 [N]",   "(S_mod - S_mes) / S_mes [%]", {},
+                        true, FigurePanel::Corner::TopRight};
   const auto& groups = objective.data().groups;
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const auto& group = groups[g];
     const int color = group.positive_well ? 0 : 1;
     const std::string name = well_name(group.positive_well);
-    ui::FigureSeries measured{name + " measured", Style::Markers, color, {}, {}, 6.0};
-    ui::FigureSeries bars{name + " ±3σ", Style::Line, color, {}, {}, 1.0};
-    ui::FigureSeries model{name + " model", Style::DashedLine, color, {}, {}, 2.0};
-    ui::FigureSeries dev{name, Style::Line, color, {}, {}, 1.5};
+    FigureSeries measured{name + " measured", Style::Markers, color, {}, {}, 6.0};
+    FigureSeries bars{name + " ±3σ", Style::Line, color, {}, {}, 1.0};
+    FigureSeries model{name + " model", Style::DashedLine, color, {}, {}, 2.0};
+    FigureSeries dev{name, Style::Line, color, {}, {}, 1.5};
     for (std::size_t i = 0; i < group.levels.size(); ++i) {
       const auto& m = group.levels[i];
       const double mod = fit.evaluation.edc_mod_j[g][i];
@@ -111,17 +139,13 @@ ui::Figure edc_fit_figure(const analysis::FitResult& fit, const analysis::EdcObj
   return figure;
 }
 
-ui::Figure convergence_figure(const analysis::FitResult& fit) {
-  ui::Figure figure;
+Figure convergence_figure(const analysis::FitResult& fit) {
+  Figure figure;
   figure.title = "Best cost against model evaluations (method " +
                  analysis::fit_method_name(fit.method) + ", Fig. 14)";
-  ui::FigurePanel panel{"",
-                        "model evaluations",
-                        "log10 of the best chi2",
-                        {},
-                        false,
-                        ui::FigurePanel::Corner::TopRight};
-  ui::FigureSeries s{"best chi2", Style::Line, 0, {}, {}, 2.0};
+  FigurePanel panel{"",    "model evaluations",          "log10 of the best chi2", {},
+                    false, FigurePanel::Corner::TopRight};
+  FigureSeries s{"best chi2", Style::Line, 0, {}, {}, 2.0};
   for (const auto& [evaluations, cost] : fit.history) {
     s.x.push_back(static_cast<double>(evaluations));
     s.y.push_back(std::log10(std::max(cost, 1e-300)));
@@ -132,24 +156,23 @@ ui::Figure convergence_figure(const analysis::FitResult& fit) {
   return figure;
 }
 
-ui::Figure friction_figure(const analysis::FitResult& fit,
-                           const analysis::EdcObjective& objective) {
-  ui::Figure figure;
+Figure friction_figure(const analysis::FitResult& fit, const analysis::EdcObjective& objective) {
+  Figure figure;
   figure.title = "Dynamic friction f_d(z) of eq. (6), fitted";
-  ui::FigurePanel panel{"", "z [mm]", "f_d [N]", {}, true, ui::FigurePanel::Corner::TopLeft};
+  FigurePanel panel{"", "z [mm]", "f_d [N]", {}, true, FigurePanel::Corner::TopLeft};
   const analysis::Model model = objective.form().build(fit.theta);
   const double z_minus = model.well(false).z_m, z_plus = model.well(true).z_m;
   const double span = z_plus - z_minus;
   for (const auto& term : model.terms()) {
     const auto* friction = dynamic_cast<const analysis::PositionDependentFriction*>(term.get());
     if (!friction) continue;
-    ui::FigureSeries curve{"f_d(z)", Style::Line, 0, {}, {}, 2.0};
+    FigureSeries curve{"f_d(z)", Style::Line, 0, {}, {}, 2.0};
     for (int k = 0; k <= 200; ++k) {
       const double z = z_minus - 0.3 * span + 1.6 * span * k / 200.0;
       curve.x.push_back(kMm * z);
       curve.y.push_back(friction->dynamic_friction_n(z));
     }
-    ui::FigureSeries points{"f_d(z-*), f_d(0), f_d(z+*)", Style::Markers, 1, {}, {}, 9.0};
+    FigureSeries points{"f_d(z-*), f_d(0), f_d(z+*)", Style::Markers, 1, {}, {}, 9.0};
     for (double z : {z_minus, 0.0, z_plus}) {
       points.x.push_back(kMm * z);
       points.y.push_back(friction->dynamic_friction_n(z));
@@ -161,13 +184,13 @@ ui::Figure friction_figure(const analysis::FitResult& fit,
   return figure;
 }
 
-ui::Figure cost_slice_figure(const std::vector<CostSlice>& slices) {
-  ui::Figure figure;
+Figure cost_slice_figure(const std::vector<CostSlice>& slices) {
+  Figure figure;
   figure.title = "Cost along each parameter through the optimum (Fig. 13)";
   for (std::size_t i = 0; i < slices.size(); ++i) {
-    ui::FigurePanel panel{
-        "", slices[i].parameter, "log10 chi2", {}, false, ui::FigurePanel::Corner::TopRight};
-    ui::FigureSeries s{"", Style::Line, static_cast<int>(i % 6), {}, {}, 2.0};
+    FigurePanel panel{"",    slices[i].parameter,          "log10 chi2", {},
+                      false, FigurePanel::Corner::TopRight};
+    FigureSeries s{"", Style::Line, static_cast<int>(i % 6), {}, {}, 2.0};
     for (std::size_t k = 0; k < slices[i].value.size(); ++k) {
       s.x.push_back(slices[i].value[k]);
       s.y.push_back(std::log10(std::max(slices[i].weighted_cost[k], 1e-300)));
@@ -179,9 +202,9 @@ ui::Figure cost_slice_figure(const std::vector<CostSlice>& slices) {
   return figure;
 }
 
-ui::Figure sensitivity_figure(const std::vector<analysis::SensitivityCurve>& curves,
-                              bool positive_well) {
-  ui::Figure figure;
+Figure sensitivity_figure(const std::vector<analysis::SensitivityCurve>& curves,
+                          bool positive_well) {
+  Figure figure;
   figure.title = std::string("Sensitivity of the EDC, ") + well_name(positive_well) +
                  " (Fig. 16): each parameter at 20, 50, 70, 120, 150 %";
   std::vector<std::string> parameters;
@@ -190,26 +213,26 @@ ui::Figure sensitivity_figure(const std::vector<analysis::SensitivityCurve>& cur
       parameters.push_back(c.parameter);
   }
   for (const std::string& p : parameters) {
-    ui::FigurePanel panel{p == "kd"   ? "k_d (all f_d values)"
-                          : p == "ks" ? "k_s (static excess k_s - 1)"
-                                      : p,
-                          "forcing amplitude f0 [N]",
-                          "EDC [mJ]",
-                          {},
-                          true,
-                          ui::FigurePanel::Corner::TopLeft};
+    FigurePanel panel{p == "kd"   ? "k_d (all f_d values)"
+                      : p == "ks" ? "k_s (static excess k_s - 1)"
+                                  : p,
+                      "forcing amplitude f0 [N]",
+                      "EDC [mJ]",
+                      {},
+                      true,
+                      FigurePanel::Corner::TopLeft};
     int color = 0;
     for (const auto& c : curves) {
       if (c.parameter != p || c.positive_well != positive_well) continue;
       char label[32];
       std::snprintf(label, sizeof label, "%.0f %%", 100.0 * c.factor);
       const bool reference = std::abs(c.factor - 1.0) < 1e-12;
-      ui::FigureSeries s{label,
-                         reference ? Style::DashedLine : Style::Line,
-                         reference ? 5 : color++ % 5,
-                         {},
-                         {},
-                         reference ? 2.5 : 1.5};
+      FigureSeries s{label,
+                     reference ? Style::DashedLine : Style::Line,
+                     reference ? 5 : color++ % 5,
+                     {},
+                     {},
+                     reference ? 2.5 : 1.5};
       for (std::size_t k = 0; k < c.f0_n.size(); ++k) {
         s.x.push_back(c.f0_n[k]);
         s.y.push_back(c.edc_j[k] != 0.0 ? kMj * c.edc_j[k] : kNan);
@@ -251,7 +274,7 @@ void write_fit_tables(const std::string& dir, const analysis::FitResult& fit,
   {
     CsvFile out(dir + "/friction.csv");
     std::fprintf(out.get(), "z_m,fd_n\n");
-    const ui::Figure f = friction_figure(fit, objective);
+    const Figure f = friction_figure(fit, objective);
     if (!f.panels.front().series.empty()) {
       const auto& curve = f.panels.front().series.front();
       for (std::size_t k = 0; k < curve.x.size(); ++k) {
@@ -284,4 +307,4 @@ void write_fit_tables(const std::string& dir, const analysis::FitResult& fit,
   }
 }
 
-}  // namespace oscilab::cli
+}  // namespace oscilab::ui

@@ -1,18 +1,21 @@
-#include "app/cli/hbm_figures.h"
+#include "ui/hbm_figures.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <limits>
+#include <sstream>
 
-namespace oscilab::cli {
+#include "analysis/common/input_error.h"
+
+namespace oscilab::ui {
 namespace {
 
 using analysis::Branch;
 using analysis::BranchPoint;
 using analysis::PointMarker;
-using Style = ui::FigureSeries::Style;
-using ui::FigurePanel;
+using Style = FigureSeries::Style;
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMm = 1e3;  // m → mm
@@ -37,18 +40,18 @@ double harmonic_abs(const Branch& branch, const BranchPoint& p, int h) {
 // (points whose stability is unknown count as stable). Each part shares its end point with the
 // next, so the line is unbroken where the style changes.
 template <typename Value>
-void add_branch_series(ui::FigurePanel& panel, const Branch& branch, const std::string& name,
-                       int color, Value value) {
-  ui::FigureSeries stable{name + " (stable)", Style::Line, color, {}, {}, 2.0};
-  ui::FigureSeries unstable{name + " (unstable)", Style::DashedLine, color, {}, {}, 2.0};
+void add_branch_series(FigurePanel& panel, const Branch& branch, const std::string& name, int color,
+                       Value value) {
+  FigureSeries stable{name + " (stable)", Style::Line, color, {}, {}, 2.0};
+  FigureSeries unstable{name + " (unstable)", Style::DashedLine, color, {}, {}, 2.0};
   auto is_stable = [](const BranchPoint& p) { return !p.stability_known || p.floquet.stable; };
   bool any_unstable = false;
   for (std::size_t i = 0; i < branch.points.size(); ++i) {
     const BranchPoint& p = branch.points[i];
     const bool s = is_stable(p);
     any_unstable = any_unstable || !s;
-    ui::FigureSeries& own = s ? stable : unstable;
-    ui::FigureSeries& other = s ? unstable : stable;
+    FigureSeries& own = s ? stable : unstable;
+    FigureSeries& other = s ? unstable : stable;
     own.x.push_back(p.f0_n);
     own.y.push_back(value(p));
     if (i + 1 < branch.points.size() && is_stable(branch.points[i + 1]) != s) {
@@ -65,14 +68,14 @@ void add_branch_series(ui::FigurePanel& panel, const Branch& branch, const std::
 }
 
 template <typename Value>
-void add_event_markers(ui::FigurePanel& panel, const Branch& branch, Value value, bool with_names) {
-  ui::FigureSeries folds{with_names ? "fold" : "", Style::Markers, 4, {}, {}, 9.0};
-  ui::FigureSeries flips{with_names ? "period doubling" : "", Style::Markers, 3, {}, {}, 9.0};
+void add_event_markers(FigurePanel& panel, const Branch& branch, Value value, bool with_names) {
+  FigureSeries folds{with_names ? "fold" : "", Style::Markers, 4, {}, {}, 9.0};
+  FigureSeries flips{with_names ? "period doubling" : "", Style::Markers, 3, {}, {}, 9.0};
   for (const analysis::BranchEvent& e : branch.events) {
     const BranchPoint& p = branch.points[e.point_index];
-    ui::FigureSeries* target = e.kind == PointMarker::Fold             ? &folds
-                               : e.kind == PointMarker::PeriodDoubling ? &flips
-                                                                       : nullptr;
+    FigureSeries* target = e.kind == PointMarker::Fold             ? &folds
+                           : e.kind == PointMarker::PeriodDoubling ? &flips
+                                                                   : nullptr;
     if (target == nullptr) continue;
     target->x.push_back(p.f0_n);
     target->y.push_back(value(p));
@@ -90,11 +93,38 @@ const char* kF0Label = "forcing amplitude f0 [N]";
 
 }  // namespace
 
-ui::Figure branch_figure(const std::string& title, const std::vector<NamedBranch>& branches) {
-  ui::Figure figure;
+void write_branches_csv(const std::vector<CsvBranch>& branches, bool well_column,
+                        bool period_column, const std::string& path) {
+  if (branches.size() == 1 && !well_column && !period_column) {
+    analysis::write_branch_csv(*branches[0].branch, path);
+    return;
+  }
+  std::ofstream file(path);
+  if (!file) throw InputError(path + ": cannot write");
+  for (std::size_t i = 0; i < branches.size(); ++i) {
+    std::ostringstream text;
+    analysis::write_branch_csv(*branches[i].branch, text);
+    std::istringstream lines(text.str());
+    std::string line;
+    std::getline(lines, line);
+    if (i == 0) {
+      file << line << (well_column ? ",well" : "") << (period_column ? ",period" : "") << '\n';
+    }
+    while (std::getline(lines, line)) {
+      file << line;
+      if (well_column) file << ',' << branches[i].well;
+      if (period_column) file << ',' << branches[i].period;
+      file << '\n';
+    }
+  }
+  if (!file) throw InputError(path + ": write failed");
+}
+
+Figure branch_figure(const std::string& title, const std::vector<NamedBranch>& branches) {
+  Figure figure;
   figure.title = title;
-  ui::FigurePanel amp{"", kF0Label, "response amplitude (max z - min z)/2 [mm]", {}, true};
-  ui::FigurePanel edc{"", kF0Label, "energy dissipated per cycle [mJ]", {}, true};
+  FigurePanel amp{"", kF0Label, "response amplitude (max z - min z)/2 [mm]", {}, true};
+  FigurePanel edc{"", kF0Label, "energy dissipated per cycle [mJ]", {}, true};
   for (std::size_t i = 0; i < branches.size(); ++i) {
     const Branch& b = *branches[i].branch;
     const int color = branches.size() == 1 ? 0 : static_cast<int>(i) + 1;
@@ -112,7 +142,7 @@ ui::Figure branch_figure(const std::string& title, const std::vector<NamedBranch
   figure.panels.push_back(edc);
   if (branches.size() == 1) {
     const Branch& b = *branches[0].branch;
-    ui::FigurePanel harmonics{"", kF0Label, "normalised harmonic |Z_h| / |Z_1| [-]", {}, true};
+    FigurePanel harmonics{"", kF0Label, "normalised harmonic |Z_h| / |Z_1| [-]", {}, true};
     const int largest = std::min(b.hbm.harmonics, 7);
     int color = 1;
     for (int h = 0; h <= largest; ++h) {
@@ -130,7 +160,7 @@ ui::Figure branch_figure(const std::string& title, const std::vector<NamedBranch
       });
     }
     // Only the solid parts carry a name; the dashed twins would double the legend.
-    for (ui::FigureSeries& s : harmonics.series) {
+    for (FigureSeries& s : harmonics.series) {
       const auto pos = s.name.find(" (");
       if (s.style == Style::DashedLine) s.name.clear();
       if (pos != std::string::npos && !s.name.empty()) s.name.erase(pos);
@@ -140,16 +170,16 @@ ui::Figure branch_figure(const std::string& title, const std::vector<NamedBranch
   return figure;
 }
 
-ui::Figure sweep_figure(const std::string& title, const Branch& branch,
-                        const analysis::AmplitudeSweep& sweep) {
-  ui::Figure figure;
+Figure sweep_figure(const std::string& title, const Branch& branch,
+                    const analysis::AmplitudeSweep& sweep) {
+  Figure figure;
   figure.title = title;
   figure.panel_height_px = 520;
-  ui::FigurePanel amp{"", kF0Label, "response amplitude (max z - min z)/2 [mm]", {}, true};
-  ui::FigureSeries up{"time integration, sweep up", Style::Line, 1, {}, {}, 1.4};
-  ui::FigureSeries down{"time integration, sweep down", Style::Line, 2, {}, {}, 1.4};
+  FigurePanel amp{"", kF0Label, "response amplitude (max z - min z)/2 [mm]", {}, true};
+  FigureSeries up{"time integration, sweep up", Style::Line, 1, {}, {}, 1.4};
+  FigureSeries down{"time integration, sweep down", Style::Line, 2, {}, {}, 1.4};
   for (const analysis::AmplitudeSweepPeriod& p : sweep.periods) {
-    ui::FigureSeries& s = p.up ? up : down;
+    FigureSeries& s = p.up ? up : down;
     s.x.push_back(p.f0_n);
     s.y.push_back(p.amp_m * kMm);
   }
@@ -163,18 +193,17 @@ ui::Figure sweep_figure(const std::string& title, const Branch& branch,
   return figure;
 }
 
-ui::Figure map_figure(const std::string& title, const std::vector<NamedBranch>& branches,
-                      const analysis::BifurcationMap& map) {
-  ui::Figure figure;
+Figure map_figure(const std::string& title, const std::vector<NamedBranch>& branches,
+                  const analysis::BifurcationMap& map) {
+  Figure figure;
   figure.title = title;
   figure.panel_height_px = 400;
-  ui::FigurePanel amp{
-      "HBM amplitude", kF0Label, "response amplitude (max z - min z)/2 [mm]", {}, true};
+  FigurePanel amp{"HBM amplitude", kF0Label, "response amplitude (max z - min z)/2 [mm]", {}, true};
   // One section panel per well (their z ranges are far apart: z+* and z-* sit 50 mm apart).
   for (std::size_t i = 0; i < branches.size(); ++i) {
     const Branch& b = *branches[i].branch;
     const bool positive = b.positive_well;
-    ui::FigurePanel section{
+    FigurePanel section{
         "Poincare section, " + branches[i].name + ": z sampled once per forcing period",
         kF0Label,
         "z at t = nT [mm]",
@@ -183,7 +212,7 @@ ui::Figure map_figure(const std::string& title, const std::vector<NamedBranch>& 
     // The z+* sections fall with f0 and split to both sides at the flip; the z-* ones dip.
     section.legend_corner =
         positive ? FigurePanel::Corner::BottomLeft : FigurePanel::Corner::TopRight;
-    ui::FigureSeries dots{
+    FigureSeries dots{
         "time simulation (last sampled periods of each level)", Style::Dots, 1, {}, {}, 4.5};
     for (const analysis::BifurcationMapRow& row : map.rows) {
       if (row.positive_well != positive) continue;
@@ -207,4 +236,4 @@ ui::Figure map_figure(const std::string& title, const std::vector<NamedBranch>& 
   return figure;
 }
 
-}  // namespace oscilab::cli
+}  // namespace oscilab::ui

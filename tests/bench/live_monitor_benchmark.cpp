@@ -1,0 +1,105 @@
+// Frame rate of the live monitor (issue 8: ≥ 30 frames per second on a 2-core machine): the real
+// widget replaying the bundled stepped sine at 1× with 10 minutes of history on screen. The
+// history is filled first by replaying 600 s of stream as fast as possible (the file loops), then
+// the replay runs at 1× and the frames the trace plot draws in 1.5 s of the application's event
+// loop are counted (QCustomPlot replots; the monitor's frame timer asks for at most 62.5 a
+// second). Arg: the window of the traces in s (600: all the history kept; 10: the default).
+// Runs offscreen unless QT_QPA_PLATFORM says otherwise; the figures are counters of one run.
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QEventLoop>
+#include <QTimer>
+
+#include <benchmark/benchmark.h>
+#include <qcustomplot.h>
+
+#include "daq/live/replay_source.h"
+#include "ui/live_monitor.h"
+
+namespace {
+
+using oscilab::ui::LiveMonitor;
+
+const std::string kSample = std::string(OSCILAB_SOURCE_DIR) + "/samples/stepped_positive.flac";
+constexpr double kHistoryS = 600.0;  // the acquisition keeps 10 minutes
+constexpr int kMeasureMs = 1500;
+
+// Runs the event loop until `done` holds or `timeout_ms` passed.
+template <typename Predicate>
+void run_event_loop_until(Predicate done, int timeout_ms) {
+  QEventLoop loop;
+  QTimer check;
+  check.setInterval(20);
+  QObject::connect(&check, &QTimer::timeout, &loop, [&] {
+    if (done()) loop.quit();
+  });
+  QTimer::singleShot(timeout_ms, &loop, &QEventLoop::quit);
+  check.start();
+  loop.exec();
+}
+
+void run_event_loop_for(int ms) {
+  QEventLoop loop;
+  QTimer::singleShot(ms, &loop, &QEventLoop::quit);
+  loop.exec();
+}
+
+void BM_LiveMonitorFramesPerSecondAt1x(benchmark::State& state) {
+  const double window_s = static_cast<double>(state.range(0));
+  LiveMonitor monitor;
+  monitor.resize(1600, 950);
+  monitor.show();
+  oscilab::ui::LiveSettings settings;
+  settings.source = oscilab::ui::LiveSourceKind::Replay;
+  settings.replay_path = kSample;
+  settings.replay_loop = true;
+  settings.speed = 0.0;  // fill the history as fast as the acquisition goes
+  settings.window_s = window_s;
+  monitor.set_settings(settings);
+  if (!monitor.start()) {
+    state.SkipWithError(monitor.message().toStdString().c_str());
+    return;
+  }
+  run_event_loop_until([&] { return monitor.acquisition()->status().stream_time_s >= kHistoryS; },
+                       120000);
+  monitor.replay()->set_speed(1.0);
+  run_event_loop_for(500);  // the queue drained, the 1× pace settled
+
+  long frames = 0;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const long first = monitor.frames_drawn();
+    QElapsedTimer clock;
+    clock.start();
+    run_event_loop_for(kMeasureMs);
+    const double elapsed_s = 1e-9 * static_cast<double>(clock.nsecsElapsed());
+    state.SetIterationTime(elapsed_s);
+    frames += monitor.frames_drawn() - first;
+    seconds += elapsed_s;
+  }
+  const oscilab::ui::TimeWindow shown = monitor.view_window();
+  state.counters["frames_per_s"] = static_cast<double>(frames) / seconds;
+  state.counters["target_frames_per_s"] = 30.0;
+  state.counters["window_s"] = shown.end_s - shown.start_s;
+  state.counters["stream_time_s"] = monitor.acquisition()->status().stream_time_s;
+  state.counters["trace_replot_ms"] = monitor.trace_plot()->replotTime(true);
+  monitor.stop();
+}
+BENCHMARK(BM_LiveMonitorFramesPerSecondAt1x)
+    ->Arg(600)
+    ->Arg(10)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+  QApplication app(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

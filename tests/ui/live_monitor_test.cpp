@@ -1,0 +1,459 @@
+// GUI test of the live monitor (issue 8), driving the real widget under the offscreen platform:
+// a replay of the bundled stepped sine builds the EDC plot level by level (equal to the
+// acquisition's levels and to the offline analysis of the same file), the status strip shows the
+// counters, Record/Stop writes a readable recording, a paused view keeps the acquisition going,
+// the rig steps through levels, errors are shown and never thrown, the main window has the Live
+// tab and keeps its settings in the session, and the event loop stays responsive while a 100×
+// replay is drawn.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include <unistd.h>
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QElapsedTimer>
+#include <QEventLoop>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QScrollBar>
+#include <QSignalSpy>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QTest>
+#include <QTimer>
+
+#include <qcustomplot.h>
+
+#include "daq/live/net_source.h"
+#include "daq/live/replay_source.h"
+#include "daq/live/stream_protocol.h"
+#include "daq/live/tcp_socket.h"
+#include "daq/recording/campaign_reader.h"
+#include "daq/recording/recording.h"
+#include "ui/live_monitor.h"
+#include "ui/main_window.h"
+
+using oscilab::ui::LiveMonitor;
+using oscilab::ui::LiveSettings;
+using oscilab::ui::LiveSourceKind;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kSample = std::string(OSCILAB_SOURCE_DIR) + "/samples/stepped_positive.flac";
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("oscilab_live_ui_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+LiveSettings replay_settings(double speed) {
+  LiveSettings s;
+  s.source = LiveSourceKind::Replay;
+  s.replay_path = kSample;
+  s.speed = speed;
+  return s;
+}
+
+LiveSettings rig_settings(double speed, double f0_n) {
+  LiveSettings s;
+  s.source = LiveSourceKind::Rig;
+  s.speed = speed;
+  s.rig_f0_n = f0_n;
+  return s;
+}
+
+bool wait_finished(LiveMonitor& monitor, int timeout_ms) {
+  return QTest::qWaitFor([&] { return monitor.acquisition() && monitor.acquisition()->finished(); },
+                         timeout_ms);
+}
+
+// Runs the application's event loop (as the app does; QTest::qWaitFor sleeps 10 ms between its
+// rounds of events) until `done` holds or `timeout_ms` passed; returns `done()`.
+template <typename Predicate>
+bool run_event_loop_until(Predicate done, int timeout_ms) {
+  QEventLoop loop;
+  QTimer check;
+  check.setInterval(20);
+  QObject::connect(&check, &QTimer::timeout, &loop, [&] {
+    if (done()) loop.quit();
+  });
+  QTimer::singleShot(timeout_ms, &loop, &QEventLoop::quit);
+  check.start();
+  loop.exec();
+  return done();
+}
+
+// The values of a graph, in its order.
+std::vector<std::pair<double, double>> points(const QCPGraph* graph) {
+  std::vector<std::pair<double, double>> out;
+  for (auto it = graph->data()->constBegin(); it != graph->data()->constEnd(); ++it) {
+    out.emplace_back(it->key, it->value);
+  }
+  return out;
+}
+
+std::vector<double> error_bars(QCustomPlot* plot, const QCPGraph* graph) {
+  std::vector<double> out;
+  for (int i = 0; i < plot->plottableCount(); ++i) {
+    auto* bars = qobject_cast<QCPErrorBars*>(plot->plottable(i));
+    if (!bars || bars->dataPlottable() != graph) continue;
+    for (int k = 0; k < bars->dataCount(); ++k) out.push_back(bars->data()->at(k).errorPlus);
+  }
+  return out;
+}
+
+int log_rows_of_kind(const LiveMonitor& monitor, const QString& kind) {
+  int n = 0;
+  for (int r = 0; r < monitor.event_log()->rowCount(); ++r) {
+    n += monitor.event_log()->item(r, 1)->text() == kind;
+  }
+  return n;
+}
+
+}  // namespace
+
+class LiveMonitorTest : public QObject {
+  Q_OBJECT
+
+ private Q_SLOTS:
+  void replayBuildsTheEdcPlotLevelByLevel() {
+    LiveMonitor monitor;
+    monitor.resize(1600, 950);
+    monitor.show();
+    monitor.set_settings(replay_settings(100.0));
+    QSignalSpy predicted(&monitor, &LiveMonitor::prediction_finished);
+    QVERIFY2(monitor.start(), qPrintable(monitor.message()));
+    QVERIFY(monitor.replay() != nullptr);
+    // While it runs the EDC plot grows: some levels before the end.
+    QVERIFY(
+        QTest::qWaitFor([&] { return monitor.edc_graph("positive")->dataCount() >= 3; }, 30000));
+    QVERIFY(!monitor.acquisition()->finished());
+    QVERIFY(wait_finished(monitor, 60000));
+    QTest::qWait(100);  // the last frame
+
+    // The points drawn are the acquisition's levels: f0 and EDC [mJ] with ±3σ bars.
+    const std::vector<oscilab::analysis::LevelResult> live = monitor.acquisition()->levels();
+    QCOMPARE(live.size(), std::size_t(26));  // 0.2 … 2.7 N (README, samples)
+    const auto drawn = points(monitor.edc_graph("positive"));
+    const auto bars = error_bars(monitor.edc_plot(), monitor.edc_graph("positive"));
+    QCOMPARE(drawn.size(), live.size());
+    QCOMPARE(bars.size(), live.size());
+    QCOMPARE(monitor.edc_graph("negative")->dataCount(), 0);
+    QCOMPARE(monitor.edc_graph("cross-well")->dataCount(), 0);
+    for (std::size_t i = 0; i < live.size(); ++i) {
+      QCOMPARE(live[i].well, std::string("positive"));
+      QCOMPARE(drawn[i].first, live[i].f0_n);
+      QCOMPARE(drawn[i].second, 1e3 * live[i].edc_mean_j);
+      QCOMPARE(bars[i], 3e3 * live[i].edc_std_j);
+    }
+    QVERIFY(!monitor.acquisition()->current_level().has_value());
+    QCOMPARE(monitor.current_level_graph()->dataCount(), 0);
+
+    // The offline analysis of the same file: the same pipeline on the same stored values, with
+    // the levels the replay posts from the sidecar at the same (stream = file) times.
+    const auto offline =
+        oscilab::daq::analyze_recordings({kSample}, {}, oscilab::analysis::PipelineSettings{});
+    const auto& levels = offline.records.at(0).levels;
+    QCOMPARE(levels.size(), live.size());
+    double worst = 0.0;
+    for (std::size_t i = 0; i < live.size(); ++i) {
+      QCOMPARE(live[i].cycles, levels[i].cycles);
+      QCOMPARE(live[i].f0_n, levels[i].f0_n);
+      worst = std::max(worst, std::abs(live[i].edc_mean_j / levels[i].edc_mean_j - 1.0));
+    }
+    std::printf("live replay vs offline analysis: largest relative EDC difference %.3g\n", worst);
+    QCOMPARE(worst, 0.0);  // measured: identical to the last bit (see the comment above)
+
+    // The status strip: the counters of the acquisition.
+    const oscilab::daq::AcquisitionStatus s = monitor.acquisition()->status();
+    const auto file_samples = oscilab::daq::read_recording(kSample).sample_count();
+    QCOMPARE(s.samples, static_cast<std::uint64_t>(file_samples));  // all of it, once
+    QCOMPARE(monitor.status_label("samples")->text(), QString("samples %1").arg(file_samples));
+    QCOMPARE(monitor.status_label("gaps")->text(), QString("gaps 0 (0)"));
+    QCOMPARE(monitor.status_label("duplicates")->text(), QString("dup 0"));
+    QCOMPARE(monitor.status_label("nan")->text(), QString("NaN 0"));
+    QCOMPARE(monitor.status_label("levels")->text(), QString("levels 26"));
+    QCOMPARE(monitor.status_label("cycles")->text(), QString("cycles %1 (0 excl.)").arg(s.cycles));
+    QCOMPARE(monitor.status_label("time")->text(), QString("t 262.5 s"));  // 134401 / 512 Hz
+    QVERIFY(monitor.status_label("source")->text().endsWith("(ended)"));
+    QCOMPARE(log_rows_of_kind(monitor, "level"), 26);
+    QCOMPARE(log_rows_of_kind(monitor, "source-ended"), 1);
+
+    // The paper model's prediction (HBM on a worker) over the levels of the paper.
+    QVERIFY(predicted.count() > 0 || predicted.wait(20000));
+    QCOMPARE(predicted.takeFirst().at(0).toString(), QString());
+    QCOMPARE(monitor.model_graph(true)->dataCount(), 53);  // 0.1 … 2.7 N in 0.05 N
+    // The traces show the last 10 s; the spectrum, the loop and the slices are drawn.
+    QCOMPARE(monitor.view_window().end_s, static_cast<double>(file_samples) / 512.0);
+    QVERIFY(monitor.spectrum_plot()->graph(0)->dataCount() > 500);
+    QVERIFY(monitor.stiffness_plot()->graph(0)->dataCount() > 100);
+  }
+
+  void eventLoopStaysResponsiveDuringAFastReplay() {
+    LiveMonitor monitor;
+    monitor.resize(1600, 950);
+    monitor.show();
+    monitor.set_settings(replay_settings(100.0));
+    // A 5 ms timer in the UI thread: the gaps between its ticks are what a user's click would
+    // wait for while the monitor draws a 100× replay (51 200 samples/s).
+    std::vector<double> gaps_ms;
+    QElapsedTimer clock;
+    QTimer probe;
+    probe.setTimerType(Qt::PreciseTimer);
+    probe.setInterval(5);
+    qint64 last = -1;
+    connect(&probe, &QTimer::timeout, [&] {
+      const qint64 now = clock.nsecsElapsed();
+      if (last >= 0) gaps_ms.push_back(1e-6 * static_cast<double>(now - last));
+      last = now;
+    });
+    QVERIFY(monitor.start());
+    clock.start();
+    probe.start();
+    QVERIFY(run_event_loop_until([&] { return monitor.acquisition()->finished(); }, 60000));
+    probe.stop();
+    QVERIFY(gaps_ms.size() > 100);
+    std::vector<double> sorted = gaps_ms;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted[sorted.size() / 2], max = sorted.back();
+    std::printf(
+        "event loop during a 100x replay: %zu ticks of a 5 ms timer, gap median %.1f ms, "
+        "max %.1f ms; %ld trace frames in %.1f s\n",
+        gaps_ms.size(), median, max, monitor.frames_drawn(),
+        1e-9 * static_cast<double>(clock.nsecsElapsed()));
+    QVERIFY2(max <= 50.0, qPrintable(QString("largest gap %1 ms").arg(max)));  // issue 8
+  }
+
+  void recordThenStopWritesAReadableRecording() {
+    const fs::path dir = temp_dir("record");
+    const QString path = QString::fromStdString((dir / "live.wav").string());
+    LiveMonitor monitor;
+    monitor.show();
+    monitor.set_settings(rig_settings(0.0, 0.8));  // the rig as fast as it goes
+    QVERIFY(monitor.start());
+    QVERIFY(monitor.record_button()->isEnabled());
+    QVERIFY2(monitor.start_recording(path), qPrintable(monitor.message()));
+    QVERIFY(QTest::qWaitFor(
+        [&] { return monitor.acquisition()->status().recorded_samples > 5 * 512; }, 20000));
+    QTest::qWait(150);  // the strip shows it
+    QVERIFY(monitor.status_label("recording")->text().startsWith(QString("rec \u25cf")));
+    QVERIFY(monitor.stop_recording_button()->isEnabled());
+    monitor.findChild<QLineEdit*>("mark_text")->setText("probe touched");
+    QTest::mouseClick(monitor.findChild<QPushButton*>("mark"), Qt::LeftButton);
+    QTest::mouseClick(monitor.stop_recording_button(), Qt::LeftButton);
+    QVERIFY(QTest::qWaitFor([&] { return !monitor.acquisition()->status().recording; }, 5000));
+    const std::uint64_t recorded = monitor.acquisition()->status().recorded_samples;
+    QVERIFY(monitor.running());  // the acquisition goes on
+    QTest::mouseClick(monitor.stop_button(), Qt::LeftButton);
+    QVERIFY(!monitor.running());
+
+    const oscilab::daq::Recording recording = oscilab::daq::read_recording(path.toStdString());
+    QCOMPARE(static_cast<std::uint64_t>(recording.sample_count()), recorded);
+    QCOMPARE(recording.sidecar.sample_rate_hz, 512.0);
+    QCOMPARE(recording.sidecar.channels.size(), std::size_t(2));
+    QVERIFY(recording.samples_si.allFinite());
+    QVERIFY(recording.sidecar.excitation.has_value());  // the level set, as operated
+    QVERIFY(fs::exists(dir / "live.events.jsonl"));
+    QCOMPARE(log_rows_of_kind(monitor, "recording-started"), 1);
+    QCOMPARE(log_rows_of_kind(monitor, "recording-stopped"), 1);
+    QCOMPARE(log_rows_of_kind(monitor, "mark"), 1);
+    for (int r = 0; r < monitor.event_log()->rowCount(); ++r) {
+      if (monitor.event_log()->item(r, 1)->text() == "mark") {
+        QCOMPARE(monitor.event_log()->item(r, 2)->text(), QString("probe touched"));
+      }
+    }
+    fs::remove_all(dir);
+  }
+
+  void pausedViewKeepsTheAcquisitionRunningAndScrollsBack() {
+    LiveMonitor monitor;
+    monitor.resize(1400, 900);
+    monitor.show();
+    monitor.set_settings(replay_settings(10.0));
+    QVERIFY(monitor.start());
+    QVERIFY(
+        QTest::qWaitFor([&] { return monitor.acquisition()->status().stream_time_s > 25; }, 20000));
+    QTest::mouseClick(monitor.pause_view_button(), Qt::LeftButton);
+    QVERIFY(monitor.view_paused());
+    const oscilab::ui::TimeWindow paused = monitor.view_window();
+    const std::uint64_t samples = monitor.acquisition()->status().samples;
+    QTest::qWait(600);
+    // The acquisition went on (10× real time: ~3000 samples in 0.6 s); the view stayed.
+    QVERIFY(monitor.acquisition()->status().samples > samples + 1000);
+    QCOMPARE(monitor.view_window().end_s, paused.end_s);
+    QCPAxis* time_axis = monitor.trace_plot()->axisRects().back()->axis(QCPAxis::atBottom);
+    QCOMPARE(time_axis->range().upper, paused.end_s);
+    // Scrolling back 10 s with the scroll bar (0.1 s per step).
+    QScrollBar* bar = monitor.scroll_bar();
+    bar->setValue(bar->value() - 100);
+    QCOMPARE(monitor.view_window().end_s, 0.1 * bar->value());
+    QVERIFY(std::abs(monitor.view_window().end_s - (paused.end_s - 10.0)) < 0.11);
+    QCOMPARE(time_axis->range().upper, monitor.view_window().end_s);
+    // Resume: the view follows the stream again.
+    QTest::mouseClick(monitor.pause_view_button(), Qt::LeftButton);
+    QVERIFY(!monitor.view_paused());
+    QTest::qWait(100);
+    const double now = monitor.acquisition()->status().stream_time_s;
+    QVERIFY(std::abs(monitor.view_window().end_s - now) < 2.0);  // a frame behind at most
+    monitor.stop();
+  }
+
+  void rigStepsThroughLevelsAndFillsEveryPlot() {
+    LiveMonitor monitor;
+    monitor.resize(1600, 950);
+    monitor.show();
+    LiveSettings settings = rig_settings(0.0, 1.0);
+    // z stays near z₊* ≈ 22 mm, beyond 10 mm: one alarm (re-armed only below 9 mm).
+    settings.alarms.max_abs_z_m = 0.010;
+    monitor.set_settings(settings);
+    QVERIFY(monitor.start());
+    QVERIFY(monitor.rig() != nullptr);
+    QTRY_COMPARE_WITH_TIMEOUT(monitor.rig()->excitation().f0_n, 1.0, 1000);  // Start applies f0
+    // A level gets its steady cycles; then Step +ΔN starts the next one.
+    QVERIFY(QTest::qWaitFor(
+        [&] {
+          const auto current = monitor.acquisition()->current_level();
+          return current && current->cycles >= 20;
+        },
+        30000));
+    QTest::mouseClick(monitor.findChild<QPushButton*>("step_excitation"), Qt::LeftButton);
+    QCOMPARE(monitor.f0_box()->value(), 1.1);
+    // RigSource::excitation() reads the previous value for the instant between the rig thread
+    // taking a command and applying it: retried.
+    QTRY_COMPARE_WITH_TIMEOUT(monitor.rig()->excitation().f0_n, 1.1, 1000);
+    QVERIFY(QTest::qWaitFor([&] { return monitor.acquisition()->levels().size() >= 1; }, 30000));
+    QVERIFY(QTest::qWaitFor([&] { return monitor.edc_graph("positive")->dataCount() >= 1; }, 5000));
+    QTest::qWait(600);
+    monitor.stop();
+    QCOMPARE(monitor.edc_graph("positive")->dataCount(),
+             static_cast<int>(monitor.acquisition()->levels().size()));
+    QVERIFY(log_rows_of_kind(monitor, "level") >= 2);
+    QCOMPARE(log_rows_of_kind(monitor, "alarm"), 1);
+    QCOMPARE(monitor.acquisition()->status().alarms, std::uint64_t(1));
+    QCOMPARE(monitor.status_label("alarms")->text(), QString("alarms 1"));
+    QVERIFY(monitor.status_label("alarms")->property("severity").toInt() > 0);    // amber or red
+    QVERIFY(monitor.loop_plot()->plottable(0)->interface1D()->dataCount() > 50);  // a cycle
+    QVERIFY(monitor.spectrum_plot()->graph(1)->dataCount() == 8);                 // harmonics
+    QVERIFY(monitor.stiffness_plot()->graph(0)->dataCount() > 0);
+    QVERIFY(monitor.damping_plot()->graph(0)->dataCount() > 0);
+    for (int k = 0; k < 5; ++k) QVERIFY(monitor.trace_plot()->graph(k)->dataCount() > 100);
+    QVERIFY(monitor.frames_drawn() > 0);
+  }
+
+  void networkSourceReceivesASender() {
+    LiveMonitor monitor;
+    monitor.show();
+    LiveSettings settings;
+    settings.source = LiveSourceKind::Network;
+    settings.port = 0;  // any free port
+    monitor.set_settings(settings);
+    QVERIFY(monitor.start());
+    QVERIFY(monitor.net() != nullptr);
+    const std::uint16_t port = monitor.net()->port();
+    QVERIFY(port > 0);
+    QVERIFY2(monitor.message().contains(QString("127.0.0.1:%1").arg(port)),
+             qPrintable(monitor.message()));
+    // A sender as any DAQ program would write one: HELLO with the sample's layout, 20 s of its
+    // stored values in blocks of 64 rows, BYE.
+    const oscilab::daq::Recording recording = oscilab::daq::read_recording(kSample);
+    const int channels = static_cast<int>(recording.sidecar.channels.size());
+    constexpr int kRows = 64, kBlocks = 160;
+    std::vector<std::uint8_t> bytes;
+    oscilab::daq::stream_protocol::append_hello({"ui-test", recording.sidecar}, bytes);
+    std::vector<double> values(std::size_t(kRows * channels));
+    for (int b = 0; b < kBlocks; ++b) {
+      for (int r = 0; r < kRows; ++r) {
+        for (int c = 0; c < channels; ++c) {
+          values[std::size_t(r * channels + c)] = recording.samples_stored(b * kRows + r, c);
+        }
+      }
+      oscilab::daq::stream_protocol::append_data(std::uint64_t(b), std::uint64_t(b) * kRows, kRows,
+                                                 channels, values.data(), bytes);
+    }
+    oscilab::daq::stream_protocol::append_bye(bytes);
+    {
+      oscilab::daq::TcpSocket socket = oscilab::daq::TcpSocket::connect_to("127.0.0.1", port);
+      QVERIFY(socket.send_all(bytes.data(), bytes.size()));
+      QVERIFY(wait_finished(monitor, 30000));
+    }
+    QTest::qWait(100);
+    QCOMPARE(monitor.acquisition()->status().samples, std::uint64_t(kRows * kBlocks));
+    QCOMPARE(monitor.status_label("samples")->text(), QString("samples %1").arg(kRows * kBlocks));
+    QCOMPARE(monitor.status_label("gaps")->text(), QString("gaps 0 (0)"));
+    QCOMPARE(log_rows_of_kind(monitor, "connected"), 1);
+    // The sidecar's levels in the first 20 s: 0.2 N from 2.5 s (README, samples), finished.
+    QVERIFY(monitor.edc_graph("positive")->dataCount() >= 1);
+    for (int k = 0; k < 5; ++k) QVERIFY(monitor.trace_plot()->graph(k)->dataCount() > 100);
+  }
+
+  void errorsAreShownNotThrown() {
+    LiveMonitor monitor;
+    QSignalSpy shown(&monitor, &LiveMonitor::message_shown);
+    LiveSettings s = replay_settings(1.0);
+    s.replay_path = "/nonexistent/run.flac";
+    monitor.set_settings(s);
+    QVERIFY(!monitor.start());
+    QVERIFY2(monitor.message().contains("/nonexistent/run.flac"), qPrintable(monitor.message()));
+    QVERIFY(!monitor.running());
+
+    monitor.set_settings(rig_settings(0.0, 0.5));
+    QVERIFY(monitor.start());
+    QVERIFY(!monitor.start_recording("/nonexistent/dir/x.wav"));
+    QVERIFY(monitor.message().startsWith("Cannot record"));
+    QVERIFY(!monitor.start_recording(
+        QString::fromStdString((fs::temp_directory_path() / "x.flac").string())));
+    QVERIFY2(monitor.message().contains(".wav, .w64 or .rf64"), qPrintable(monitor.message()));
+    monitor.set_excitation(-1.0, 9.0);  // the rig refuses it
+    QVERIFY(monitor.message().startsWith("Cannot set the excitation"));
+    monitor.stop();
+
+    const LiveSettings before = monitor.settings();
+    monitor.apply_settings({{"window_s", -3}});
+    QVERIFY2(monitor.message().contains("live.window_s"), qPrintable(monitor.message()));
+    QCOMPARE(monitor.settings().to_json(), before.to_json());  // nothing changed
+    QVERIFY(shown.count() >= 5);
+  }
+
+  void mainWindowHasALiveTabAndKeepsItsSettingsInTheSession() {
+    const fs::path dir = temp_dir("session");
+    const QString session = QString::fromStdString((dir / "session.json").string());
+    {
+      oscilab::ui::MainWindow window;
+      window.set_interactive_errors(false);
+      QTabWidget* tabs = window.central_tabs();
+      QCOMPARE(tabs->tabText(1), QString("Live"));
+      auto* monitor = qobject_cast<LiveMonitor*>(tabs->widget(1));
+      QVERIFY(monitor != nullptr);
+      monitor->f0_box()->setValue(1.7);
+      monitor->window_box()->setValue(60.0);
+      monitor->source_box()->setCurrentIndex(1);
+      monitor->replay_path_edit()->setText(QString::fromStdString(kSample));
+      QCOMPARE(window.live_settings()["rig"]["f0_n"].get<double>(), 1.7);
+      QCOMPARE(window.live_settings()["source"].get<std::string>(), std::string("replay"));
+      QVERIFY(window.save_session(session));
+    }
+    oscilab::ui::MainWindow window;
+    window.set_interactive_errors(false);
+    QVERIFY(window.open_session(session));
+    auto* monitor = window.findChild<LiveMonitor*>("live_monitor");
+    QVERIFY(monitor != nullptr);
+    const LiveSettings restored = monitor->settings();
+    QCOMPARE(restored.rig_f0_n, 1.7);
+    QCOMPARE(restored.window_s, 60.0);
+    QCOMPARE(restored.source, LiveSourceKind::Replay);
+    QCOMPARE(restored.replay_path, kSample);
+    fs::remove_all(dir);
+  }
+};
+
+QTEST_MAIN(LiveMonitorTest)
+#include "live_monitor_test.moc"
