@@ -3,11 +3,11 @@
 // 58: Function at Nodal DOF" and "Number 164: Units"), not from the writer.
 #include "daq/export/uff58_export.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -112,6 +112,21 @@ Recording test_recording(double rate_hz, Eigen::Index samples) {
   recording.samples_si(1, 0) = 9.87654321098765e+250;
   recording.samples_si(2, 0) = 0.0;
   return recording;
+}
+
+// "DD-MMM-YY HH:MM:SS" (UFF ID line dates), checked character by character: std::regex trips a
+// false -Wmaybe-uninitialized of GCC 12 in the sanitizer build.
+bool is_uff_date(const std::string& text) {
+  const std::string pattern = "99-AAA-99 99:99:99";
+  if (text.size() != pattern.size()) return false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const bool ok = pattern[i] == '9'   ? std::isdigit(c) != 0
+                    : pattern[i] == 'A' ? std::isupper(c) != 0
+                                        : text[i] == pattern[i];
+    if (!ok) return false;
+  }
+  return true;
 }
 
 TEST(Uff58Export, WritesOneDatasetPerChannelInTheStandardRecords) {
@@ -226,10 +241,7 @@ TEST(Uff58Export, PrintsAFractionalRateIncrementToSevenDigits) {
   EXPECT_NEAR(real_field(datasets[1].records[6], 43, 13), 1.0 / rate_hz, 5e-7 / rate_hz);
   EXPECT_EQ(datasets[1].records.size(), 11u + 2u);  // 8 values: two full lines
   // Without a fixed date, ID line 3 holds now as DD-MMM-YY HH:MM:SS.
-  EXPECT_TRUE(std::regex_match(trimmed(datasets[1].records[2]),
-                               std::regex("[0-3][0-9]-[A-Z]{3}-[0-9]{2} [0-2][0-9]:[0-5][0-9]:"
-                                          "[0-6][0-9]")))
-      << datasets[1].records[2];
+  EXPECT_TRUE(is_uff_date(trimmed(datasets[1].records[2]))) << datasets[1].records[2];
 }
 
 TEST(Uff58Export, ThrowsInputErrorOnANonFiniteSampleAndWritesNothing) {
