@@ -578,7 +578,7 @@ void IdentificationPanel::show_diagnosis(const Outcome& outcome) {
     plot_edc(*outcome.objective, r.final_evaluation.edc_mod_j,
              tr("model (%1)").arg(QString::fromStdString(r.verdict)));
   }
-  tabs_->setCurrentIndex(2);
+  tabs_->setCurrentWidget(verdict_label_->parentWidget());  // the Diagnosis page
 }
 
 void IdentificationPanel::show_preview(std::shared_ptr<const FitPreview> preview) {

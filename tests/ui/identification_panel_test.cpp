@@ -231,7 +231,7 @@ class IdentificationPanelTest : public QObject {
              qPrintable(panel.status_label()->text()));
     QVERIFY(panel.verdict_label()->text().contains("Verdict: none"));
     QCOMPARE(panel.residual_plot()->graphCount(), 4);  // baseline and final, both wells
-    QCOMPARE(panel.tabs()->currentIndex(), 2);
+    QCOMPARE(panel.tabs()->tabText(panel.tabs()->currentIndex()), QString("Diagnosis"));
   }
 
   void badRecordingIsReportedNotFatal() {
