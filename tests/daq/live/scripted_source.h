@@ -22,9 +22,15 @@ class ScriptedSource final : public SampleSource {
   };
   /// `wait`: wait for room in the queue (else drop and count, as live hardware does);
   /// `pause_us`: between blocks, so a slow consumer falls behind gradually.
+  /// `burst`: the first `burst` blocks are pushed without waiting whatever `wait` says (a
+  /// consumer that has not started yet loses what does not fit).
   ScriptedSource(Sidecar layout, std::vector<Block> blocks, std::vector<StreamEvent> events = {},
-                 bool wait = true, int pause_us = 0)
-      : blocks_(std::move(blocks)), events_(std::move(events)), wait_(wait), pause_us_(pause_us) {
+                 bool wait = true, int pause_us = 0, std::size_t burst = 0)
+      : blocks_(std::move(blocks)),
+        events_(std::move(events)),
+        wait_(wait),
+        pause_us_(pause_us),
+        burst_(burst) {
     channels_ = static_cast<int>(layout.channels.size());
     for (const Block& b : blocks_) max_rows_ = std::max(max_rows_, b.rows);
     set_layout(layout);
@@ -56,10 +62,11 @@ class ScriptedSource final : public SampleSource {
  private:
   void run() override {
     for (StreamEvent& event : events_) post_event(event);
-    for (const Block& b : blocks_) {
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      const Block& b = blocks_[i];
       if (stop_requested()) return;
       if (pause_us_ > 0) std::this_thread::sleep_for(std::chrono::microseconds(pause_us_));
-      RawBlock* block = begin_block(wait_);
+      RawBlock* block = begin_block(wait_ && i >= burst_);
       if (block == nullptr) {
         count_overflow(b.first_sample);
         continue;
@@ -77,6 +84,7 @@ class ScriptedSource final : public SampleSource {
   std::vector<StreamEvent> events_;
   bool wait_;
   int pause_us_;
+  std::size_t burst_;
   int channels_ = 0;
   int max_rows_ = 1;
 };
