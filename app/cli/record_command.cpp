@@ -64,16 +64,11 @@ void run(const RecordOptions& o) {
   daq::AcquisitionOptions acquisition_options;
   auto acquisition = std::make_unique<daq::Acquisition>(make_live_source(o.source, o.live, true),
                                                         acquisition_options);
-  // A source that knows its layout (rig, replay) is recorded from its first sample; a network
-  // source from when its first sender has said what it sends.
-  bool recording = false;
-  double record_start_s = 0.0;
-  if (acquisition->source().layout()) {
-    acquisition->start_recording(o.out);
-    recording = true;
-    std::fprintf(stderr, "recording %s from %s\n", o.out.c_str(),
-                 acquisition->source().describe().c_str());
-  }
+  // Recorded from the stream's first sample: at once for the rig and a replay, from the first
+  // sender's first block for a network source (InputError here: a bad path or container).
+  acquisition->start_recording(o.out);
+  std::printf("recording %s from %s\n", o.out.c_str(), acquisition->source().describe().c_str());
+  std::fflush(stdout);
   acquisition->start();
   const bool terminal = isatty(STDERR_FILENO) != 0;
   const auto started = std::chrono::steady_clock::now();
@@ -81,22 +76,14 @@ void run(const RecordOptions& o) {
   while (!g_interrupted.load() && !acquisition->finished()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     const daq::AcquisitionStatus status = acquisition->status();
-    if (!recording && status.layout_known) {
-      acquisition->start_recording(o.out);  // InputError: bad path or container
-      recording = true;
-      record_start_s = status.stream_time_s;
-      std::fprintf(stderr, "recording %s from %s\n", o.out.c_str(), status.source.c_str());
-    }
-    if (!recording && o.wait_s > 0 &&
+    if (!status.layout_known && o.wait_s > 0 &&
         std::chrono::steady_clock::now() - started > std::chrono::duration<double>(o.wait_s)) {
       acquisition->stop();
       throw InputError(o.source + ": no sender connected within " + std::to_string(o.wait_s) +
                        " s");
     }
-    if (recording && o.live.duration_s &&
-        status.stream_time_s - record_start_s >= *o.live.duration_s) {
-      break;
-    }
+    if (!status.recorder_error.empty()) break;
+    if (o.live.duration_s && status.stream_time_s >= *o.live.duration_s) break;
     if (terminal && std::chrono::steady_clock::now() - last_print > std::chrono::seconds(1)) {
       print_status(status, false);
       last_print = std::chrono::steady_clock::now();

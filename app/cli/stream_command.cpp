@@ -80,13 +80,15 @@ void run(const StreamOptions& o) {
   };
   send(frame);
   while (!g_stream_interrupted.load()) {
+    // The block first, then the events: a source posts an event before it publishes the block
+    // that reaches the event's time, so the receiver gets every event before its block.
+    daq::RawBlock* block = queue.front();
     for (const daq::StreamEvent& event : source->take_events()) {
       if (!forwarded(event.kind)) continue;
       frame.clear();
       daq::stream_protocol::append_event(event, frame);
       send(frame);
     }
-    daq::RawBlock* block = queue.front();
     if (block == nullptr) {
       if (source->finished() && queue.size() == 0) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(1));

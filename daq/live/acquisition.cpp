@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <utility>
 
 #include "analysis/common/input_error.h"
 #include "analysis/pipeline/measurement_pipeline.h"
@@ -150,7 +151,8 @@ struct Acquisition::Impl {
   void check_alarms(std::uint64_t sample, double z, double b, double f);
   void collect_cycles();
   void apply_recording_requests();
-  void copy_monitor_counters();  // StreamMonitor's counts into the status, per block
+  void open_pending_recording();  // a recording asked for before the layout was known
+  void copy_monitor_counters();   // StreamMonitor's counts into the status, per block
   double time_of(std::uint64_t sample) const { return static_cast<double>(sample) / rate_hz; }
 };
 
@@ -194,7 +196,12 @@ void Acquisition::start_recording(const std::string& path) {
   // Before start() the source's own layout serves (rig, replay): recording from sample 0.
   const std::optional<Sidecar> layout = impl_->layout_copy ? impl_->layout_copy : source_->layout();
   if (!layout) {
-    throw InputError(path + ": cannot record yet: the stream's layout is not known (no sender)");
+    // A network source before its first sender: record from the first sample once the layout
+    // is known. What can be checked now is (the container); the rest shows in the status.
+    LiveRecorder::check_path(path);
+    impl_->pending_recording = path;
+    impl_->status.recording_path = path;
+    return;
   }
   // Open now so that a bad path fails here, in the caller's thread, with its message.
   impl_->recorder = std::make_unique<LiveRecorder>(path, *layout, impl_->history.end);
@@ -772,6 +779,25 @@ void Acquisition::Impl::copy_monitor_counters() {
   status.late = c.late;
 }
 
+void Acquisition::Impl::open_pending_recording() {
+  const std::lock_guard lock(mutex);
+  if (pending_recording.empty() || !layout_copy) return;
+  const std::string path = std::exchange(pending_recording, std::string());
+  try {
+    recorder = std::make_unique<LiveRecorder>(path, *layout_copy, history.end);
+    status.recording = true;
+    StreamEvent started(time_of(history.end), "recording-started", path);
+    started.wall = utc_now_iso8601();
+    recorder->log(started);
+    events.push_back(started);
+  } catch (const InputError& error) {
+    status.recorder_error = error.what();
+    StreamEvent failed(time_of(history.end), "error", error.what());
+    failed.wall = utc_now_iso8601();
+    events.push_back(failed);
+  }
+}
+
 void Acquisition::Impl::apply_recording_requests() {
   const std::lock_guard lock(mutex);
   if (recorder) recorder->maybe_write_sidecar();
@@ -793,11 +819,13 @@ void Acquisition::Impl::apply_recording_requests() {
 }
 
 void Acquisition::Impl::run(Acquisition& owner) {
+  // Events wait in the source until the layout is set up: a network sender's first levels come
+  // right after its HELLO and must reach the pipeline and the recording.
   while (!stop.load() && !setup_layout()) {
-    handle_events();
     if (source->finished()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  open_pending_recording();
   log({0.0, "start", source->describe()});
   bool source_done = false;
   while (status.layout_known) {

@@ -101,8 +101,9 @@ class Acquisition {
   void stop();
   bool finished() const { return finished_.load(std::memory_order_acquire); }
 
-  /// Records from the next block on (throws InputError for a bad path or container, or when the
-  /// layout is not known yet). Any source, while it runs.
+  /// Records from the next block on (throws InputError for a bad path or container). Any
+  /// source, while it runs; before a network source's first sender, from its first sample (a
+  /// path that then cannot be written shows in status().recorder_error).
   void start_recording(const std::string& path);
   void stop_recording();
   /// An operator's mark in the event log at the current stream time.

@@ -82,6 +82,8 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
                    std::numeric_limits<double>::quiet_NaN());
 }
 
+void LiveRecorder::check_path(const std::string& path) { live_format_for(path); }
+
 LiveRecorder::~LiveRecorder() {
   try {
     close();

@@ -34,6 +34,8 @@ class LiveRecorder {
   /// `layout` says what the samples mean; `first_sample` is the stream sample recorded first.
   LiveRecorder(const std::string& path, const Sidecar& layout, std::uint64_t first_sample);
   ~LiveRecorder();
+  /// Throws InputError unless `path` names a container a live recording can be (see above).
+  static void check_path(const std::string& path);
   LiveRecorder(const LiveRecorder&) = delete;
   LiveRecorder& operator=(const LiveRecorder&) = delete;
 
