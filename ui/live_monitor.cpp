@@ -37,6 +37,7 @@
 #include "daq/live/net_source.h"
 #include "daq/live/replay_source.h"
 #include "ui/background_job.h"
+#include "ui/plot_helpers.h"
 #include "ui/well_colours.h"
 
 namespace oscilab::ui {
@@ -120,24 +121,6 @@ QCustomPlot* make_plot(const QString& name, const QString& title, const QString&
   return plot;
 }
 
-// A grey message in the middle of the axes (why there is nothing yet); empty hides it.
-void set_hint(QCustomPlot* plot, const QString& message) {
-  QCPItemText* hint = nullptr;
-  for (int i = 0; i < plot->itemCount(); ++i) {
-    if (plot->item(i)->objectName() == "hint") hint = qobject_cast<QCPItemText*>(plot->item(i));
-  }
-  if (!hint) {
-    hint = new QCPItemText(plot);
-    hint->setObjectName("hint");
-    hint->position->setType(QCPItemPosition::ptAxisRectRatio);
-    hint->position->setCoords(0.5, 0.5);
-    hint->setColor(Qt::gray);
-    hint->setClipToAxisRect(false);
-  }
-  hint->setText(message);
-  hint->setVisible(!message.isEmpty());
-}
-
 // Lists `plottable` in its plot's legend only while it has something to show.
 void show_in_legend(QCPAbstractPlottable* plottable, bool show) {
   QCPLegend* legend = plottable->parentPlot()->legend;
@@ -145,14 +128,10 @@ void show_in_legend(QCPAbstractPlottable* plottable, bool show) {
   if (!show && legend->hasItemWithPlottable(plottable)) plottable->removeFromLegend();
 }
 
-QCPScatterStyle dots(const QColor& colour, double size) {
-  return QCPScatterStyle(QCPScatterStyle::ssDisc, colour, colour, size);
-}
-
 QCPGraph* scatter_graph(QCustomPlot* plot, const QColor& colour, const QString& name) {
   QCPGraph* graph = plot->addGraph();
   graph->setLineStyle(QCPGraph::lsNone);
-  graph->setScatterStyle(dots(colour, 3));
+  graph->setScatterStyle(disc_markers(colour, 3));
   graph->setPen(QPen(colour));
   graph->setName(name);
   graph->setAdaptiveSampling(true);
@@ -720,7 +699,7 @@ void LiveMonitor::build_plots() {
   edc_bars_[3] = current_bars;
   edc_plot_->xAxis->setRange(0.0, 2.8);
   edc_plot_->yAxis->setRange(0.0, 1.0);
-  set_hint(edc_plot_, tr("Levels appear here as the stepped sine runs."));
+  set_plot_hint(edc_plot_, tr("Levels appear here as the stepped sine runs."));
 
   // The loop of the current cycle (Fig. 9).
   loop_plot_ = make_plot("loop_plot", tr("f\u2013z loop of the current cycle (Fig. 9)"),
@@ -728,7 +707,7 @@ void LiveMonitor::build_plots() {
   auto* loop = new QCPCurve(loop_plot_->xAxis, loop_plot_->yAxis);
   loop->setPen(QPen(well_colour("positive"), 1.5));
   loop->setName(tr("current cycle"));
-  set_hint(loop_plot_, tr("Needs a whole cycle of z (2 s behind)."));
+  set_plot_hint(loop_plot_, tr("Needs a whole cycle of z (2 s behind)."));
 
   // Spectrum of z.
   spectrum_plot_ = make_plot("spectrum_plot", tr("Spectrum of z, last seconds"),
@@ -752,7 +731,7 @@ void LiveMonitor::build_plots() {
   spectrum_plot_->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignRight);
   spectrum_plot_->xAxis->setRange(0.0, 80.0);
   spectrum_plot_->yAxis->setRange(1e-8, 1e-2);
-  set_hint(spectrum_plot_, tr("Needs a few seconds of z."));
+  set_plot_hint(spectrum_plot_, tr("Needs a few seconds of z."));
 
   // The restoring force slices (§3.1–3.2, Fig. 7b, 7c).
   stiffness_plot_ =
@@ -766,7 +745,7 @@ void LiveMonitor::build_plots() {
     scatter_graph(plot, well_colour("negative"), tr("z\u208b* well"))->removeFromLegend();
     plot->legend->setVisible(true);
     plot->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignLeft);
-    set_hint(plot, tr("Grows as cycles arrive (R, z, \u017c are 2 s behind)."));
+    set_plot_hint(plot, tr("Grows as cycles arrive (R, z, \u017c are 2 s behind)."));
   }
 }
 
@@ -1347,7 +1326,7 @@ void LiveMonitor::refresh_slices() {
     }
     fit_axis(plot->xAxis, x_lo, x_hi);
     fit_axis(plot->yAxis, y_lo, y_hi);
-    set_hint(plot, points->empty() ? tr("No samples in the band yet.") : QString());
+    set_plot_hint(plot, points->empty() ? tr("No samples in the band yet.") : QString());
     plot->replot(QCustomPlot::rpQueuedReplot);
   }
 }
@@ -1384,7 +1363,7 @@ void LiveMonitor::refresh_cycle() {
       fit_axis(loop_plot_->xAxis, 1e3 * lo, 1e3 * hi);
       finite_range(cycle.f_n, lo, hi);
       fit_axis(loop_plot_->yAxis, lo, hi);
-      set_hint(loop_plot_, QString());
+      set_plot_hint(loop_plot_, QString());
       loop_plot_->replot(QCustomPlot::rpQueuedReplot);
     }
   }
@@ -1409,7 +1388,7 @@ void LiveMonitor::refresh_cycle() {
     spectrum_plot_->graph(1)->setName(tr("h\u03bd, \u03bd = %1 Hz").arg(nu, 0, 'g', 4));
     spectrum_plot_->xAxis->setRange(0.0, std::min(0.5 * rate_hz, nu > 0 ? 9.5 * nu : 60.0));
     if (peak > 0) spectrum_plot_->yAxis->setRange(peak * 1e-5, peak * 3.0);
-    set_hint(spectrum_plot_, QString());
+    set_plot_hint(spectrum_plot_, QString());
     spectrum_plot_->replot(QCustomPlot::rpQueuedReplot);
   }
 }
@@ -1468,9 +1447,9 @@ void LiveMonitor::refresh_edc() {
   }
   edc_plot_->xAxis->setRange(0.0, x_top);
   edc_plot_->yAxis->setRange(0.0, top > 0 ? 1.08 * top : 1.0);
-  set_hint(edc_plot_, levels.empty() && !data.current
-                          ? tr("Levels appear here as the stepped sine runs.")
-                          : QString());
+  set_plot_hint(edc_plot_, levels.empty() && !data.current
+                               ? tr("Levels appear here as the stepped sine runs.")
+                               : QString());
   edc_plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 

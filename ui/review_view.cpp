@@ -20,6 +20,7 @@
 
 #include "ui/display_units.h"
 #include "ui/level_table.h"
+#include "ui/plot_helpers.h"
 #include "ui/record_view.h"
 #include "ui/time_marks.h"
 #include "ui/well_colours.h"
@@ -52,24 +53,6 @@ QCPTextElement* add_title(QCustomPlot* plot, const QString& title) {
   return element;
 }
 
-// A grey message in the middle of the axes (no data yet, or why there is none); empty hides it.
-void set_hint(QCustomPlot* plot, const QString& message) {
-  QCPItemText* hint = nullptr;
-  for (int i = 0; i < plot->itemCount(); ++i) {
-    if (plot->item(i)->objectName() == "hint") hint = qobject_cast<QCPItemText*>(plot->item(i));
-  }
-  if (!hint) {
-    hint = new QCPItemText(plot);
-    hint->setObjectName("hint");
-    hint->position->setType(QCPItemPosition::ptAxisRectRatio);
-    hint->position->setCoords(0.5, 0.5);
-    hint->setColor(Qt::gray);
-    hint->setClipToAxisRect(false);
-  }
-  hint->setText(message);
-  hint->setVisible(!message.isEmpty());
-}
-
 QCustomPlot* make_plot(const QString& x_label, const QString& y_label) {
   auto* plot = new QCustomPlot;
   plot->setAutoAddPlottableToLegend(true);
@@ -84,10 +67,6 @@ QCustomPlot* make_plot(const QString& x_label, const QString& y_label) {
   }
   plot->setMinimumSize(260, 200);
   return plot;
-}
-
-QCPScatterStyle dots(const QColor& colour, double size) {
-  return QCPScatterStyle(QCPScatterStyle::ssDisc, colour, colour, size);
 }
 
 // Largest |value| of a set of vectors, for a display unit.
@@ -485,12 +464,12 @@ void ReviewView::plot_loops(const std::vector<LevelKey>& keys) {
   }
   loop_plot_->legend->setVisible(!loops.empty());
   if (loops.empty()) {
-    set_hint(loop_plot_, analysis_ ? tr("Select levels in the table to draw their loops")
-                                   : tr("No analysis yet"));
+    set_plot_hint(loop_plot_, analysis_ ? tr("Select levels in the table to draw their loops")
+                                        : tr("No analysis yet"));
     loop_plot_->replot(QCustomPlot::rpQueuedReplot);
     return;
   }
-  set_hint(loop_plot_, {});
+  set_plot_hint(loop_plot_, {});
   // One entry a row for a few loops, two columns for more (before the entries are added).
   loop_plot_->legend->setWrap(loops.size() <= 3 ? 1 : 2);
   double z_max = 0.0, f_max = 0.0;
@@ -587,19 +566,19 @@ void ReviewView::plot_cycles() {
   cycle_plot_->clearGraphs();
   const int r = shown_record();
   if (r < 0) {
-    set_hint(cycle_plot_, !analysis_
-                              ? (analysis_running_ ? tr("Analysing\u2026") : tr("No analysis yet"))
-                              : tr("The recording shown was not analysed"));
+    set_plot_hint(cycle_plot_,
+                  !analysis_ ? (analysis_running_ ? tr("Analysing\u2026") : tr("No analysis yet"))
+                             : tr("The recording shown was not analysed"));
     cycle_plot_->replot(QCustomPlot::rpQueuedReplot);
     return;
   }
   const analysis::RecordAnalysis& record = analysis_->campaign.records[std::size_t(r)];
   if (record.cycles.empty()) {
-    set_hint(cycle_plot_, tr("No stepped-sine cycles in %1").arg(text(record.name)));
+    set_plot_hint(cycle_plot_, tr("No stepped-sine cycles in %1").arg(text(record.name)));
     cycle_plot_->replot(QCustomPlot::rpQueuedReplot);
     return;
   }
-  set_hint(cycle_plot_, {});
+  set_plot_hint(cycle_plot_, {});
   // Which level's steady part holds a cycle (its well), if any.
   const auto steady_well = [&](const analysis::CycleFit& cycle) -> const std::string* {
     for (const analysis::LevelResult& level : record.levels) {
@@ -624,13 +603,13 @@ void ReviewView::plot_cycles() {
   QCPGraph* other = cycle_plot_->addGraph();
   other->setName(tr("transient or between levels"));
   other->setLineStyle(QCPGraph::lsNone);
-  other->setScatterStyle(dots(QColor(160, 160, 160), 3));
+  other->setScatterStyle(disc_markers(QColor(160, 160, 160), 3));
   other->setData(other_t, other_e, true);
   for (const auto& [well, points] : by_well) {
     QCPGraph* graph = cycle_plot_->addGraph();
     graph->setName(tr("steady cycles, %1 well").arg(text(well)));
     graph->setLineStyle(QCPGraph::lsNone);
-    graph->setScatterStyle(dots(well_colour(well), 4));
+    graph->setScatterStyle(disc_markers(well_colour(well), 4));
     graph->setData(points.first, points.second, true);
   }
   // Each level's mean as a segment over its steady part; NaN between levels breaks the line.
@@ -686,13 +665,13 @@ void ReviewView::plot_slices() {
     const QString why = !analysis_
                             ? (analysis_running_ ? tr("Analysing\u2026") : tr("No analysis yet"))
                             : tr("No restoring force: %1").arg(text(campaign->rfs_message));
-    set_hint(stiffness_plot_, why);
-    set_hint(damping_plot_, why);
+    set_plot_hint(stiffness_plot_, why);
+    set_plot_hint(damping_plot_, why);
     stiffness_plot_->replot(QCustomPlot::rpQueuedReplot);
     damping_plot_->replot(QCustomPlot::rpQueuedReplot);
     return;
   }
-  set_hint(stiffness_plot_, {});
+  set_plot_hint(stiffness_plot_, {});
   const analysis::StiffnessSlice& slice = *campaign->stiffness;
 
   // Stiffness slice: the samples, their bin means and the fitted cubic.
@@ -718,7 +697,7 @@ void ReviewView::plot_slices() {
                      .arg(text(band_unit.symbol))
                      .arg(samples.selected));
   cloud->setLineStyle(QCPGraph::lsNone);
-  cloud->setScatterStyle(dots(kSampleColour, 2));
+  cloud->setScatterStyle(disc_markers(kSampleColour, 2));
   cloud->setData(to_display(samples.x, z_unit), to_display(samples.y, r_unit));
   QCPGraph* bins = stiffness_plot_->addGraph();
   bins->setName(tr("bin means (%1 bins)").arg(slice.bins.size()));
@@ -747,11 +726,11 @@ void ReviewView::plot_slices() {
 
   // Damping slices: samples and bin means of each, by equilibrium.
   if (campaign->damping.empty()) {
-    set_hint(damping_plot_, tr("The fitted K(z) has no stable zero in the travelled range"));
+    set_plot_hint(damping_plot_, tr("The fitted K(z) has no stable zero in the travelled range"));
     damping_plot_->replot(QCustomPlot::rpQueuedReplot);
     return;
   }
-  set_hint(damping_plot_, {});
+  set_plot_hint(damping_plot_, {});
   std::vector<ScatterPoints> clouds;
   double v_max = 0.0, d_max = 0.0;
   for (const analysis::DampingSlice& d : campaign->damping) {
@@ -772,7 +751,7 @@ void ReviewView::plot_slices() {
     QCPGraph* points = damping_plot_->addGraph();
     points->setName(tr("%1: samples (%2)").arg(where).arg(clouds[i].selected));
     points->setLineStyle(QCPGraph::lsNone);
-    points->setScatterStyle(dots(colour.lighter(140), 2));
+    points->setScatterStyle(disc_markers(colour.lighter(140), 2));
     points->setData(to_display(clouds[i].x, v_unit), to_display(clouds[i].y, d_unit));
     std::vector<double> bin_v, bin_d;
     for (const analysis::SliceBin& bin : d.bins) {

@@ -1,0 +1,17 @@
+#pragma once
+
+#include <QColor>
+#include <QString>
+
+#include <qcustomplot.h>
+
+namespace oscilab::ui {
+
+/// A grey message in the middle of a plot's axes (why there is nothing to show yet); an empty
+/// message hides it. The text item is created on first use and found again by its name.
+void set_plot_hint(QCustomPlot* plot, const QString& message);
+
+/// Filled round markers of `colour` and `size` pixels, for scatter graphs.
+QCPScatterStyle disc_markers(const QColor& colour, double size);
+
+}  // namespace oscilab::ui
