@@ -476,7 +476,8 @@ void IdentificationPanel::on_finished(bool cancelled) {
                   .arg(outcome->fit.evaluation.mean_deviation_pct_positive, 0, 'f', 2)
                   .arg(outcome->fit.evaluation.mean_deviation_pct_negative, 0, 'f', 2);
     const double floor = outcome->objective ? outcome->objective->settings().model_error_rel : 0.0;
-    if (outcome->fit.check_harmonics > 0 && outcome->fit.truncation_change_rel > 0.5 * floor) {
+    if (floor > 0.0 && outcome->fit.check_harmonics > 0 &&
+        outcome->fit.truncation_change_rel > 0.5 * floor) {
       message += tr(". Harmonic balance truncation: S_mod changes by %1 % at H = %2, comparable "
                     "to the %3 % model-error floor: parameters may absorb it.")
                      .arg(100.0 * outcome->fit.truncation_change_rel, 0, 'f', 2)

@@ -156,8 +156,22 @@ void HarmonicBalance::residual_and_jacobian(const Eigen::VectorXd& x, double f0_
     jacobian(2 * h, 2 * h) += inertia;
   }
   if (!march_.active()) return;
-  // Stateful terms: forward differences of the projected marched force, column by column. The
-  // step is 1e-7 of the orbit's size (‖x‖∞, at least 1 µm): the marched force is smooth in x
+  if (march_.exact()) {
+    // Stateful terms with the exact periodic solve: column j is the projection of δF for the
+    // orbit perturbation φ_j (HysteresisMarch::sensitivity), the march's exact derivative.
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(size);
+    for (int j = 0; j < size; ++j) {
+      unit[j] = 1.0;
+      grid_.synthesise(unit, basis_, basis_tau_);
+      unit[j] = 0.0;
+      march_.sensitivity(basis_, basis_force_);
+      grid_.analyse(basis_force_, projection_plus_);
+      jacobian.col(j) += projection_plus_;
+    }
+    return;
+  }
+  // Other stateful terms: forward differences of the projected marched force, column by column.
+  // The step is 1e-7 of the orbit's size (‖x‖∞, at least 1 µm): the marched force is smooth in x
   // between changes of the turning-point sample, and its rounding (~1e-16 relative) stays far
   // below the step's truncation error.
   grid_.analyse(hysteretic_, projection_);

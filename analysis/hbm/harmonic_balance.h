@@ -86,11 +86,13 @@ struct HbmMeasures {
 /// of C_n: two forward FFTs and O(M²) additions instead of O(N M²).
 ///
 /// Terms with internal state (hysteresis, e.g. the Dahl element) enter through their periodic
-/// steady force along the sampled orbit (HysteresisMarch): the AFT step marches their states
-/// over the N samples until periodic. Their force depends on the whole path, not on (z, ż) at one
-/// instant, so their part of the Jacobian is taken by forward differences of that marched force
-/// over the coefficients (size() + 1 marches per Jacobian, each O(N)); the stateless terms keep
-/// the analytic Jacobian above. Floquet stability does not cover stateful terms.
+/// steady force along the sampled orbit (HysteresisMarch). Their force depends on the whole path,
+/// not on (z, ż) at one instant. For terms that give their step sensitivities (the Dahl element)
+/// the periodic state is solved exactly and their part of the Jacobian is the march's exact
+/// derivative (one O(N) recurrence and one FFT per column); for others the states are marched
+/// period after period and that part of the Jacobian is taken by forward differences. The
+/// stateless terms keep the analytic Jacobian above. Floquet stability does not cover stateful
+/// terms.
 ///
 /// Thread-safety: not thread-safe (owns FFT buffers); use one object per thread.
 class HarmonicBalance {
@@ -154,6 +156,7 @@ class HarmonicBalance {
   Eigen::VectorXd amp_z_, amp_z_dot_;
   Eigen::VectorXd z_, z_tau_, z_dot_, force_, force_coefficients_, stiffness_, damping_;
   Eigen::VectorXd hysteretic_, hysteretic_plus_, projection_, projection_plus_;
+  Eigen::VectorXd basis_, basis_tau_, basis_force_;
   std::vector<std::complex<double>> stiffness_dft_, damping_dft_;
 };
 

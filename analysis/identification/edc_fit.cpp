@@ -141,8 +141,12 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
   if (options.check_truncation) {
     // One evaluation of the fitted model at 2H + 1 harmonics (the same levels and branches).
     EdcCostSettings finer = objective.settings();
-    finer.hbm.harmonics = 2 * finer.hbm.harmonics + 1;
+    SigmaBudget budget = objective.budget();  // the same σ, the model side at 2H + 1
+    budget.harmonics = 2 * finer.hbm.harmonics + 1;
+    finer.hbm.harmonics = budget.harmonics;
     finer.hbm.samples = 0;
+    finer.max_harmonics = std::max(finer.max_harmonics, budget.harmonics);
+    finer.budget = budget;
     const EdcObjective check(form, objective.data(), finer);
     const EdcEvaluation fine = check.evaluate(result.theta);
     result.check_harmonics = finer.hbm.harmonics;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "analysis/common/input_error.h"
@@ -9,31 +10,155 @@
 
 namespace oscilab::analysis {
 
-EdcObjective::EdcObjective(ModelForm form, EdcDataset data, EdcCostSettings settings)
-    : form_(std::move(form)), data_(std::move(data)), settings_(settings) {
-  if (data_.level_count() == 0) throw InputError("EDC fit: the dataset has no levels");
-  if (!(settings_.model_error_rel >= 0.0)) {
-    throw InputError("EDC fit: the model-error floor must be non-negative");
+namespace {
+
+// The model's EDC at every level of the dataset (group order) with these HBM options; `ok` false
+// when a level could not be solved (its entry is then NaN).
+std::vector<double> model_edcs(const Model& model, const EdcDataset& data, const HbmOptions& hbm,
+                               bool& ok) {
+  std::vector<double> out;
+  ok = true;
+  for (const EdcGroup& group : data.groups) {
+    std::vector<double> f0;
+    for (const MeasuredLevel& level : group.levels) f0.push_back(level.f0_n);
+    LevelResponse response;
+    try {
+      response = level_response(model, group.freq_hz, group.positive_well, f0, hbm);
+    } catch (const InputError&) {
+      response.status = JobStatus::NoConvergence;
+    }
+    if (response.status != JobStatus::Ok) ok = false;
+    for (std::size_t i = 0; i < f0.size(); ++i) {
+      out.push_back(i < response.edc_j.size() ? response.edc_j[i]
+                                              : std::numeric_limits<double>::quiet_NaN());
+    }
   }
+  return out;
+}
+
+// The rungs of the harmonic ladder from `start` to `max`: start itself, then 7, 11, 15, 23, 31
+// above it. Friction's kinks make harmonics decay slowly, so steps of ~1.5× are the useful grain.
+std::vector<int> harmonic_ladder(int start, int max) {
+  std::vector<int> out = {start};
+  for (int h : {7, 11, 15, 23, 31}) {
+    if (h > start && h <= max) out.push_back(h);
+  }
+  return out;
+}
+
+}  // namespace
+
+SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDataset& data,
+                                           const EdcCostSettings& settings,
+                                           const Eigen::VectorXd& theta) {
+  SigmaBudget budget;
+  budget.harmonics = settings.hbm.harmonics;
+  budget.model_error_target = settings.model_error_target;
+  std::vector<double> measured;
+  for (const EdcGroup& group : data.groups) {
+    for (const MeasuredLevel& level : group.levels) {
+      budget.cycles_j.push_back(level.sigma_of_mean_j());
+      measured.push_back(level.edc_j);
+    }
+  }
+  const std::size_t n = measured.size();
+  budget.bias_j.assign(n, 0.0);
+  budget.model_j.assign(n, 0.0);
+  if (settings.model_error_rel >= 0.0) {
+    for (std::size_t k = 0; k < n; ++k) {
+      budget.model_j[k] = settings.model_error_rel * std::abs(measured[k]);
+    }
+  } else {
+    for (std::size_t k = 0; k < n; ++k) budget.bias_j[k] = kEdcEstimatorBiasRel * std::abs(measured[k]);
+    std::optional<Model> model;
+    try {
+      model.emplace(form.build(theta));
+    } catch (const InputError&) {
+      budget.resolved = false;
+    }
+    const std::vector<int> ladder =
+        settings.adaptive_harmonics ? harmonic_ladder(settings.hbm.harmonics, settings.max_harmonics)
+                                    : std::vector<int>{settings.hbm.harmonics};
+    for (std::size_t rung = 0; model && rung < ladder.size(); ++rung) {
+      HbmOptions coarse = settings.hbm, fine = settings.hbm;
+      coarse.harmonics = ladder[rung];
+      coarse.samples = 0;
+      fine.harmonics = 2 * ladder[rung] + 1;
+      fine.samples = 0;
+      bool coarse_ok = true, fine_ok = true;
+      const std::vector<double> s_coarse = model_edcs(*model, data, coarse, coarse_ok);
+      const std::vector<double> s_fine = model_edcs(*model, data, fine, fine_ok);
+      budget.harmonics = coarse.harmonics;
+      budget.reference_harmonics = fine.harmonics;
+      budget.resolved = coarse_ok && fine_ok;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double error = std::abs(s_coarse[k] - s_fine[k]);
+        budget.model_j[k] = std::isfinite(error) ? error : 0.0;
+        const double measurement = std::hypot(budget.cycles_j[k], budget.bias_j[k]);
+        if (!(error <= settings.model_error_target * measurement)) budget.resolved = false;
+      }
+      if (budget.resolved) break;
+    }
+  }
+  budget.total_j.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    budget.total_j[k] = std::sqrt(budget.cycles_j[k] * budget.cycles_j[k] +
+                                  budget.bias_j[k] * budget.bias_j[k] +
+                                  budget.model_j[k] * budget.model_j[k]);
+  }
+  return budget;
+}
+
+EdcObjective::EdcObjective(ModelForm form, EdcDataset data, EdcCostSettings settings)
+    : form_(std::move(form)), data_(std::move(data)), settings_(std::move(settings)) {
+  if (data_.level_count() == 0) throw InputError("EDC fit: the dataset has no levels");
+  if (!(settings_.model_error_target > 0.0)) {
+    throw InputError("EDC fit: the model-error target must be positive");
+  }
+  if (settings_.max_harmonics < settings_.hbm.harmonics) {
+    throw InputError("EDC fit: the largest harmonics (" + std::to_string(settings_.max_harmonics) +
+                     ") is below the starting harmonics (" +
+                     std::to_string(settings_.hbm.harmonics) + ")");
+  }
+  // Fail early on a model harmonic balance cannot handle (stateful terms it does not support).
+  HarmonicBalance check(form_.base(), data_.groups.front().freq_hz, settings_.hbm);
+  if (settings_.budget) {
+    if (settings_.budget->total_j.size() != static_cast<std::size_t>(data_.level_count())) {
+      throw InputError("EDC fit: the given sigma budget has " +
+                       std::to_string(settings_.budget->total_j.size()) + " levels, the data " +
+                       std::to_string(data_.level_count()));
+    }
+    budget_ = *settings_.budget;
+  } else {
+    budget_ = calibrate_budget(form_, data_, settings_, form_.initial());
+  }
+  settings_.hbm.harmonics = budget_.harmonics;
+  settings_.hbm.samples = 0;
+  settings_.budget = budget_;
+  int k = 0;
   for (const EdcGroup& group : data_.groups) {
     for (const MeasuredLevel& level : group.levels) {
-      const double sigma =
-          std::hypot(level.sigma_of_mean_j(), settings_.model_error_rel * level.edc_j);
+      const double sigma = budget_.total_j[static_cast<std::size_t>(k++)];
       if (!(sigma > 0.0)) {
         throw InputError("EDC fit: level at f0 = " + std::to_string(level.f0_n) +
-                         " N has no spread and the model-error floor is 0: its weight is infinite");
+                         " N has no spread, no estimator bias and no model error: its weight is "
+                         "infinite");
       }
       sigma_j_.push_back(sigma);
     }
   }
-  // Fail early on a model harmonic balance cannot handle (stateful terms it does not support).
-  HarmonicBalance check(form_.base(), data_.groups.front().freq_hz, settings_.hbm);
 }
 
 std::string EdcObjective::weighted_cost_name() const {
   std::ostringstream out;
-  out << "chi2: sum over levels of ((S_mes - S_mod) / sigma)^2, sigma^2 = sigma_mean^2 + ("
-      << settings_.model_error_rel << " S_mes)^2";
+  if (settings_.model_error_rel >= 0.0) {
+    out << "chi2: sum over levels of ((S_mes - S_mod) / sigma)^2, sigma^2 = sigma_mean^2 + ("
+        << settings_.model_error_rel << " S_mes)^2";
+  } else {
+    out << "chi2: sum over levels of ((S_mes - S_mod) / sigma)^2, sigma^2 = sigma_mean^2 + ("
+        << kEdcEstimatorBiasRel << " S_mes)^2 + (S_mod(H=" << budget_.harmonics
+        << ") - S_mod(H=" << budget_.reference_harmonics << "))^2";
+  }
   return out.str();
 }
 

@@ -14,13 +14,46 @@
 
 namespace oscilab::analysis {
 
+/// Relative bias of the stepped-sine EDC estimator (edc_mean_j: per-cycle harmonic fits,
+/// docs/analysis.md) against the exact dissipated energy, measured on virtual-rig records of the
+/// paper's model with the default sensors (scripts/estimator_bias_study.sh): the root mean square
+/// of the relative deviation left after the cycles' own standard error is taken out. It stands in
+/// each level's σ for what the estimator gets wrong that its cycles do not show.
+inline constexpr double kEdcEstimatorBiasRel = 6e-4;
+
+/// Each level's σ_k and where it comes from (docs/identification.md, "σ budget"):
+///
+///   σ_k² = σ_cycles,k² + σ_bias,k² + σ_model,k²
+///
+/// σ_cycles the standard error of S_k^mes from its cycles (not below the sensor-noise floor),
+/// σ_bias = kEdcEstimatorBiasRel · S_k^mes, σ_model the model side's numerical error at level k:
+/// |S_k(H) − S_k(2H + 1)| of harmonic balance at the calibration θ (the truncation error of H
+/// harmonics, measured against 2H + 1). With a fixed floor ρ (EdcCostSettings::model_error_rel
+/// ≥ 0) σ_model = ρ S_k^mes and σ_bias = 0 instead, as fits did before the budget existed.
+struct SigmaBudget {
+  int harmonics = 0;             // H of the model side
+  int reference_harmonics = 0;   // what σ_model was measured against (0: a fixed floor)
+  double model_error_target = 0.0;
+  bool resolved = true;          // every level's model error met the target within max H
+  std::vector<double> cycles_j, bias_j, model_j, total_j;  // per level, group order
+};
+
 /// How a fit weighs the levels.
 struct EdcCostSettings {
-  /// Relative model-error floor of each level's σ (see EdcObjective). 1 %: harmonic balance at
-  /// H = 7 reproduces the time simulation's steady EDC within 1.4 % (docs/hbm.md), and a stepped
-  /// test's calibration is rarely better; it keeps the weights of near-noise-free levels finite.
-  double model_error_rel = 0.01;
-  HbmOptions hbm;  // H = 7 by default, as the paper's Fig. 11
+  /// Fixed relative model-error floor of each level's σ. Negative (the default): no floor; the
+  /// σ budget derives each level's σ from its cycles, the estimator's measured bias and the
+  /// model side's estimated truncation error (SigmaBudget).
+  double model_error_rel = -1.0;
+  /// Adaptive harmonics: starting from hbm.harmonics, H climbs the ladder 7, 11, 15, 23, 31 until
+  /// every level's model error is at most model_error_target × its measurement σ (cycles and
+  /// bias): 0.3 adds at most 4.4 % to σ. With a fixed floor, or adaptive = false, H stays.
+  bool adaptive_harmonics = true;
+  double model_error_target = 0.3;
+  int max_harmonics = 31;
+  HbmOptions hbm;  // H = 7 to start, as the paper's Fig. 11
+  /// A budget computed before (the diagnosis computes it once per model and shares it): used as
+  /// is, with its harmonics, instead of calibrating anew. Must match the dataset's level count.
+  std::optional<SigmaBudget> budget;
 };
 
 /// The model's EDCs at every measured level and how far they are from the measurement.
@@ -47,10 +80,9 @@ struct EdcEvaluation {
 /// Two costs: the paper's eq. (8), ε = Σ |S^mes − S^mod| (reported as cost_j), and the weighted
 /// least-squares cost the optimisers minimise,
 ///
-///   χ²(θ) = Σ_k w_k ((S_k^mes − S_k^mod(θ)) / σ_k)²,   σ_k² = σ_mean,k² + (ρ S_k^mes)²,
+///   χ²(θ) = Σ_k w_k ((S_k^mes − S_k^mod(θ)) / σ_k)²,
 ///
-/// with σ_mean the level's standard error from its cycles (MeasuredLevel::sigma_of_mean_j) and ρ
-/// the model-error floor. EDCs span three decades from 0.2 to 2.7 N, so eq. (8) is blind to the
+/// with σ_k from the level's σ budget (SigmaBudget: cycles, estimator bias, model error). EDCs span three decades from 0.2 to 2.7 N, so eq. (8) is blind to the
 /// low levels where v_t and k_s act (§5.1); χ² weighs every level by its own precision. Weights
 /// w_k default to 1 (a bootstrap sets them to resampling multiplicities).
 ///
@@ -58,8 +90,14 @@ struct EdcEvaluation {
 class EdcObjective {
  public:
   /// Throws InputError for an empty dataset or a form whose base model harmonic balance cannot
-  /// handle.
+  /// handle. Without a given budget the σ budget is calibrated at the form's initial θ (a few
+  /// evaluations at H and 2H + 1 per rung of the ladder).
   EdcObjective(ModelForm form, EdcDataset data, EdcCostSettings settings = {});
+
+  /// The σ budget of `form` at θ: harmonics from the ladder and each level's σ components.
+  static SigmaBudget calibrate_budget(const ModelForm& form, const EdcDataset& data,
+                                      const EdcCostSettings& settings,
+                                      const Eigen::VectorXd& theta);
 
   const ModelForm& form() const { return form_; }
   const EdcDataset& data() const { return data_; }
@@ -67,6 +105,8 @@ class EdcObjective {
   int level_count() const { return static_cast<int>(sigma_j_.size()); }
   /// σ_k of each level in group order.
   const std::vector<double>& sigma_j() const { return sigma_j_; }
+  /// Where each σ_k comes from, and the harmonics the model side uses.
+  const SigmaBudget& budget() const { return budget_; }
   /// A name for χ² as reports print it.
   std::string weighted_cost_name() const;
 
@@ -85,6 +125,7 @@ class EdcObjective {
   EdcDataset data_;
   EdcCostSettings settings_;
   std::vector<double> sigma_j_;
+  SigmaBudget budget_;
   std::shared_ptr<std::atomic<long>> evaluations_ = std::make_shared<std::atomic<long>>(0);
 };
 

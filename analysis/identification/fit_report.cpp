@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "analysis/common/input_error.h"
+#include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/position_dependent_friction.h"
 
 namespace oscilab::analysis {
@@ -39,7 +40,10 @@ nlohmann::json fit_report_json(const FitResult& fit, const EdcObjective& objecti
                      {"value", fit.evaluation.weighted_cost}};
   out["method"] = {{"name", fit_method_name(fit.method)}, {"settings", fit.settings}};
   out["hbm"] = {{"harmonics", objective.settings().hbm.harmonics},
-                {"model_error_rel", objective.settings().model_error_rel}};
+                {"model_error_rel", objective.settings().model_error_rel >= 0.0
+                                        ? nlohmann::json(objective.settings().model_error_rel)
+                                        : nlohmann::json("sigma budget")}};
+  out["sigma_budget"] = sigma_budget_json(objective);
   if (fit.check_harmonics > 0) {
     out["hbm"]["truncation_check"] = {{"harmonics", fit.check_harmonics},
                                       {"max_edc_change_rel", number(fit.truncation_change_rel)}};

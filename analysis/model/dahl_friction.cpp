@@ -41,6 +41,24 @@ void DahlFriction::advance_state(double z0_m, double /*z_dot0_m_s*/, double z1_m
   state[0] = d + (state[0] - d) * std::exp(-value(1) / value(0) * std::abs(dz));
 }
 
+bool DahlFriction::advance_state_sensitivity(double z0_m, double z1_m, double* state,
+                                             StateStepSensitivity& out) const {
+  const double kappa = value(1) / value(0);  // 1/m
+  const double dz = z1_m - z0_m;
+  if (dz == 0.0) {
+    out = {1.0, -kappa, kappa};
+    return true;
+  }
+  const double d = dz > 0.0 ? 1.0 : -1.0;
+  const double a = std::exp(-kappa * std::abs(dz));
+  const double slope = kappa * a * (1.0 - d * state[0]);
+  state[0] = d + (state[0] - d) * a;
+  out = {a, -slope, slope};
+  return true;
+}
+
+double DahlFriction::force_d_state(double, double, const double*) const { return value(0); }
+
 std::unique_ptr<ModelTerm> DahlFriction::clone() const {
   return std::make_unique<DahlFriction>(*this);
 }

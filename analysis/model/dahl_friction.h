@@ -39,6 +39,11 @@ class DahlFriction final : public NamedParameterTerm {
   void state_rate(double z_m, double z_dot_m_s, const double* state, double* rate) const override;
   void advance_state(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s, double dt_s,
                      double* state) const override;
+  /// The exact update with s₁ = d + (s₀ − d) a, a = e^(−κ|Δz|), d = sgn Δz:
+  /// ∂s₁/∂s₀ = a and ∂s₁/∂z₁ = −∂s₁/∂z₀ = κ a (1 − d s₀) (at Δz = 0 the mean of both sides, κ).
+  bool advance_state_sensitivity(double z0_m, double z1_m, double* state,
+                                 StateStepSensitivity& out) const override;
+  double force_d_state(double z_m, double z_dot_m_s, const double* state) const override;
   std::unique_ptr<ModelTerm> clone() const override;
 };
 

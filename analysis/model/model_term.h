@@ -19,6 +19,14 @@ struct TermPartials {
   double d_dz_dot = 0.0;  // ∂F/∂ż
 };
 
+/// Sensitivities of one step s₁ = advance(s₀; z₀ → z₁) of a one-value, rate-independent state:
+/// what a periodic-state solver needs for an exact periodic state and an analytic Jacobian.
+struct StateStepSensitivity {
+  double d_state = 1.0;  // ∂s₁/∂s₀
+  double d_z0 = 0.0;     // ∂s₁/∂z₀
+  double d_z1 = 0.0;     // ∂s₁/∂z₁
+};
+
 /// One named contribution to the restoring surface R(z, ż) of eq. (1): m z̈ + Σ F_i(z, ż, s_i) = f.
 ///
 /// A term may carry an internal state s (for hysteresis: Dahl, Maxwell slip) whose rate is
@@ -51,6 +59,18 @@ class ModelTerm {
   /// update (a rate-independent hysteresis) override it.
   virtual void advance_state(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
                              double dt_s, double* state) const;
+  /// advance_state() with its sensitivities, for a term whose state is one value updated by the
+  /// path of z alone (rate-independent hysteresis). Returns false when the term offers none;
+  /// solvers then fall back to marching period after period and finite differences.
+  virtual bool advance_state_sensitivity(double /*z0_m*/, double /*z1_m*/, double* /*state*/,
+                                         StateStepSensitivity& /*out*/) const {
+    return false;
+  }
+  /// ∂F/∂s of a one-value state at (z, ż, s); 0 for stateless terms.
+  virtual double force_d_state(double /*z_m*/, double /*z_dot_m_s*/,
+                               const double* /*state*/) const {
+    return 0.0;
+  }
 
   /// Potential energy U(z) in J of an elastic term (U' = F at rest); 0 for dissipative terms.
   virtual double potential_j(double /*z_m*/) const { return 0.0; }

@@ -11,6 +11,7 @@
 #include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/edc_fit.h"
+#include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/model_json.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "app/cli/campaign_input.h"
@@ -40,7 +41,8 @@ struct FitCommandOptions {
   int threads = 0;
   int harmonics = 7;
   int bootstrap = 0;
-  double model_error = 0.01;
+  double model_error = -1.0;
+  int max_harmonics = 31;
   double freq_hz = 0.0;
   bool no_png = false;
 };
@@ -68,7 +70,8 @@ void print_table(const analysis::FitResult& fit, const analysis::EdcObjective& o
     std::printf("  harmonic balance: S_mod changes by at most %.2g %% from H = %d to H = %d",
                 100.0 * fit.truncation_change_rel, objective.settings().hbm.harmonics,
                 fit.check_harmonics);
-    if (fit.truncation_change_rel > 0.5 * objective.settings().model_error_rel) {
+    if (objective.settings().model_error_rel >= 0.0 &&
+        fit.truncation_change_rel > 0.5 * objective.settings().model_error_rel) {
       std::printf(
           " -- comparable to the %.2g %% model-error floor: parameters may absorb the "
           "truncation; raise --harmonics",
@@ -77,6 +80,12 @@ void print_table(const analysis::FitResult& fit, const analysis::EdcObjective& o
     std::printf("\n");
   }
   if (fit.status != JobStatus::Ok) std::printf("  status: %s\n", fit.message.c_str());
+}
+
+void print_sigma_budget(const analysis::EdcObjective& objective) {
+  for (const std::string& line : analysis::sigma_budget_lines(objective)) {
+    std::printf("%s\n", line.c_str());
+  }
 }
 
 void run(const FitCommandOptions& o) {
@@ -108,6 +117,7 @@ void run(const FitCommandOptions& o) {
   analysis::EdcCostSettings cost;
   cost.hbm.harmonics = o.harmonics;
   cost.model_error_rel = o.model_error;
+  cost.max_harmonics = std::max(o.max_harmonics, o.harmonics);
   const analysis::EdcObjective objective(analysis::ModelForm::paper(base), data, cost);
 
   std::printf("fit: %d levels (", objective.level_count());
@@ -118,6 +128,7 @@ void run(const FitCommandOptions& o) {
   std::printf("), %zu left out\n", data.excluded.size());
   for (const auto& e : data.excluded) std::printf("  left out: %s\n", e.c_str());
   for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());
+  print_sigma_budget(objective);
 
   analysis::FitOptions options;
   options.method = method;
@@ -189,11 +200,16 @@ void add_fit_command(CLI::App& app) {
   command->add_option("--seed", o->seed, "random seed (same seed, same result)")
       ->capture_default_str();
   command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
-  command->add_option("--harmonics", o->harmonics, "harmonics H of the model's HBM")
+  command
+      ->add_option("--harmonics", o->harmonics,
+                   "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
+      ->capture_default_str();
+  command->add_option("--max-harmonics", o->max_harmonics, "largest H the sigma budget may choose")
       ->capture_default_str();
   command
       ->add_option("--model-error", o->model_error,
-                   "relative model-error floor of each level's sigma in the fitted cost")
+                   "fixed relative model-error floor of each level's sigma; negative: the sigma "
+                   "budget (cycles, estimator bias, the model's truncation error per level)")
       ->capture_default_str();
   command->add_option("--bootstrap", o->bootstrap, "bootstrap replicates over levels (0: none)")
       ->capture_default_str();

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/hbm/harmonic_balance.h"
 #include "analysis/hbm/hysteresis_march.h"
 #include "analysis/hbm/level_response.h"
 #include "analysis/model/dahl_friction.h"
@@ -60,6 +61,112 @@ TEST(HysteresisMarch, GenericRk4AdvanceAgreesWithExactDahlUpdate) {
   dahl.ModelTerm::advance_state(z0, v, z1, v, dt, &generic);
   EXPECT_NEAR(generic, exact, 2e-9);
   EXPECT_GT(exact, -0.3);  // moving up pulls s towards +1
+}
+
+// A stateful term that hides its step sensitivities, so that the march falls back to marching
+// period after period: the reference for the exact periodic solve.
+class MarchedOnlyDahl final : public ModelTerm {
+ public:
+  explicit MarchedOnlyDahl(DahlFriction dahl) : dahl_(std::move(dahl)) {}
+  std::string type() const override { return dahl_.type(); }
+  TermKind kind() const override { return dahl_.kind(); }
+  double force(double z, double v, const double* s) const override { return dahl_.force(z, v, s); }
+  TermPartials partials(double z, double v, const double* s) const override {
+    return dahl_.partials(z, v, s);
+  }
+  int state_size() const override { return 1; }
+  void initial_state(double z, double* s) const override { dahl_.initial_state(z, s); }
+  void state_rate(double z, double v, const double* s, double* r) const override {
+    dahl_.state_rate(z, v, s, r);
+  }
+  void advance_state(double z0, double v0, double z1, double v1, double dt,
+                     double* s) const override {
+    dahl_.advance_state(z0, v0, z1, v1, dt, s);
+  }
+  std::vector<std::string> parameter_names() const override { return dahl_.parameter_names(); }
+  double parameter(const std::string& name) const override { return dahl_.parameter(name); }
+  void set_parameter(const std::string&, double) override {}
+  nlohmann::json to_json() const override { return dahl_.to_json(); }
+  std::unique_ptr<ModelTerm> clone() const override {
+    return std::make_unique<MarchedOnlyDahl>(*this);
+  }
+
+ private:
+  DahlFriction dahl_;
+};
+
+// An orbit with harmonics 1 … 3 about 1 mm, amplitude ~0.8 mm, sampled N times over one period.
+void rich_orbit(int n, Eigen::VectorXd& z, Eigen::VectorXd& z_dot) {
+  z.resize(n);
+  z_dot.resize(n);
+  for (int k = 0; k < n; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / n;
+    z[k] = 1e-3 + 8e-4 * std::sin(t) + 1e-4 * std::cos(2 * t + 0.4) + 5e-5 * std::sin(3 * t);
+    z_dot[k] = 8e-4 * std::cos(t) - 2e-4 * std::sin(2 * t + 0.4) + 1.5e-4 * std::cos(3 * t);
+  }
+}
+
+// The exact periodic solve against marching until periodic, for presliding lengths F_c/σ0 from
+// 1 µm (stiff: the state saturates within a sample) to 1 mm (soft: loops far inside the presliding
+// range). Marching settles as A^periods with A = e^(−2κ·peak-to-peak); with 4000 periods both
+// agree to rounding where A^4000 is negligible (lengths up to 100 µm: A^4000 < e^−60). At 1 mm the
+// marching reference itself is off by A^4000 = e^−12.8 ≈ 3e-6 of the loop, so 1e-5 there.
+TEST(HysteresisMarch, ExactPeriodicStateMatchesLongMarching) {
+  Eigen::VectorXd z, z_dot;
+  rich_orbit(256, z, z_dot);
+  for (double length : {1e-6, 1e-5, 1e-4, 1e-3}) {
+    const double fc = 0.1;
+    const DahlFriction dahl(fc, fc / length);
+    std::vector<std::unique_ptr<ModelTerm>> exact_terms, marched_terms;
+    exact_terms.push_back(dahl.clone());
+    marched_terms.push_back(std::make_unique<MarchedOnlyDahl>(dahl));
+    const Model exact_model(1.0, std::move(exact_terms));
+    const Model marched_model(1.0, std::move(marched_terms));
+    HysteresisMarch exact(exact_model);
+    HysteresisMarch marched(marched_model, 0.0, 4000);
+    ASSERT_TRUE(exact.exact());
+    ASSERT_FALSE(marched.exact());
+    Eigen::VectorXd force_exact, force_marched;
+    const int marches = exact.forces(exact_model, z, z_dot, 1.0, force_exact);
+    marched.forces(marched_model, z, z_dot, 1.0, force_marched);
+    EXPECT_LE(marches, 2);  // affine steps: one Newton update, one confirming march
+    const double tolerance = length < 1e-3 ? 1e-12 : 1e-5;
+    EXPECT_LT((force_exact - force_marched).cwiseAbs().maxCoeff() / fc, tolerance)
+        << "presliding length " << length << " m";
+  }
+}
+
+// The exact Jacobian of harmonic balance with a Dahl term against central differences of the
+// residual, from stiff (1 µm) to soft (1 mm) presliding. The discrete march is piecewise smooth
+// in x (the sign of each Δz_k is fixed near a generic point), so the difference quotient with
+// h = 1e-10 m converges to it: truncation ~h κ² F_c (1e-10 · 1e12 · 0.1 = 10 N/m at 1 µm, less
+// elsewhere) and rounding 1e-16 · 1 N / 1e-10 m = 1e-6 N/m, against entries up to κ F_c = 1e5 N/m
+// at 1 µm: 1e-4 of the largest entry.
+TEST(HysteresisHbm, ExactJacobianMatchesCentralDifferences) {
+  for (double length : {1e-6, 1e-5, 1e-4, 1e-3}) {
+    Model model = paper_model();
+    model.add_term(std::make_unique<DahlFriction>(0.1, 0.1 / length));
+    HbmOptions options;
+    options.harmonics = 5;
+    HarmonicBalance hbm(model, 9.0, options);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(hbm.size());
+    for (int i = 0; i < hbm.size(); ++i) x[i] = 4e-4 * std::sin(1.7 * i + 0.3) / (1 + i);
+    x[0] = model.well(true).z_m;
+    Eigen::VectorXd r, r_plus, r_minus;
+    Eigen::MatrixXd jacobian;
+    hbm.residual_and_jacobian(x, 1.0, r, jacobian);
+    const double h = 1e-10;
+    double worst = 0.0;
+    for (int j = 0; j < hbm.size(); ++j) {
+      Eigen::VectorXd xp = x, xm = x;
+      xp[j] += h;
+      xm[j] -= h;
+      hbm.residual(xp, 1.0, r_plus);
+      hbm.residual(xm, 1.0, r_minus);
+      worst = std::max(worst, ((r_plus - r_minus) / (2 * h) - jacobian.col(j)).cwiseAbs().maxCoeff());
+    }
+    EXPECT_LT(worst / jacobian.cwiseAbs().maxCoeff(), 1e-4) << "presliding length " << length;
+  }
 }
 
 // Oracle: the time simulation's exact steady EDC (energy integral of the integrator, which
