@@ -158,14 +158,23 @@ void HarmonicBalance::residual_and_jacobian(const Eigen::VectorXd& x, double f0_
   if (!march_.active()) return;
   if (march_.exact()) {
     // Stateful terms with the exact periodic solve: column j is the projection of δF for the
-    // orbit perturbation φ_j (HysteresisMarch::sensitivity), the march's exact derivative.
-    Eigen::VectorXd unit = Eigen::VectorXd::Zero(size);
+    // orbit perturbation φ_j (HysteresisMarch::sensitivity), the march's exact derivative,
+    // projected by one forward FFT per column. The sampled basis is fixed by the grid: made once.
+    if (basis_.cols() != n) {
+      basis_.resize(size, n);
+      Eigen::VectorXd unit = Eigen::VectorXd::Zero(size), value, derivative;
+      for (int j = 0; j < size; ++j) {
+        unit[j] = 1.0;
+        grid_.synthesise(unit, value, derivative);
+        basis_.row(j) = value.transpose();
+        unit[j] = 0.0;
+      }
+    }
+    march_.sensitivity(basis_, basis_force_);
+    Eigen::VectorXd samples(n);
     for (int j = 0; j < size; ++j) {
-      unit[j] = 1.0;
-      grid_.synthesise(unit, basis_, basis_tau_);
-      unit[j] = 0.0;
-      march_.sensitivity(basis_, basis_force_);
-      grid_.analyse(basis_force_, projection_plus_);
+      samples = basis_force_.row(j).transpose();
+      grid_.analyse(samples, projection_plus_);
       jacobian.col(j) += projection_plus_;
     }
     return;

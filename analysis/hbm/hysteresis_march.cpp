@@ -41,10 +41,11 @@ int HysteresisMarch::exact_forces(const Model& model, const Eigen::VectorXd& z_m
   q_.resize(rows, n);
   force_slope_.resize(rows, n);
   prefix_.resize(rows, n);
+  states_.resize(rows, n);
   one_minus_a_.resize(rows);
-  // Newton on each term's periodic state. Every step of the Dahl element is affine in s, so the
-  // first update is exact and the second march only confirms it; 8 marches bound a term whose
-  // steps are not affine.
+  // Newton on each term's periodic state: march from s_0, then s_0 ← s_0 + g / (1 − A). Steps
+  // that are affine in s (the Dahl element) make the update exact, and the states of the march
+  // shift by P_k Δs_0 exactly, so one march suffices; other terms march again (at most 8 times).
   constexpr int kMaxMarches = 8;
   int marches = 0;
   for (Eigen::Index row = 0; row < rows; ++row) {
@@ -55,18 +56,19 @@ int HysteresisMarch::exact_forces(const Model& model, const Eigen::VectorXd& z_m
     for (int iteration = 0; iteration < kMaxMarches; ++iteration) {
       ++marches;
       double s = s0, log_a = 0.0, product = 1.0;
-      bool logs = true;
+      bool logs = true, affine = true;
       for (Eigen::Index k = 0; k < n; ++k) {
         StateStepSensitivity step;
         prefix_(row, k) = product;
-        force_slope_(row, k) = term.force_d_state(z_m[k], z_dot_m_s[k], &s);
+        states_(row, k) = s;
         term.advance_state_sensitivity(z_m[k], z_m[(k + 1) % n], &s, step);
         a_(row, k) = step.d_state;
         p_(row, k) = step.d_z0;
         q_(row, k) = step.d_z1;
         product *= step.d_state;
+        affine = affine && step.affine;
         if (step.d_state > 0.0) {
-          log_a += std::log(step.d_state);
+          log_a += step.log_d_state;
         } else {
           logs = false;
         }
@@ -74,32 +76,49 @@ int HysteresisMarch::exact_forces(const Model& model, const Eigen::VectorXd& z_m
       one_minus_a_[row] = logs ? -std::expm1(log_a) : 1.0 - product;
       const double g = s - s0;
       if (std::abs(g) <= tolerance_ || !(one_minus_a_[row] > 0.0)) break;
-      s0 += g / one_minus_a_[row];
+      const double shift = g / one_minus_a_[row];
+      s0 += shift;
+      if (affine) {
+        // The periodic states, and the step sensitivities again along them (∂s₁/∂z depends
+        // on s₀; ∂s₁/∂s₀ and the prefix products do not, for affine steps).
+        for (Eigen::Index k = 0; k < n; ++k) {
+          double s_k = states_(row, k) + shift * prefix_(row, k);
+          states_(row, k) = s_k;
+          StateStepSensitivity step;
+          term.advance_state_sensitivity(z_m[k], z_m[(k + 1) % n], &s_k, step);
+          p_(row, k) = step.d_z0;
+          q_(row, k) = step.d_z1;
+        }
+        break;
+      }
     }
-    // The forces along the periodic state.
-    double s = s0;
     for (Eigen::Index k = 0; k < n; ++k) {
+      double s = states_(row, k);
       force_n[k] += term.force(z_m[k], z_dot_m_s[k], &s);
-      StateStepSensitivity step;
-      term.advance_state_sensitivity(z_m[k], z_m[(k + 1) % n], &s, step);
+      force_slope_(row, k) = term.force_d_state(z_m[k], z_dot_m_s[k], &s);
     }
   }
   return marches;
 }
 
-void HysteresisMarch::sensitivity(const Eigen::VectorXd& dz_m, Eigen::VectorXd& dforce_n) const {
-  const Eigen::Index n = dz_m.size();
-  dforce_n.setZero(n);
+void HysteresisMarch::sensitivity(const Eigen::MatrixXd& dz_m, Eigen::MatrixXd& dforce_n) const {
+  const Eigen::Index n = dz_m.cols();
+  dforce_n.setZero(dz_m.rows(), n);
+  Eigen::VectorXd u(dz_m.rows());
   for (Eigen::Index row = 0; row < a_.rows(); ++row) {
-    // u_k: the recurrence from u_0 = 0; then δs_0 = u_N / (1 − A) and δs_k = u_k + P_k δs_0.
-    double u = 0.0;
+    // u_k: the recurrence from u_0 = 0 (all directions at once); then δs_0 = u_N / (1 − A) and
+    // δs_k = u_k + P_k δs_0.
+    u.setZero();
     for (Eigen::Index k = 0; k < n; ++k) {
-      dforce_n[k] += force_slope_(row, k) * u;  // the u_k part now, the P_k δs_0 part below
-      u = a_(row, k) * u + p_(row, k) * dz_m[k] + q_(row, k) * dz_m[(k + 1) % n];
+      dforce_n.col(k) += force_slope_(row, k) * u;  // the u_k part now, the P_k δs_0 part below
+      u = a_(row, k) * u + p_(row, k) * dz_m.col(k) + q_(row, k) * dz_m.col((k + 1) % n);
     }
     if (!(one_minus_a_[row] > 0.0)) continue;
-    const double ds0 = u / one_minus_a_[row];
-    for (Eigen::Index k = 0; k < n; ++k) dforce_n[k] += force_slope_(row, k) * prefix_(row, k) * ds0;
+    const Eigen::VectorXd ds0 = u / one_minus_a_[row];
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double weight = force_slope_(row, k) * prefix_(row, k);
+      if (weight != 0.0) dforce_n.col(k) += weight * ds0;
+    }
   }
 }
 

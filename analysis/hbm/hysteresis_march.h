@@ -20,7 +20,7 @@ namespace oscilab::analysis {
 ///   sensitivities, e.g. the Dahl element). One period is a map s_N = Φ(s_0) with slope
 ///   A = Π_k ∂s_{k+1}/∂s_k, so the periodic state is the root of g(s_0) = Φ(s_0) − s_0, found by
 ///   Newton, s_0 ← s_0 + g / (1 − A), exact in one step for the Dahl element, whose steps are
-///   affine in s. 1 − A is taken as −expm1(Σ ln ∂s_{k+1}/∂s_k), accurate even for loops far below
+///   affine in s: then the marched states shift by P_k Δs_0 and one march is all it takes. 1 − A is taken as −expm1(Σ ln ∂s_{k+1}/∂s_k), accurate even for loops far below
 ///   the presliding length (A → 1), where marching period after period would settle only as
 ///   A^periods. The same recurrence gives the force's exact derivative with respect to the orbit
 ///   (sensitivity()): for a perturbation δz_k of the samples,
@@ -49,9 +49,10 @@ class HysteresisMarch {
   int forces(const Model& model, const Eigen::VectorXd& z_m, const Eigen::VectorXd& z_dot_m_s,
              double period_s, Eigen::VectorXd& force_n);
 
-  /// Exact solve only: δF at the samples of the last forces() orbit for a perturbation δz of its
-  /// samples (the stateful terms' forces depend on z through their states only).
-  void sensitivity(const Eigen::VectorXd& dz_m, Eigen::VectorXd& dforce_n) const;
+  /// Exact solve only: δF at the samples of the last forces() orbit for M perturbations δz of its
+  /// samples: column k of `dz_m` (M × N) holds the M directions at sample k, and so does
+  /// `dforce_n` (the stateful terms' forces depend on z through their states only).
+  void sensitivity(const Eigen::MatrixXd& dz_m, Eigen::MatrixXd& dforce_n) const;
 
  private:
   int exact_forces(const Model& model, const Eigen::VectorXd& z_m,
@@ -66,7 +67,7 @@ class HysteresisMarch {
   std::vector<double> state_, start_of_period_;
   // Exact solve, per stateful term (rows) and step k (columns): ∂s_{k+1}/∂s_k, ∂s_{k+1}/∂z_k,
   // ∂s_{k+1}/∂z_{k+1}, ∂F/∂s at sample k, the prefix products P_k, and 1 − A.
-  Eigen::MatrixXd a_, p_, q_, force_slope_, prefix_;
+  Eigen::MatrixXd a_, p_, q_, force_slope_, prefix_, states_;
   Eigen::VectorXd one_minus_a_;
 };
 

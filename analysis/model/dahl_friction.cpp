@@ -46,14 +46,15 @@ bool DahlFriction::advance_state_sensitivity(double z0_m, double z1_m, double* s
   const double kappa = value(1) / value(0);  // 1/m
   const double dz = z1_m - z0_m;
   if (dz == 0.0) {
-    out = {1.0, -kappa, kappa};
+    out = {1.0, -kappa, kappa, 0.0, true};
     return true;
   }
   const double d = dz > 0.0 ? 1.0 : -1.0;
-  const double a = std::exp(-kappa * std::abs(dz));
+  const double log_a = -kappa * std::abs(dz);
+  const double a = std::exp(log_a);
   const double slope = kappa * a * (1.0 - d * state[0]);
   state[0] = d + (state[0] - d) * a;
-  out = {a, -slope, slope};
+  out = {a, -slope, slope, log_a, true};
   return true;
 }
 

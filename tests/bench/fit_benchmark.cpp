@@ -9,6 +9,8 @@
 #include <benchmark/benchmark.h>
 
 #include "analysis/identification/edc_fit.h"
+#include "analysis/hbm/level_response.h"
+#include "analysis/model/dahl_friction.h"
 #include "analysis/model/reference_models.h"
 #include "tests/analysis/identification/twin_data.h"
 
@@ -21,6 +23,38 @@ const EdcObjective& objective() {
                               testing::twin_dataset(paper_model()));
   return o;
 }
+
+// One fit cost evaluation (52 levels, both wells, level_response per well) at fixed H on one
+// thread: what every optimiser step pays. Range: H; second range 1 adds presliding hysteresis
+// (Dahl, F_c 0.06 N, presliding length 20 µm) to the model, whose periodic state is solved
+// exactly in each AFT step.
+void BM_CostEvaluation(benchmark::State& state) {
+  const int harmonics = static_cast<int>(state.range(0));
+  const bool dahl = state.range(1) != 0;
+  Model truth = paper_model();
+  if (dahl) truth.add_term(std::make_unique<DahlFriction>(0.06, 3e3));
+  EdcCostSettings cost;
+  cost.hbm.harmonics = harmonics;
+  cost.adaptive_harmonics = false;
+  const EdcObjective o(ModelForm::paper(truth), testing::twin_dataset(paper_model()), cost);
+  const Eigen::VectorXd theta = o.form().initial();
+  double chi2 = 0.0;
+  for (auto _ : state) chi2 = o.evaluate(theta).weighted_cost;
+  long newton = 0;
+  for (const EdcGroup& g : o.data().groups) {
+    std::vector<double> f0;
+    for (const MeasuredLevel& l : g.levels) f0.push_back(l.f0_n);
+    newton += level_response(o.form().build(theta), g.freq_hz, g.positive_well, f0, cost.hbm)
+                  .newton_iterations;
+  }
+  state.counters["newton_iterations"] = static_cast<double>(newton);
+  state.counters["H"] = harmonics;
+  state.counters["chi2"] = chi2;
+  state.SetLabel(dahl ? "paper + presliding hysteresis" : "paper");
+}
+BENCHMARK(BM_CostEvaluation)
+    ->ArgsProduct({{7, 11, 15, 23, 31}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_Fit2000Evaluations(benchmark::State& state) {
   const auto method = static_cast<FitMethod>(state.range(0));
