@@ -4,12 +4,16 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <atomic>
+#include <condition_variable>
 #include <mutex>
+#include <thread>
 
 #include "analysis/common/input_error.h"
 #include "analysis/common/parallel_for.h"
 #include "analysis/diagnosis/effect_candidates.h"
 #include "analysis/identification/edc_dataset.h"
+#include "analysis/identification/sigma_budget_report.h"
 
 namespace oscilab::analysis {
 namespace {
@@ -124,7 +128,17 @@ nlohmann::json maps_json(const DiscrepancyMaps& maps) {
     }
     stiffness["power_tests"] = tests;
   }
+  nlohmann::json response = nlohmann::json::array();
+  for (const ResponseFingerprint& f : maps.response.items) {
+    nlohmann::json residuals = nlohmann::json::array();
+    for (double r : f.residual_sigma) {
+      residuals.push_back(std::isfinite(r) ? nlohmann::json(r) : nlohmann::json(nullptr));
+    }
+    response.push_back(
+        {{"name", f.name}, {"chi2", f.chi2}, {"levels", f.levels}, {"residual_sigma", residuals}});
+  }
   return {{"max_abs_residual_sigma", maps.max_abs_residual_sigma},
+          {"response_fingerprints", response},
           {"reduced_chi2", std::isfinite(maps.reduced_chi2) ? nlohmann::json(maps.reduced_chi2)
                                                             : nlohmann::json(nullptr)},
           {"edc_slope_measured",
@@ -140,6 +154,19 @@ nlohmann::json maps_json(const DiscrepancyMaps& maps) {
           {"levels", levels}};
 }
 
+nlohmann::json evidence_json(const std::vector<EvidenceChange>& evidence) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const EvidenceChange& e : evidence) {
+    out.push_back({{"name", e.name},
+                   {"chi2_before", e.chi2_before},
+                   {"chi2_after", e.chi2_after},
+                   {"delta_chi2", e.delta_chi2()},
+                   {"supports", e.supports()},
+                   {"contradicts", e.contradicts()}});
+  }
+  return out;
+}
+
 nlohmann::json parameters_json(const std::vector<std::pair<std::string, double>>& parameters) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& [name, value] : parameters) out[name] = value;
@@ -148,12 +175,77 @@ nlohmann::json parameters_json(const std::vector<std::pair<std::string, double>>
 
 }  // namespace
 
+namespace {
+
+// A cancellation token that fires when the caller cancels or the deadline passes, whichever
+// comes first (a watcher thread polls both every 20 ms and stops when the work is done).
+class DeadlineToken {
+ public:
+  DeadlineToken(const CancelToken& outer, double max_seconds) : outer_(outer) {
+    const bool bounded = max_seconds > 0.0 && std::isfinite(max_seconds);
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(bounded ? max_seconds : 0.0));
+    watcher_ = std::thread([this, bounded, deadline] {
+      std::unique_lock lock(mutex_);
+      while (!done_) {
+        if (outer_.cancelled()) {
+          inner_.cancel();
+          return;
+        }
+        if (bounded && std::chrono::steady_clock::now() >= deadline) {
+          expired_ = true;
+          inner_.cancel();
+          return;
+        }
+        wake_.wait_for(lock, std::chrono::milliseconds(20));
+      }
+    });
+  }
+  ~DeadlineToken() {
+    {
+      const std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    watcher_.join();
+  }
+  DeadlineToken(const DeadlineToken&) = delete;
+  DeadlineToken& operator=(const DeadlineToken&) = delete;
+  const CancelToken& token() const { return inner_; }
+  bool expired() const { return expired_.load(); }
+
+ private:
+  CancelToken outer_, inner_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::atomic<bool> expired_{false};
+  std::thread watcher_;
+};
+
+// The evidence a candidate's refit moved: the EDC's χ² and each response fingerprint's.
+std::vector<EvidenceChange> evidence_changes(double edc_before, double edc_after,
+                                             const ResponseFingerprints& before,
+                                             const ResponseFingerprints& after) {
+  std::vector<EvidenceChange> out = {{"edc", edc_before, edc_after}};
+  for (std::size_t i = 0; i < before.items.size() && i < after.items.size(); ++i) {
+    if (before.items[i].levels == 0) continue;
+    out.push_back({before.items[i].name, before.items[i].chi2, after.items[i].chi2});
+  }
+  return out;
+}
+
+}  // namespace
+
 DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form,
                          const DiagnosisOptions& options, const ProgressFn& progress,
-                         const CancelToken& cancel) {
+                         const CancelToken& outer_cancel) {
   if (options.max_steps < 0) throw InputError("diagnose: max steps must be ≥ 0");
   if (!(options.bic_threshold >= 0.0)) throw InputError("diagnose: the ΔBIC threshold must be ≥ 0");
   const auto start = std::chrono::steady_clock::now();
+  const DeadlineToken deadline(outer_cancel, options.max_seconds);
+  const CancelToken& cancel = deadline.token();
   DiagnosisResult result;
   const EdcDataset data = edc_dataset(campaign);
   result.excluded_levels = data.excluded;
@@ -162,7 +254,8 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     if (progress) progress(std::clamp(fraction, 0.0, 1.0));
   };
 
-  // Baseline: the form as given, searched globally.
+  // Baseline: the form as given, searched globally, its σ budget calibrated at the form's
+  // initial θ.
   const EdcObjective baseline_objective(form, data, options.cost);
   FitOptions baseline_options;
   baseline_options.max_evaluations = options.baseline_evaluations;
@@ -175,34 +268,46 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   report(0.25);
   ModelForm current = form.with_initial(result.baseline.theta);
   Eigen::VectorXd theta = result.baseline.theta;
-  EdcEvaluation evaluation = result.baseline.evaluation;
-  result.baseline_maps = discrepancy_maps(baseline_objective, theta, evaluation, campaign);
+  // The σ budget anew at the fitted θ (the model error is the fitted model's), shared by every
+  // later objective so that χ² of the control and of all candidates are comparable.
+  EdcCostSettings cost = options.cost;
+  cost.budget = EdcObjective::calibrate_budget(current, data, options.cost, theta);
+  EdcObjective objective(current, data, cost);
+  EdcEvaluation evaluation = objective.evaluate(theta);
+  result.baseline.evaluation = evaluation;
+  result.baseline_maps = discrepancy_maps(objective, theta, evaluation, campaign);
   DiscrepancyMaps maps = result.baseline_maps;
   const auto noise_level = [&](int parameters) {
     const int dof = std::max(1, n - parameters);
     return 1.0 + 3.0 * std::sqrt(2.0 / dof);
   };
   result.noise_reduced_chi2 = noise_level(current.size());
+  std::vector<std::string> accepted_effects;
 
   // The control refit: the current model alone, refitted locally with a candidate's budget. A
   // candidate's gain is measured against it, so that a baseline search that stopped short of
   // its optimum does not credit the first added term with the rest of the convergence.
   const auto refit_current = [&] {
     const FitResult fit =
-        local_refit(current, data, options.cost, options.candidate_evaluations, 0.02, cancel);
+        local_refit(current, data, cost, options.candidate_evaluations, 0.02, cancel);
     if (fit.evaluation.weighted_cost < evaluation.weighted_cost) {
       theta = fit.theta;
       current = current.with_initial(theta);
       evaluation = fit.evaluation;
-      maps =
-          discrepancy_maps(EdcObjective(current, data, options.cost), theta, evaluation, campaign);
+      maps = discrepancy_maps(EdcObjective(current, data, cost), theta, evaluation, campaign);
     }
   };
   for (int step = 0; step < options.max_steps && !cancel.cancelled(); ++step) {
     if (maps.reduced_chi2 <= noise_level(current.size())) break;  // explained within its noise
     refit_current();
+    if (cancel.cancelled()) break;
     if (maps.reduced_chi2 <= noise_level(current.size())) break;
     std::vector<EffectCandidate> candidates = effect_candidates(current, data);
+    // An effect already accepted is not offered again (stiffness powers share one term type).
+    std::erase_if(candidates, [&](const EffectCandidate& c) {
+      return std::find(accepted_effects.begin(), accepted_effects.end(), c.effect) !=
+             accepted_effects.end();
+    });
     std::vector<double> scores;
     for (const auto& c : candidates) scores.push_back(fingerprint_score(c, maps));
     std::vector<std::size_t> order(candidates.size());
@@ -227,6 +332,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       trial.fingerprint_score = scores[order[slot]];
       ModelForm extended = current;
       extended.add_term(c.term->clone(), c.free);
+      const EdcObjective extended_objective(extended, data, cost);
       // Three stages. (1) A grid over the new term's own parameters with the others at the
       // current θ (cheap: χ² of one evaluation each); (2) short refits of all parameters from the
       // three best and from the candidate's scan points; (3) the rest of the budget from the
@@ -236,11 +342,10 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       const std::vector<Eigen::VectorXd> grid = candidate_grid(c);
       for (const Eigen::VectorXd& s : grid) {
         if (cancel.cancelled()) break;
-        Eigen::VectorXd start(extended.size());
-        start << theta, s;
-        start = extended.clamp(start);
-        ranked.emplace_back(
-            EdcObjective(extended, data, options.cost).evaluate(start).weighted_cost, start);
+        Eigen::VectorXd point(extended.size());
+        point << theta, s;
+        point = extended.clamp(point);
+        ranked.emplace_back(extended_objective.evaluate(point).weighted_cost, point);
       }
       std::sort(ranked.begin(), ranked.end(),
                 [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -250,51 +355,67 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       std::vector<std::pair<double, Eigen::VectorXd>> starts(
           ranked.begin(), ranked.begin() + std::min(ranked.size(), kRefitStarts));
       for (const Eigen::VectorXd& s : c.scan) {
-        Eigen::VectorXd start(extended.size());
-        start << theta, s;
-        starts.emplace_back(0.0, extended.clamp(start));
+        Eigen::VectorXd point(extended.size());
+        point << theta, s;
+        starts.emplace_back(0.0, extended.clamp(point));
       }
       long spent = static_cast<long>(grid.size());
       const long per_start = std::max<long>(
           20, (options.candidate_evaluations - spent) / (2 * static_cast<long>(starts.size())));
       FitResult fit;
       fit.evaluation.weighted_cost = std::numeric_limits<double>::infinity();
-      for (const auto& [cost, start] : starts) {
+      for (const auto& [unused, point] : starts) {
         if (cancel.cancelled()) break;
         FitResult short_fit =
-            local_refit(extended.with_initial(start), data, options.cost, per_start, 0.05, cancel);
+            local_refit(extended.with_initial(point), data, cost, per_start, 0.05, cancel);
         spent += short_fit.evaluations;
         if (short_fit.evaluation.weighted_cost < fit.evaluation.weighted_cost) fit = short_fit;
       }
-      if (!std::isfinite(fit.evaluation.weighted_cost)) {
+      if (!std::isfinite(fit.evaluation.weighted_cost) || cancel.cancelled()) {
         trial.solved = false;
         return;
       }
-      if (options.candidate_evaluations > spent && !cancel.cancelled()) {
-        FitResult long_fit = local_refit(extended.with_initial(fit.theta), data, options.cost,
+      if (options.candidate_evaluations > spent) {
+        FitResult long_fit = local_refit(extended.with_initial(fit.theta), data, cost,
                                          options.candidate_evaluations - spent, 0.02, cancel);
         if (long_fit.evaluation.weighted_cost < fit.evaluation.weighted_cost) fit = long_fit;
       }
       trial.theta = fit.theta;
       trial.weighted_cost = fit.evaluation.weighted_cost;
       trial.cost_j = fit.evaluation.cost_j;
-      trial.solved = fit.evaluation.ok;
+      trial.solved = fit.evaluation.ok && !cancel.cancelled();
+      const double added = static_cast<double>(c.free.size());
       trial.delta_bic = fit.evaluation.weighted_cost - evaluation.weighted_cost +
-                        static_cast<double>(c.free.size()) * std::log(static_cast<double>(n));
+                        added * std::log(static_cast<double>(n));
+      const ResponseFingerprints after = response_fingerprints(data, fit.evaluation);
+      trial.evidence = evidence_changes(evaluation.weighted_cost, fit.evaluation.weighted_cost,
+                                        maps.response, after);
+      trial.delta_bic_joint = trial.delta_bic;
+      if (options.use_fingerprints && after.count > 0) {
+        trial.delta_bic_joint = fit.evaluation.weighted_cost - evaluation.weighted_cost +
+                                after.chi2 - maps.response.chi2 +
+                                added * std::log(static_cast<double>(n + after.count));
+      }
       forms[slot] = extended;
       const std::lock_guard lock(done_mutex);
       ++done;
       report(0.25 + 0.75 * (step + static_cast<double>(done) / order.size()) / options.max_steps);
     });
-    if (cancel.cancelled()) break;
+    if (cancel.cancelled()) break;  // an interrupted step accepts nothing
 
     std::size_t best = order.size();
     for (std::size_t slot = 0; slot < order.size(); ++slot) {
       const CandidateTrial& t = record.trials[slot];
       if (!t.solved || !forms[slot]) continue;
-      if (best == order.size() || t.delta_bic < record.trials[best].delta_bic) best = slot;
+      if (best == order.size() || t.delta_bic_joint < record.trials[best].delta_bic_joint) {
+        best = slot;
+      }
     }
-    if (best == order.size() || !(record.trials[best].delta_bic < -options.bic_threshold)) {
+    // Accepted: very strong joint evidence, and the EDC itself is explained better (an effect
+    // that helps the fingerprints while the EDC gets worse is not a missing damping or
+    // stiffness law of this model).
+    if (best == order.size() || !(record.trials[best].delta_bic_joint < -options.bic_threshold) ||
+        !(record.trials[best].weighted_cost < evaluation.weighted_cost)) {
       result.steps.push_back(std::move(record));  // tried, nothing accepted
       result.steps.back().effect = "none";
       break;
@@ -303,15 +424,18 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     // The accepted model gets a longer refit of all its parameters (the candidates' refits are
     // short so that all of them fit in the time).
     {
-      const FitResult fit = local_refit(forms[best]->with_initial(accepted.theta), data,
-                                        options.cost, options.accepted_evaluations, 0.02, cancel);
+      const FitResult fit = local_refit(forms[best]->with_initial(accepted.theta), data, cost,
+                                        options.accepted_evaluations, 0.02, cancel);
       theta = fit.evaluation.weighted_cost < accepted.weighted_cost ? fit.theta : accepted.theta;
     }
     current = forms[best]->with_initial(theta);
-    const EdcObjective objective(current, data, options.cost);
+    cost.budget = EdcObjective::calibrate_budget(current, data, options.cost, theta);
+    objective = EdcObjective(current, data, cost);
     evaluation = objective.evaluate(theta);
     maps = discrepancy_maps(objective, theta, evaluation, campaign);
     record.effect = accepted.effect;
+    record.evidence = accepted.evidence;
+    record.delta_bic_joint = accepted.delta_bic_joint;
     record.cost_after_j = evaluation.cost_j;
     record.weighted_after = evaluation.weighted_cost;
     record.reduced_chi2_after = maps.reduced_chi2;
@@ -319,6 +443,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         evaluation.weighted_cost - record.weighted_before +
         static_cast<double>(current.size() - form_size_before) * std::log(static_cast<double>(n));
     record.parameters_after = named(current, theta);
+    accepted_effects.push_back(accepted.effect);
     if (result.verdict == "none") result.verdict = accepted.effect;
     result.steps.push_back(std::move(record));
   }
@@ -327,8 +452,13 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   result.final_theta = theta;
   result.final_evaluation = evaluation;
   result.final_maps = maps;
+  result.sigma_budget = sigma_budget_json(EdcObjective(current, data, cost));
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (cancel.cancelled()) {
+  if (deadline.expired()) {
+    result.incomplete = true;
+    result.message = "stopped at the " + std::to_string(options.max_seconds) +
+                     " s limit: the steps completed before it stand, the rest was not tried";
+  } else if (outer_cancel.cancelled()) {
     result.status = JobStatus::Cancelled;
     result.message = "cancelled";
   }
@@ -348,7 +478,11 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
   nlohmann::json out;
   out["format"] = "oscilab-diagnosis/1";
   out["records"] = records;
-  out["status"] = result.status == JobStatus::Ok ? "ok" : "cancelled";
+  out["status"] = result.status != JobStatus::Ok ? "cancelled"
+                  : result.incomplete            ? "incomplete"
+                                                 : "ok";
+  if (!result.message.empty()) out["message"] = result.message;
+  out["sigma_budget"] = result.sigma_budget;
   const FitResult& b = result.baseline;
   out["baseline"] = {{"cost_j", b.evaluation.cost_j},
                      {"weighted_cost", b.evaluation.weighted_cost},
@@ -371,6 +505,8 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
                             {"weighted_cost", t.weighted_cost},
                             {"cost_j", t.cost_j},
                             {"delta_bic", t.delta_bic},
+                            {"delta_bic_joint", t.delta_bic_joint},
+                            {"evidence", evidence_json(t.evidence)},
                             {"solved", t.solved}});
     }
     nlohmann::json evidence = {
@@ -386,6 +522,13 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
         {"effect", s.effect}, {"evidence", evidence}, {"cost_before_j", s.cost_before_j}};
     if (s.effect != "none") {
       step["evidence"]["delta_bic"] = s.delta_bic;
+      step["evidence"]["delta_bic_joint"] = s.delta_bic_joint;
+      step["evidence"]["changes"] = evidence_json(s.evidence);
+      nlohmann::json supported = nlohmann::json::array();
+      for (const EvidenceChange& e : s.evidence) {
+        if (e.supports()) supported.push_back(e.name);
+      }
+      step["evidence"]["supported_by"] = supported;
       step["evidence"]["weighted_cost_after"] = s.weighted_after;
       step["evidence"]["reduced_chi2_after"] = s.reduced_chi2_after;
       step["cost_after_j"] = s.cost_after_j;
@@ -397,12 +540,22 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
   }
   out["steps"] = steps;
   out["verdict"] = result.verdict;
+  for (const DiagnosisStep& s : result.steps) {
+    if (s.effect != result.verdict) continue;
+    nlohmann::json supported = nlohmann::json::array();
+    for (const EvidenceChange& e : s.evidence) {
+      if (e.supports()) supported.push_back(e.name);
+    }
+    out["verdict_supported_by"] = supported;
+  }
   if (result.verdict == "none") {
     out["verdict_reason"] =
         result.final_maps.reduced_chi2 <= result.noise_reduced_chi2
             ? "the model form explains the data within its noise (reduced chi2 at or below the "
               "noise level)"
-            : "no candidate effect improves the fit by the required evidence (dBIC threshold)";
+            : result.incomplete
+                ? "stopped at the time limit before a candidate was accepted"
+                : "no candidate effect improves the fit by the required evidence (dBIC threshold)";
   }
   out["noise_reduced_chi2"] = result.noise_reduced_chi2;
   if (result.final_form) {

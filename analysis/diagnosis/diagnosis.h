@@ -16,10 +16,16 @@
 namespace oscilab::analysis {
 
 struct DiagnosisOptions {
-  EdcCostSettings cost;               // σ floor and harmonics of every fit
-  long baseline_evaluations = 2000;   // CMA-ES + polish of the model form as given
-  long candidate_evaluations = 1200;  // BOBYQA refits of all parameters per candidate
-  long accepted_evaluations = 1500;   // the longer refit of the accepted candidate
+  EdcCostSettings cost;              // σ budget (or a fixed floor) and harmonics of every fit
+  long baseline_evaluations = 1500;  // CMA-ES + polish of the model form as given
+  long candidate_evaluations = 600;  // grid and BOBYQA refits of all parameters per candidate
+  long accepted_evaluations = 800;   // the longer refit of the accepted candidate
+  /// Wall-clock bound of the whole diagnosis, s (≤ 0: none). At the deadline the running fits
+  /// stop with their best so far; the result keeps the steps completed and is marked incomplete.
+  double max_seconds = 120.0;
+  /// Weigh the response fingerprints (amplitude, harmonic content) with the EDC when candidates
+  /// are compared and accepted (joint ΔBIC); false: the EDC alone.
+  bool use_fingerprints = true;
   /// Accept a candidate when ΔBIC = Δχ² + Δp ln n < −bic_threshold: 10 is "very strong"
   /// evidence on the scale of Kass & Raftery (1995, "Bayes factors").
   double bic_threshold = 10.0;
@@ -29,12 +35,26 @@ struct DiagnosisOptions {
 };
 
 /// One candidate refitted at a step.
+/// How one piece of evidence moved when a candidate was added: Δχ² of the EDC or of a response
+/// fingerprint (negative: the candidate explains more of it).
+struct EvidenceChange {
+  std::string name;  // "edc", "amplitude", "harmonic-2", "harmonic-3"
+  double chi2_before = 0.0, chi2_after = 0.0;
+  double delta_chi2() const { return chi2_after - chi2_before; }
+  /// Supports the candidate: Δχ² < −9 (a 3σ improvement for one added parameter).
+  bool supports() const { return delta_chi2() < -9.0; }
+  /// Speaks against it: Δχ² > +9.
+  bool contradicts() const { return delta_chi2() > 9.0; }
+};
+
 struct CandidateTrial {
   std::string effect;
   double fingerprint_score = 0.0;  // lower ranks first
   double weighted_cost = 0.0;      // χ² after the refit
   double cost_j = 0.0;             // eq. (8) after the refit
-  double delta_bic = 0.0;
+  double delta_bic = 0.0;          // of the EDC alone: Δχ² + Δp ln n
+  double delta_bic_joint = 0.0;    // EDC and fingerprints: Δχ²_EDC + Δχ²_fp + Δp ln(n + n_fp)
+  std::vector<EvidenceChange> evidence;
   bool solved = true;
   Eigen::VectorXd theta;  // all parameters of the extended form
 };
@@ -44,7 +64,9 @@ struct DiagnosisStep {
   double cost_before_j = 0.0, cost_after_j = 0.0;
   double weighted_before = 0.0, weighted_after = 0.0;
   double reduced_chi2_before = 0.0, reduced_chi2_after = 0.0;
-  double delta_bic = 0.0;
+  double delta_bic = 0.0;        // of the accepted model after its longer refit (EDC)
+  double delta_bic_joint = 0.0;  // the accepted candidate's joint ΔBIC
+  std::vector<EvidenceChange> evidence;  // of the accepted candidate
   DiscrepancyMaps maps_before;
   std::vector<CandidateTrial> trials;  // in the order tried (fingerprint ranking)
   std::vector<std::pair<std::string, double>> parameters_after;
@@ -54,6 +76,8 @@ struct DiagnosisStep {
 struct DiagnosisResult {
   JobStatus status = JobStatus::Ok;
   std::string message;
+  bool incomplete = false;  // stopped at max_seconds: the steps done so far, no more
+  nlohmann::json sigma_budget;  // of the final model (sigma_budget_json)
   FitResult baseline;
   DiscrepancyMaps baseline_maps, final_maps;
   std::vector<DiagnosisStep> steps;
@@ -69,7 +93,7 @@ struct DiagnosisResult {
   long evaluations = 0;
 };
 
-/// The model-gap workflow (issue 9): fit `form` to the campaign's EDCs, map the discrepancies,
+/// The model-gap workflow: fit `form` to the campaign's EDCs, map the discrepancies,
 /// refit the current model alone (the control every candidate is measured against), rank the
 /// candidate effects by their fingerprints, refit every candidate with all parameters free,
 /// accept the best by ΔBIC when the evidence is very strong, and repeat from the extended model

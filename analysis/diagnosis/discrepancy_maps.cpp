@@ -112,6 +112,7 @@ DiscrepancyMaps discrepancy_maps(const EdcObjective& objective, const Eigen::Vec
   split_slopes(missing_amplitude, missing, maps.slopes.missing_low, maps.slopes.missing_high);
   maps.slopes.missing_all = log_slope(missing_amplitude, missing);
   maps.stiffness = stiffness_residual(objective.form().build(theta), campaign);
+  maps.response = response_fingerprints(objective.data(), evaluation);
   return maps;
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "analysis/diagnosis/log_slope.h"
+#include "analysis/diagnosis/response_fingerprints.h"
 #include "analysis/identification/edc_objective.h"
 #include "analysis/pipeline/offline_analysis.h"
 
@@ -56,6 +57,7 @@ struct DiscrepancyMaps {
   double reduced_chi2 = 0.0;  // χ² / (levels − parameters)
   EnergySlopes slopes;
   StiffnessResidual stiffness;
+  ResponseFingerprints response;  // amplitude and harmonic content against the model
 };
 
 /// The maps of a fitted model (θ of the objective's form) against the measurement.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <sstream>
 
 #include "analysis/common/input_error.h"
@@ -51,6 +52,43 @@ void sort_and_merge(EdcGroup& group) {
     m.record += "+" + level.record;
   }
   levels = std::move(merged);
+}
+
+// The coherent mean of harmonic h over the cycles (phases share one reference time, so the mean
+// of the complex amplitudes averages the noise down; a mean of magnitudes would keep the noise's
+// positive bias), and the standard error of its magnitude: the scatter per component over √n.
+void coherent_mean(const std::vector<std::complex<double>>& v, std::complex<double>& mean,
+                   double& se) {
+  mean = 0.0;
+  for (const auto& x : v) mean += x;
+  mean /= static_cast<double>(v.size());
+  double ss = 0.0;
+  for (const auto& x : v) ss += std::norm(x - mean);
+  const double n = static_cast<double>(v.size());
+  se = std::sqrt(ss / (2.0 * (n - 1.0)) / n);
+}
+
+// |Z1|'s standard error and the ratios |Z2|/|Z1|, |Z3|/|Z1| of the coherent means over the level's
+// steady cycles, each ratio's standard error by first-order propagation.
+void harmonic_content(const RecordAnalysis& record, const LevelResult& level, MeasuredLevel& m) {
+  std::vector<std::complex<double>> z[3];
+  for (const CycleFit& c : record.cycles) {
+    if (c.start_s < level.start_s - 1e-9 || c.end_s > level.end_s + 1e-9) continue;
+    if (c.z_h.size() < 3) continue;
+    for (int h = 0; h < 3; ++h) z[h].push_back(c.z_h[static_cast<std::size_t>(h)]);
+  }
+  if (z[0].size() < 2) return;
+  std::complex<double> mean[3];
+  double se[3];
+  for (int h = 0; h < 3; ++h) coherent_mean(z[h], mean[h], se[h]);
+  const double a1 = std::abs(mean[0]);
+  if (!(a1 > 0.0)) return;
+  m.z1_abs_se_m = se[0];
+  m.h2_ratio = std::abs(mean[1]) / a1;
+  m.h3_ratio = std::abs(mean[2]) / a1;
+  m.h2_ratio_se = std::hypot(se[1], m.h2_ratio * se[0]) / a1;
+  m.h3_ratio_se = std::hypot(se[2], m.h3_ratio * se[0]) / a1;
+  m.harmonic_cycles = static_cast<int>(z[0].size());
 }
 
 EdcGroup& group_for(EdcDataset& data, bool positive, double freq_hz) {
@@ -105,6 +143,7 @@ EdcDataset edc_dataset(const CampaignAnalysis& campaign) {
       m.noise_floor_j = level.edc_noise_floor_j;
       m.amplitude_m = level.z1_abs_m;
       m.record = record.name;
+      harmonic_content(record, level, m);
       group_for(data, level.well == "positive", record.setup.excitation_freq_hz)
           .levels.push_back(m);
     }

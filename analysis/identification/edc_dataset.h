@@ -16,6 +16,13 @@ struct MeasuredLevel {
   double noise_floor_j = 0.0;  // σ of the mean predicted from the sensor noise
   double amplitude_m = 0.0;    // |Z1|, for slopes and plots
   std::string record;          // where it came from
+  /// The response's harmonic content over the steady cycles (0 cycles: not measured): the mean
+  /// of |Z1| and of the ratios |Z2|/|Z1|, |Z3|/|Z1| with their standard errors (spread over the
+  /// cycles / √cycles). Fingerprints of stiffness and damping laws beside the EDC.
+  int harmonic_cycles = 0;
+  double z1_abs_se_m = 0.0;
+  double h2_ratio = 0.0, h2_ratio_se = 0.0;
+  double h3_ratio = 0.0, h3_ratio_se = 0.0;
   /// Standard error of S_k^mes: σ/√cycles, not below the sensor-noise floor. 0 for data without
   /// cycles (noise-free twin data).
   double sigma_of_mean_j() const;

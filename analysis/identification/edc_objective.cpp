@@ -1,5 +1,6 @@
 #include "analysis/identification/edc_objective.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -191,12 +192,18 @@ EdcEvaluation EdcObjective::evaluate(const Eigen::VectorXd& theta,
     std::vector<double> f0;
     for (const MeasuredLevel& level : group.levels) f0.push_back(level.f0_n);
     std::vector<double> predicted(f0.size(), 0.0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::vector<std::array<double, 3>> harmonics(f0.size(), {nan, nan, nan});
     if (model) {
       try {
         const LevelResponse response =
             level_response(*model, group.freq_hz, group.positive_well, f0, settings_.hbm);
         for (std::size_t i = 0; i < response.edc_j.size() && i < f0.size(); ++i) {
           predicted[i] = response.edc_j[i];
+          const Eigen::VectorXd& x = response.coefficients[i];
+          const double a1 = std::hypot(x[1], x[2]);
+          harmonics[i] = {a1, x.size() > 4 ? std::hypot(x[3], x[4]) / a1 : 0.0,
+                          x.size() > 6 ? std::hypot(x[5], x[6]) / a1 : 0.0};
         }
         if (response.status != JobStatus::Ok || response.edc_j.size() < f0.size()) {
           out.ok = false;
@@ -217,6 +224,9 @@ EdcEvaluation EdcObjective::evaluate(const Eigen::VectorXd& theta,
       const int well = group.positive_well ? 0 : 1;
       deviation_sum[well] += std::abs(difference) / measured;
       ++deviation_count[well];
+      out.z1_abs_m.push_back(harmonics[i][0]);
+      out.h2_ratio.push_back(harmonics[i][1]);
+      out.h3_ratio.push_back(harmonics[i][2]);
     }
     out.edc_mod_j.push_back(std::move(predicted));
   }

@@ -1,0 +1,142 @@
+// Studies of the model-gap diagnosis on virtual-rig campaigns (not a test: scripts run it and
+// docs/diagnosis.md quotes what it printed). Three modes, each writing CSV on stdout:
+//
+//   diagnosis_study bias SEEDS            the estimator's bias: measured EDC, |Z1| and harmonic
+//                                         ratios of the paper's model against its converged
+//                                         harmonic balance (H = 31), at 8, 9, 10 Hz, noise ×1, ×3
+//   diagnosis_study power EFFECT SCALE FREQ NOISE SEED
+//                                         one blind diagnosis of the paper's model plus EFFECT at
+//                                         SCALE × its reference strength
+//   diagnosis_study control SEED FREQ NOISE
+//                                         one blind diagnosis of the paper's model with its
+//                                         friction parameters θ (eq. (9)) moved by up to ±30 %
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+
+#include "analysis/diagnosis/diagnosis.h"
+#include "analysis/diagnosis/effect_candidates.h"
+#include "analysis/hbm/level_response.h"
+#include "analysis/identification/campaign_model.h"
+#include "analysis/identification/edc_dataset.h"
+#include "analysis/model/position_dependent_friction.h"
+#include "tests/analysis/diagnosis/hidden_effect_campaign.h"
+#include "tests/analysis/identification/twin_data.h"
+
+namespace {
+
+using namespace oscilab::analysis;
+
+int bias_study(int seeds) {
+  std::printf("freq_hz,noise_scale,seed,well,f0_n,edc_mes_j,edc_true_j,sigma_cycles_j,"
+              "z1_mes_m,z1_true_m,z1_se_m,h2_mes,h2_true,h2_se,h3_mes,h3_true,h3_se\n");
+  const Model truth = paper_model();
+  HbmOptions converged;
+  converged.harmonics = 31;
+  for (double freq : {8.0, 9.0, 10.0}) {
+    for (double noise : {1.0, 3.0}) {
+      for (int seed = 1; seed <= seeds; ++seed) {
+        testing::CampaignSpec spec;
+        spec.freq_hz = freq;
+        spec.noise_scale = noise;
+        spec.random_record = false;
+        const CampaignAnalysis campaign = testing::record_campaign(
+            truth, static_cast<std::uint64_t>(seed), testing::paper_levels_n(), spec);
+        const EdcDataset data = edc_dataset(campaign);
+        for (const EdcGroup& g : data.groups) {
+          std::vector<double> f0;
+          for (const MeasuredLevel& l : g.levels) f0.push_back(l.f0_n);
+          const LevelResponse r = level_response(truth, g.freq_hz, g.positive_well, f0, converged);
+          for (std::size_t i = 0; i < r.edc_j.size(); ++i) {
+            const MeasuredLevel& l = g.levels[i];
+            const Eigen::VectorXd& x = r.coefficients[i];
+            const double a1 = std::hypot(x[1], x[2]);
+            std::printf("%g,%g,%d,%s,%.6g,%.9g,%.9g,%.4g,%.9g,%.9g,%.4g,%.6g,%.6g,%.4g,%.6g,%.6g,%.4g\n",
+                        freq, noise, seed, g.positive_well ? "positive" : "negative", l.f0_n,
+                        l.edc_j, r.edc_j[i], l.sigma_of_mean_j(), l.amplitude_m, a1,
+                        l.z1_abs_se_m, l.h2_ratio, std::hypot(x[3], x[4]) / a1, l.h2_ratio_se,
+                        l.h3_ratio, std::hypot(x[5], x[6]) / a1, l.h3_ratio_se);
+          }
+        }
+        std::fflush(stdout);
+      }
+    }
+  }
+  return 0;
+}
+
+void print_header() {
+  std::printf("case,effect,scale,freq_hz,noise_scale,seed,verdict,correct,status,seconds,"
+              "baseline_reduced_chi2,noise_reduced_chi2,steps,accepted\n");
+}
+
+void print_result(const std::string& kind, const std::string& effect, double scale, double freq,
+                  double noise, int seed, const DiagnosisResult& r) {
+  std::string accepted;
+  for (const DiagnosisStep& s : r.steps) {
+    if (s.effect != "none") accepted += (accepted.empty() ? "" : "+") + s.effect;
+  }
+  const bool correct = r.verdict == effect;
+  std::printf("%s,%s,%g,%g,%g,%d,%s,%d,%s,%.1f,%.4g,%.4g,%zu,%s\n", kind.c_str(), effect.c_str(),
+              scale, freq, noise, seed, r.verdict.c_str(), correct ? 1 : 0,
+              r.incomplete ? "incomplete" : "complete", r.seconds,
+              r.baseline_maps.reduced_chi2, r.noise_reduced_chi2, r.steps.size(),
+              accepted.empty() ? "-" : accepted.c_str());
+  std::fflush(stdout);
+}
+
+DiagnosisResult run_blind(const Model& truth, int seed, double freq, double noise) {
+  testing::CampaignSpec spec;
+  spec.freq_hz = freq;
+  spec.noise_scale = noise;
+  const CampaignAnalysis campaign = testing::record_campaign(
+      truth, static_cast<std::uint64_t>(seed), testing::paper_levels_n(), spec);
+  std::vector<std::string> notes;
+  const Model base = campaign_model(paper_model(), campaign, StiffnessSource::Model, notes);
+  DiagnosisOptions options;
+  options.seed = static_cast<std::uint64_t>(seed);
+  const char* seconds = std::getenv("OSCILAB_DIAGNOSE_MAX_SECONDS");
+  if (seconds) options.max_seconds = std::atof(seconds);
+  return diagnose(campaign, ModelForm::paper(base), options);
+}
+
+int power_study(const std::string& effect, double scale, double freq, double noise, int seed) {
+  print_header();
+  const Model truth = testing::truth_with_effect(effect, scale);
+  print_result("power", effect, scale, freq, noise, seed, run_blind(truth, seed, freq, noise));
+  return 0;
+}
+
+int control_study(int seed, double freq, double noise) {
+  print_header();
+  // θ of eq. (9) moved by a uniform factor in [0.7, 1.3] each, drawn from the seed.
+  std::mt19937_64 rng(static_cast<std::uint64_t>(seed) * 7919);
+  std::uniform_real_distribution<double> factor(0.7, 1.3);
+  Model base = paper_model();
+  const ModelForm form = ModelForm::paper(base);
+  Eigen::VectorXd theta = form.initial();
+  for (int i = 0; i < theta.size(); ++i) theta[i] *= factor(rng);
+  const Model truth = form.build(form.clamp(theta));
+  print_result("control", "none", 0.0, freq, noise, seed, run_blind(truth, seed, freq, noise));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "bias" && argc == 3) return bias_study(std::atoi(argv[2]));
+  if (mode == "power" && argc == 7) {
+    return power_study(argv[2], std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]),
+                       std::atoi(argv[6]));
+  }
+  if (mode == "control" && argc == 5) {
+    return control_study(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]));
+  }
+  std::fprintf(stderr,
+               "usage: diagnosis_study bias SEEDS | power EFFECT SCALE FREQ NOISE SEED | "
+               "control SEED FREQ NOISE\n");
+  return 2;
+}
