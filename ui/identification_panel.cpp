@@ -213,11 +213,26 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
       {tr("parameter"), tr("value"), tr("std error"), tr("95 % interval"), tr("note")});
   parameter_table_->horizontalHeader()->setStretchLastSection(true);
   parameter_table_->verticalHeader()->hide();
-  step_table_ = new QTableWidget(0, 5);
-  step_table_->setHorizontalHeaderLabels({tr("effect"), tr("\u0394BIC"), tr("cost before [mJ]"),
-                                          tr("cost after [mJ]"), tr("candidates (\u0394BIC)")});
+  // One row per candidate of every step: its ΔBIC on the EDC alone and jointly with the response
+  // fingerprints, how each piece of evidence moved (Δχ²), and why it was accepted or not.
+  step_table_ = new QTableWidget(0, 10);
+  step_table_->setHorizontalHeaderLabels(
+      {tr("step"), tr("candidate"), tr("\u0394BIC EDC"), tr("\u0394BIC joint"),
+       tr("\u0394\u03c7\u00b2 EDC"), tr("\u0394\u03c7\u00b2 |Z1|"),
+       tr("\u0394\u03c7\u00b2 |Z2|/|Z1|"), tr("\u0394\u03c7\u00b2 |Z3|/|Z1|"), tr("supported by"),
+       tr("outcome")});
   step_table_->horizontalHeader()->setStretchLastSection(true);
   step_table_->verticalHeader()->hide();
+  // The σ budget of the final model, per level.
+  budget_table_ = new QTableWidget(0, 8);
+  budget_table_->setHorizontalHeaderLabels(
+      {tr("well"), tr("f0 [N]"), tr("S_mes [mJ]"), tr("\u03c3 cycles [mJ]"),
+       tr("\u03c3 bias [mJ]"), tr("\u03c3 model [mJ]"), tr("\u03c3 [mJ]"),
+       tr("correction [mJ]")});
+  budget_table_->horizontalHeader()->setStretchLastSection(true);
+  budget_table_->verticalHeader()->hide();
+  budget_label_ = new QLabel;
+  budget_label_->setWordWrap(true);
 
   edc_plot_ = new QCustomPlot;
   edc_plot_->setMinimumHeight(260);
@@ -248,6 +263,11 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   tabs_->addTab(parameter_table_, tr("Parameters"));
   tabs_->addTab(convergence_plot_, tr("Convergence"));
   tabs_->addTab(diagnosis_page, tr("Diagnosis"));
+  auto* budget_page = new QWidget;
+  auto* budget_layout = new QVBoxLayout(budget_page);
+  budget_layout->addWidget(budget_label_);
+  budget_layout->addWidget(budget_table_, 1);
+  tabs_->addTab(budget_page, tr("\u03c3 budget"));
 
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(records);
@@ -521,6 +541,81 @@ void IdentificationPanel::show_fit(const Outcome& outcome) {
   tabs_->setCurrentIndex(0);
 }
 
+namespace {
+
+// The verdict's supporting evidence and the response fingerprints before and after, for the
+// label under the verdict.
+QString verdict_details(const analysis::DiagnosisResult& r) {
+  QString out;
+  for (const auto& s : r.steps) {
+    if (s.effect != r.verdict) continue;
+    QString supported;
+    for (const auto& e : s.evidence) {
+      if (e.supports()) {
+        supported += QStringLiteral("%1%2 (\u0394\u03c7\u00b2 %3)")
+                         .arg(supported.isEmpty() ? "" : ", ")
+                         .arg(QString::fromStdString(e.name))
+                         .arg(e.delta_chi2(), 0, 'g', 3);
+      }
+    }
+    out += QObject::tr("<br>Supported by: %1").arg(supported.isEmpty() ? "—" : supported);
+  }
+  QString fingerprints;
+  for (std::size_t i = 0; i < r.baseline_maps.response.items.size(); ++i) {
+    const auto& b = r.baseline_maps.response.items[i];
+    if (b.levels == 0 || i >= r.final_maps.response.items.size()) continue;
+    fingerprints += QStringLiteral("%1%2 %3 \u2192 %4")
+                        .arg(fingerprints.isEmpty() ? "" : ", ")
+                        .arg(QString::fromStdString(b.name))
+                        .arg(b.chi2 / b.levels, 0, 'g', 3)
+                        .arg(r.final_maps.response.items[i].chi2 / b.levels, 0, 'g', 3);
+  }
+  if (!fingerprints.isEmpty()) {
+    out += QObject::tr("<br>Response fingerprints, \u03c7\u00b2 per level (baseline \u2192 "
+                       "final): %1")
+               .arg(fingerprints);
+  }
+  if (r.incomplete) {
+    out += QObject::tr("<br><b>Incomplete:</b> %1").arg(QString::fromStdString(r.message));
+  }
+  return out;
+}
+
+}  // namespace
+
+void IdentificationPanel::show_budget(const analysis::DiagnosisResult& r) {
+  const nlohmann::json& b = r.sigma_budget;
+  if (!b.is_object() || !b.contains("levels")) {
+    budget_table_->setRowCount(0);
+    budget_label_->clear();
+    return;
+  }
+  budget_label_->setText(
+      tr("Each level's \u03c3\u00b2 = \u03c3_cycles\u00b2 + \u03c3_bias\u00b2 + "
+         "\u03c3_model\u00b2 (final model). Harmonic balance at H = %1, corrected to H = %2; "
+         "model error |S(%2) \u2212 S(%3)|: %4.")
+          .arg(b.value("harmonics", 0))
+          .arg(b.value("reference_harmonics", 0))
+          .arg(2 * b.value("reference_harmonics", 0) + 1)
+          .arg(b.value("resolved", false) ? tr("within target at every level")
+                                          : tr("above target at some levels")));
+  const auto& levels = b["levels"];
+  budget_table_->setRowCount(static_cast<int>(levels.size()));
+  int row = 0;
+  for (const auto& level : levels) {
+    budget_table_->setItem(row, 0, cell(QString::fromStdString(level.value("well", ""))));
+    budget_table_->setItem(row, 1, cell(number(level.value("f0_n", 0.0))));
+    const char* keys[] = {"edc_mes_j",     "sigma_cycles_j", "sigma_bias_j",
+                          "sigma_model_j", "sigma_j",        "correction_j"};
+    for (int column = 2; column < 8; ++column) {
+      budget_table_->setItem(row, column,
+                             cell(number(1e3 * level.value(keys[column - 2], 0.0), 3)));
+    }
+    ++row;
+  }
+  budget_table_->resizeColumnsToContents();
+}
+
 void IdentificationPanel::show_diagnosis(const Outcome& outcome) {
   const analysis::DiagnosisResult& r = outcome.diagnosis_result;
   verdict_label_->setText(
@@ -531,23 +626,40 @@ void IdentificationPanel::show_diagnosis(const Outcome& outcome) {
           .arg(r.baseline_maps.reduced_chi2, 0, 'g', 3)
           .arg(r.noise_reduced_chi2, 0, 'g', 3)
           .arg(1e3 * r.final_evaluation.cost_j, 0, 'g', 4)
-          .arg(r.final_maps.reduced_chi2, 0, 'g', 3));
-  step_table_->setRowCount(static_cast<int>(r.steps.size()));
+          .arg(r.final_maps.reduced_chi2, 0, 'g', 3) +
+      verdict_details(r));
+  int rows = 0;
+  for (const auto& s : r.steps) rows += static_cast<int>(s.trials.size());
+  step_table_->setRowCount(rows);
+  int row = 0;
   for (int i = 0; i < static_cast<int>(r.steps.size()); ++i) {
-    const auto& s = r.steps[i];
-    QString tried;
+    const auto& s = r.steps[static_cast<std::size_t>(i)];
     for (const auto& t : s.trials) {
-      tried += QStringLiteral("%1%2 %3")
-                   .arg(tried.isEmpty() ? "" : ", ")
-                   .arg(QString::fromStdString(t.effect))
-                   .arg(t.delta_bic, 0, 'f', 0);
+      step_table_->setItem(row, 0, cell(QString::number(i + 1)));
+      step_table_->setItem(row, 1, cell(QString::fromStdString(t.effect)));
+      step_table_->setItem(row, 2, cell(t.solved ? number(t.delta_bic) : QStringLiteral("—")));
+      step_table_->setItem(row, 3,
+                           cell(t.solved ? number(t.delta_bic_joint) : QStringLiteral("—")));
+      QString supported;
+      for (int column = 4; column < 8; ++column) step_table_->setItem(row, column, cell("—"));
+      for (const auto& e : t.evidence) {
+        const int column = e.name == "edc"          ? 4
+                           : e.name == "amplitude"  ? 5
+                           : e.name == "harmonic-2" ? 6
+                                                    : 7;
+        step_table_->setItem(row, column, cell(number(e.delta_chi2())));
+        if (e.supports()) {
+          supported += (supported.isEmpty() ? "" : ", ") + QString::fromStdString(e.name);
+        }
+      }
+      step_table_->setItem(row, 8, cell(supported.isEmpty() ? QStringLiteral("—") : supported));
+      step_table_->setItem(
+          row, 9,
+          cell(QString::fromStdString(analysis::candidate_outcome(s, t, bic_threshold_))));
+      ++row;
     }
-    step_table_->setItem(i, 0, cell(QString::fromStdString(s.effect)));
-    step_table_->setItem(i, 1, cell(s.effect == "none" ? "—" : number(s.delta_bic, 4)));
-    step_table_->setItem(i, 2, cell(number(1e3 * s.cost_before_j)));
-    step_table_->setItem(i, 3, cell(s.effect == "none" ? "—" : number(1e3 * s.cost_after_j)));
-    step_table_->setItem(i, 4, cell(tried));
   }
+  show_budget(r);
   step_table_->resizeColumnsToContents();
 
   residual_plot_->clearGraphs();

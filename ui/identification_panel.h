@@ -97,6 +97,7 @@ class IdentificationPanel : public QWidget {
   QPushButton* cancel_button() const { return cancel_button_; }
   QTableWidget* parameter_table() const { return parameter_table_; }
   QTableWidget* step_table() const { return step_table_; }
+  QTableWidget* budget_table() const { return budget_table_; }
   QLabel* status_label() const { return status_label_; }
   QLabel* verdict_label() const { return verdict_label_; }
   QCustomPlot* edc_plot() const { return edc_plot_; }
@@ -140,6 +141,7 @@ class IdentificationPanel : public QWidget {
   void add_convergence_point(long evaluations, double best_weighted_cost);
   void show_fit(const Outcome& outcome);
   void show_diagnosis(const Outcome& outcome);
+  void show_budget(const analysis::DiagnosisResult& result);
   void plot_edc(const analysis::EdcObjective& objective,
                 const std::vector<std::vector<double>>& edc_mod_j, const QString& model_name);
 
@@ -153,8 +155,9 @@ class IdentificationPanel : public QWidget {
   std::function<void()> after_figure_data_;
   QString export_dir_;
   FigureDialog* figures_dialog_ = nullptr;
-  long baseline_evaluations_ = 2000;
-  long candidate_evaluations_ = 800;
+  long baseline_evaluations_ = analysis::DiagnosisOptions{}.baseline_evaluations;
+  long candidate_evaluations_ = analysis::DiagnosisOptions{}.candidate_evaluations;
+  double bic_threshold_ = analysis::DiagnosisOptions{}.bic_threshold;
 
   QListWidget* record_list_ = nullptr;
   QComboBox* method_box_ = nullptr;
@@ -175,6 +178,8 @@ class IdentificationPanel : public QWidget {
   QTabWidget* tabs_ = nullptr;
   QTableWidget* parameter_table_ = nullptr;
   QTableWidget* step_table_ = nullptr;
+  QTableWidget* budget_table_ = nullptr;
+  QLabel* budget_label_ = nullptr;
   QCustomPlot* edc_plot_ = nullptr;
   QCustomPlot* residual_plot_ = nullptr;
   QCustomPlot* convergence_plot_ = nullptr;

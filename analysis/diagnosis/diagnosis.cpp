@@ -466,8 +466,35 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   return result;
 }
 
+std::string candidate_outcome(const DiagnosisStep& step, const CandidateTrial& trial,
+                              double bic_threshold) {
+  char text[160];
+  if (!trial.solved) return "not solved (the refit stopped or the model had no solution)";
+  if (trial.effect == step.effect) return "accepted";
+  const CandidateTrial* best = nullptr;
+  for (const CandidateTrial& t : step.trials) {
+    if (t.solved && (!best || t.delta_bic_joint < best->delta_bic_joint)) best = &t;
+  }
+  if (best && best != &trial && best->delta_bic_joint < trial.delta_bic_joint &&
+      best->delta_bic_joint < -bic_threshold) {
+    std::snprintf(text, sizeof text, "rejected: %s explains more (joint dBIC %.3g)",
+                  best->effect.c_str(), best->delta_bic_joint);
+    return text;
+  }
+  if (!(trial.delta_bic_joint < -bic_threshold)) {
+    std::snprintf(text, sizeof text, "rejected: joint dBIC %.3g is not below -%.3g",
+                  trial.delta_bic_joint, bic_threshold);
+    return text;
+  }
+  for (const EvidenceChange& e : trial.evidence) {
+    if (e.name == "edc" && !(e.delta_chi2() < 0.0)) return "rejected: the EDC fit gets worse";
+  }
+  return "rejected";
+}
+
 nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
-                                     const std::vector<std::string>& records) {
+                                     const std::vector<std::string>& records,
+                                     double bic_threshold) {
   const auto deviations = [](const EdcEvaluation& e) {
     const auto number = [](double v) {
       return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
@@ -507,6 +534,7 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
                             {"delta_bic", t.delta_bic},
                             {"delta_bic_joint", t.delta_bic_joint},
                             {"evidence", evidence_json(t.evidence)},
+                            {"outcome", candidate_outcome(s, t, bic_threshold)},
                             {"solved", t.solved}});
     }
     nlohmann::json evidence = {

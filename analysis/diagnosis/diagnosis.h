@@ -104,9 +104,16 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
                          const DiagnosisOptions& options, const ProgressFn& progress = {},
                          const CancelToken& cancel = {});
 
-/// The report of contracts.md §2: {"baseline": {"cost_j", ...}, "steps": [{"effect", "evidence",
+/// Why a candidate of a step was accepted or not, in words ("accepted", "rejected: joint dBIC
+/// -4.2 is not below -10", "rejected: quadratic-damping explains more (joint dBIC -5.7e4)", …):
+/// what the CLI, the report and the app show beside each candidate.
+std::string candidate_outcome(const DiagnosisStep& step, const CandidateTrial& trial,
+                              double bic_threshold);
+
+/// The report (docs/contracts.md): {"baseline": {"cost_j", ...}, "steps": [{"effect", "evidence",
 /// "cost_before_j", "cost_after_j"}], "verdict", "final_model"}, with numbers as evidence.
 nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
-                                     const std::vector<std::string>& records);
+                                     const std::vector<std::string>& records,
+                                     double bic_threshold = 10.0);
 
 }  // namespace oscilab::analysis

@@ -1,5 +1,7 @@
 #include "analysis/identification/edc_fit.h"
 
+#include <algorithm>
+
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -140,9 +142,17 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
   }
   if (options.check_truncation) {
     // One evaluation of the fitted model at 2H + 1 harmonics (the same levels and branches).
+    // The model side at θ̄ against 2H' + 1 harmonics without correction (H' the reference of the
+    // defect correction, else H): what the fitted S_mod still misses, the correction's drift
+    // from its calibration θ included.
     EdcCostSettings finer = objective.settings();
-    SigmaBudget budget = objective.budget();  // the same σ, the model side at 2H + 1
-    budget.harmonics = 2 * finer.hbm.harmonics + 1;
+    SigmaBudget budget = objective.budget();  // the same σ
+    const int base = std::max(budget.harmonics, budget.reference_harmonics);
+    budget.harmonics = 2 * base + 1;
+    for (auto* v : {&budget.correction_j, &budget.correction_z1_m, &budget.correction_h2,
+                    &budget.correction_h3}) {
+      std::fill(v->begin(), v->end(), 0.0);
+    }
     finer.hbm.harmonics = budget.harmonics;
     finer.hbm.samples = 0;
     finer.max_harmonics = std::max(finer.max_harmonics, budget.harmonics);

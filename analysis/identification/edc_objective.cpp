@@ -13,12 +13,17 @@ namespace oscilab::analysis {
 
 namespace {
 
-// The model's EDC at every level of the dataset (group order) with these HBM options; `ok` false
-// when a level could not be solved (its entry is then NaN).
-std::vector<double> model_edcs(const Model& model, const EdcDataset& data, const HbmOptions& hbm,
-                               bool& ok) {
-  std::vector<double> out;
+// The model's EDC, |Z1| and harmonic ratios at every level of the dataset (group order) with
+// these HBM options; `ok` false when a level could not be solved (its entries are then NaN).
+struct LevelQuantities {
+  std::vector<double> edc_j, z1_abs_m, h2_ratio, h3_ratio;
+};
+
+LevelQuantities model_quantities(const Model& model, const EdcDataset& data,
+                                 const HbmOptions& hbm, bool& ok) {
+  LevelQuantities out;
   ok = true;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const EdcGroup& group : data.groups) {
     std::vector<double> f0;
     for (const MeasuredLevel& level : group.levels) f0.push_back(level.f0_n);
@@ -30,20 +35,30 @@ std::vector<double> model_edcs(const Model& model, const EdcDataset& data, const
     }
     if (response.status != JobStatus::Ok) ok = false;
     for (std::size_t i = 0; i < f0.size(); ++i) {
-      out.push_back(i < response.edc_j.size() ? response.edc_j[i]
-                                              : std::numeric_limits<double>::quiet_NaN());
+      if (i >= response.edc_j.size()) {
+        for (auto* v : {&out.edc_j, &out.z1_abs_m, &out.h2_ratio, &out.h3_ratio}) v->push_back(nan);
+        continue;
+      }
+      const Eigen::VectorXd& x = response.coefficients[i];
+      const double a1 = std::hypot(x[1], x[2]);
+      out.edc_j.push_back(response.edc_j[i]);
+      out.z1_abs_m.push_back(a1);
+      out.h2_ratio.push_back(std::hypot(x[3], x[4]) / a1);
+      out.h3_ratio.push_back(std::hypot(x[5], x[6]) / a1);
     }
   }
   return out;
 }
 
-// The rungs of the harmonic ladder from `start` to `max`: start itself, then 7, 11, 15, 23, 31
-// above it. Friction's kinks make harmonics decay slowly, so steps of ~1.5× are the useful grain.
-std::vector<int> harmonic_ladder(int start, int max) {
-  std::vector<int> out = {start};
-  for (int h : {7, 11, 15, 23, 31}) {
+// The rungs of the reference ladder from `start` to `max`: 15, 23, 31, 47 and 63 (friction's kinks
+// make harmonics decay slowly, so steps of ~1.5× are the useful grain), or `max` alone when it is
+// below the first.
+std::vector<int> reference_ladder(int start, int max) {
+  std::vector<int> out;
+  for (int h : {15, 23, 31, 47, 63}) {
     if (h > start && h <= max) out.push_back(h);
   }
+  if (out.empty()) out.push_back(std::max(start, max));
   return out;
 }
 
@@ -65,41 +80,60 @@ SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDatas
   const std::size_t n = measured.size();
   budget.bias_j.assign(n, 0.0);
   budget.model_j.assign(n, 0.0);
+  budget.correction_j.assign(n, 0.0);
+  budget.correction_z1_m.assign(n, 0.0);
+  budget.correction_h2.assign(n, 0.0);
+  budget.correction_h3.assign(n, 0.0);
   if (settings.model_error_rel >= 0.0) {
     for (std::size_t k = 0; k < n; ++k) {
       budget.model_j[k] = settings.model_error_rel * std::abs(measured[k]);
     }
   } else {
-    for (std::size_t k = 0; k < n; ++k) budget.bias_j[k] = kEdcEstimatorBiasRel * std::abs(measured[k]);
+    for (std::size_t k = 0; k < n; ++k) {
+      budget.bias_j[k] = kEdcEstimatorBiasRel * std::abs(measured[k]);
+    }
     std::optional<Model> model;
     try {
       model.emplace(form.build(theta));
     } catch (const InputError&) {
       budget.resolved = false;
     }
+    bool fit_ok = true;
+    const LevelQuantities at_fit =
+        model ? model_quantities(*model, data, settings.hbm, fit_ok) : LevelQuantities{};
     const std::vector<int> ladder =
-        settings.adaptive_harmonics ? harmonic_ladder(settings.hbm.harmonics, settings.max_harmonics)
-                                    : std::vector<int>{settings.hbm.harmonics};
-    for (std::size_t rung = 0; model && rung < ladder.size(); ++rung) {
-      HbmOptions coarse = settings.hbm, fine = settings.hbm;
-      coarse.harmonics = ladder[rung];
-      coarse.samples = 0;
-      fine.harmonics = 2 * ladder[rung] + 1;
-      fine.samples = 0;
-      bool coarse_ok = true, fine_ok = true;
-      const std::vector<double> s_coarse = model_edcs(*model, data, coarse, coarse_ok);
-      const std::vector<double> s_fine = model_edcs(*model, data, fine, fine_ok);
-      budget.harmonics = coarse.harmonics;
-      budget.reference_harmonics = fine.harmonics;
-      budget.resolved = coarse_ok && fine_ok;
+        settings.adaptive_harmonics
+            ? reference_ladder(settings.hbm.harmonics, settings.max_harmonics)
+            : std::vector<int>{settings.hbm.harmonics};
+    for (std::size_t rung = 0; model && fit_ok && rung < ladder.size(); ++rung) {
+      HbmOptions reference = settings.hbm, check = settings.hbm;
+      reference.harmonics = ladder[rung];
+      reference.samples = 0;
+      check.harmonics = 2 * ladder[rung] + 1;
+      check.samples = 0;
+      bool reference_ok = true, check_ok = true;
+      const LevelQuantities s_reference = model_quantities(*model, data, reference, reference_ok);
+      const LevelQuantities s_check = model_quantities(*model, data, check, check_ok);
+      budget.reference_harmonics = reference.harmonics;
+      budget.resolved = reference_ok && check_ok;
       for (std::size_t k = 0; k < n; ++k) {
-        const double error = std::abs(s_coarse[k] - s_fine[k]);
+        const double error = std::abs(s_reference.edc_j[k] - s_check.edc_j[k]);
         budget.model_j[k] = std::isfinite(error) ? error : 0.0;
         const double measurement = std::hypot(budget.cycles_j[k], budget.bias_j[k]);
         if (!(error <= settings.model_error_target * measurement)) budget.resolved = false;
+        // The defect correction: what H harmonics miss against the reference, at this θ.
+        const auto defect = [&](const std::vector<double>& fine, const std::vector<double>& coarse) {
+          const double d = fine[k] - coarse[k];
+          return std::isfinite(d) ? d : 0.0;
+        };
+        budget.correction_j[k] = defect(s_reference.edc_j, at_fit.edc_j);
+        budget.correction_z1_m[k] = defect(s_reference.z1_abs_m, at_fit.z1_abs_m);
+        budget.correction_h2[k] = defect(s_reference.h2_ratio, at_fit.h2_ratio);
+        budget.correction_h3[k] = defect(s_reference.h3_ratio, at_fit.h3_ratio);
       }
       if (budget.resolved) break;
     }
+    if (!fit_ok) budget.resolved = false;
   }
   budget.total_j.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -199,11 +233,14 @@ EdcEvaluation EdcObjective::evaluate(const Eigen::VectorXd& theta,
         const LevelResponse response =
             level_response(*model, group.freq_hz, group.positive_well, f0, settings_.hbm);
         for (std::size_t i = 0; i < response.edc_j.size() && i < f0.size(); ++i) {
-          predicted[i] = response.edc_j[i];
+          // Defect correction of the budget: S(H) + (S(H_ref) − S(H)) at the calibration θ.
+          const std::size_t level = static_cast<std::size_t>(k) + i;
+          predicted[i] = response.edc_j[i] + budget_.correction_j[level];
           const Eigen::VectorXd& x = response.coefficients[i];
           const double a1 = std::hypot(x[1], x[2]);
-          harmonics[i] = {a1, x.size() > 4 ? std::hypot(x[3], x[4]) / a1 : 0.0,
-                          x.size() > 6 ? std::hypot(x[5], x[6]) / a1 : 0.0};
+          harmonics[i] = {a1 + budget_.correction_z1_m[level],
+                          std::hypot(x[3], x[4]) / a1 + budget_.correction_h2[level],
+                          std::hypot(x[5], x[6]) / a1 + budget_.correction_h3[level]};
         }
         if (response.status != JobStatus::Ok || response.edc_j.size() < f0.size()) {
           out.ok = false;

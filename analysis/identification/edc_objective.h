@@ -26,16 +26,24 @@ inline constexpr double kEdcEstimatorBiasRel = 5e-4;
 ///   σ_k² = σ_cycles,k² + σ_bias,k² + σ_model,k²
 ///
 /// σ_cycles the standard error of S_k^mes from its cycles (not below the sensor-noise floor),
-/// σ_bias = kEdcEstimatorBiasRel · S_k^mes, σ_model the model side's numerical error at level k:
-/// |S_k(H) − S_k(2H + 1)| of harmonic balance at the calibration θ (the truncation error of H
-/// harmonics, measured against 2H + 1). With a fixed floor ρ (EdcCostSettings::model_error_rel
-/// ≥ 0) σ_model = ρ S_k^mes and σ_bias = 0 instead, as fits did before the budget existed.
+/// σ_bias = kEdcEstimatorBiasRel · S_k^mes, σ_model the model side's numerical error at level k.
+///
+/// The model side runs at the fit's H (fast) with a defect correction: at the calibration θ,
+/// δ_k = S_k(H_ref) − S_k(H) is added to every S_k(H; θ), so the fit sees the reference's
+/// accuracy at H's cost as long as δ varies little with θ (the calibration is repeated at the
+/// fitted θ: after the baseline and after each accepted effect of a diagnosis). H_ref climbs the
+/// ladder 15, 23, 31, 47, 63 until |S_k(H_ref) − S_k(2H_ref + 1)| ≤ target × the measurement σ
+/// (cycles and bias) at every level, and that difference is σ_model. The response's |Z1| and
+/// harmonic ratios get the same correction. With a fixed floor ρ (EdcCostSettings::model_error_rel
+/// ≥ 0) σ_model = ρ S_k^mes, σ_bias = 0 and no correction, as fits did before the budget existed.
 struct SigmaBudget {
-  int harmonics = 0;             // H of the model side
-  int reference_harmonics = 0;   // what σ_model was measured against (0: a fixed floor)
+  int harmonics = 0;            // H of the fit's model evaluations
+  int reference_harmonics = 0;  // H_ref of the correction (0: none); σ_model from 2H_ref + 1
   double model_error_target = 0.0;
-  bool resolved = true;          // every level's model error met the target within max H
+  bool resolved = true;  // every level's model error met the target within max H
   std::vector<double> cycles_j, bias_j, model_j, total_j;  // per level, group order
+  std::vector<double> correction_j;  // δ_k added to S_k(H)
+  std::vector<double> correction_z1_m, correction_h2, correction_h3;  // the same for the response
 };
 
 /// How a fit weighs the levels.
@@ -44,13 +52,14 @@ struct EdcCostSettings {
   /// σ budget derives each level's σ from its cycles, the estimator's measured bias and the
   /// model side's estimated truncation error (SigmaBudget).
   double model_error_rel = -1.0;
-  /// Adaptive harmonics: starting from hbm.harmonics, H climbs the ladder 7, 11, 15, 23, 31 until
-  /// every level's model error is at most model_error_target × its measurement σ (cycles and
-  /// bias): 0.3 adds at most 4.4 % to σ. With a fixed floor, or adaptive = false, H stays.
+  /// The reference of the defect correction: H_ref climbs 15, 23, 31, 47, 63 (up to
+  /// max_harmonics) until every level's model error is at most model_error_target × its
+  /// measurement σ (cycles and bias): 0.3 adds at most 4.4 % to σ. adaptive = false: H_ref = H
+  /// (no correction; σ_model is |S(H) − S(2H + 1)|).
   bool adaptive_harmonics = true;
   double model_error_target = 0.3;
-  int max_harmonics = 31;
-  HbmOptions hbm;  // H = 7 to start, as the paper's Fig. 11
+  int max_harmonics = 63;
+  HbmOptions hbm;  // H of the fit's evaluations: 7, as the paper's Fig. 11
   /// A budget computed before (the diagnosis computes it once per model and shares it): used as
   /// is, with its harmonics, instead of calibrating anew. Must match the dataset's level count.
   std::optional<SigmaBudget> budget;
@@ -93,8 +102,8 @@ struct EdcEvaluation {
 class EdcObjective {
  public:
   /// Throws InputError for an empty dataset or a form whose base model harmonic balance cannot
-  /// handle. Without a given budget the σ budget is calibrated at the form's initial θ (a few
-  /// evaluations at H and 2H + 1 per rung of the ladder).
+  /// handle. Without a given budget the σ budget is calibrated at the form's initial θ (one
+  /// evaluation at H, then H_ref and 2H_ref + 1 per rung of the ladder).
   EdcObjective(ModelForm form, EdcDataset data, EdcCostSettings settings = {});
 
   /// The σ budget of `form` at θ: harmonics from the ladder and each level's σ components.

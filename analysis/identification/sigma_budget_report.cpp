@@ -27,12 +27,14 @@ nlohmann::json sigma_budget_json(const EdcObjective& objective) {
                       {"sigma_cycles_j", b.cycles_j[k]},
                       {"sigma_bias_j", b.bias_j[k]},
                       {"sigma_model_j", b.model_j[k]},
-                      {"sigma_j", b.total_j[k]}});
+                      {"sigma_j", b.total_j[k]},
+                      {"correction_j", b.correction_j[k]}});
   });
   const bool fixed = objective.settings().model_error_rel >= 0.0;
   return {{"harmonics", b.harmonics},
           {"reference_harmonics", b.reference_harmonics},
-          {"model_error", fixed ? "fixed floor" : "estimated (H against 2H + 1)"},
+          {"model_error", fixed ? "fixed floor"
+                                : "estimated: |S(H_ref) - S(2 H_ref + 1)|, S(H) corrected to H_ref"},
           {"model_error_floor_rel", fixed ? nlohmann::json(objective.settings().model_error_rel)
                                           : nlohmann::json(nullptr)},
           {"model_error_target", b.model_error_target},
@@ -51,20 +53,21 @@ std::vector<std::string> sigma_budget_lines(const EdcObjective& objective) {
                   b.harmonics, objective.settings().model_error_rel);
   } else {
     std::snprintf(line, sizeof line,
-                  "sigma budget: H = %d (model error = |S(H) - S(%d)|, target %.2g of the "
-                  "measurement sigma: %s), estimator bias %.2g %% of S_mes",
-                  b.harmonics, b.reference_harmonics, b.model_error_target,
+                  "sigma budget: H = %d corrected to H = %d (model error = |S(%d) - S(%d)|, "
+                  "target %.2g of the measurement sigma: %s), estimator bias %.2g %% of S_mes",
+                  b.harmonics, b.reference_harmonics, b.reference_harmonics,
+                  2 * b.reference_harmonics + 1, b.model_error_target,
                   b.resolved ? "met at every level" : "NOT met at every level",
                   100.0 * kEdcEstimatorBiasRel);
   }
   out.emplace_back(line);
-  std::snprintf(line, sizeof line, "  %-8s %8s %12s %12s %12s %12s %12s", "well", "f0 [N]",
-                "S_mes [J]", "cycles [J]", "bias [J]", "model [J]", "sigma [J]");
+  std::snprintf(line, sizeof line, "  %-8s %8s %12s %12s %12s %12s %12s %12s", "well", "f0 [N]",
+                "S_mes [J]", "cycles [J]", "bias [J]", "model [J]", "sigma [J]", "corr. [J]");
   out.emplace_back(line);
   for_each_level(objective, [&](const EdcGroup& group, const MeasuredLevel& level, std::size_t k) {
-    std::snprintf(line, sizeof line, "  %-8s %8.4g %12.5g %12.3g %12.3g %12.3g %12.3g",
+    std::snprintf(line, sizeof line, "  %-8s %8.4g %12.5g %12.3g %12.3g %12.3g %12.3g %12.3g",
                   group.positive_well ? "positive" : "negative", level.f0_n, level.edc_j,
-                  b.cycles_j[k], b.bias_j[k], b.model_j[k], b.total_j[k]);
+                  b.cycles_j[k], b.bias_j[k], b.model_j[k], b.total_j[k], b.correction_j[k]);
     out.emplace_back(line);
   });
   return out;

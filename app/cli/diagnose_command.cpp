@@ -1,5 +1,5 @@
-// oscilab-cli diagnose REC... --model-form paper --out DIR (contract §2; issue 9): where the fitted
-// model and the measurement disagree, which physical effect is missing, and the model with it.
+// oscilab-cli diagnose REC... --model-form paper --out DIR: where the fitted model and the
+// measurement disagree, which physical effect is missing, and the model with it.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,11 +28,14 @@ struct DiagnoseOptions {
   unsigned long long seed = 1;
   int threads = 0;
   int harmonics = 7;
-  double model_error = 0.01;
+  int max_harmonics = 63;
+  double model_error = -1.0;
   double bic_threshold = 10.0;
+  double max_seconds = 120.0;
   int max_steps = 3;
-  long baseline_evaluations = 2000;
-  long candidate_evaluations = 1200;
+  long baseline_evaluations = 1500;
+  long candidate_evaluations = 600;
+  bool edc_only = false;
   bool no_png = false;
 };
 
@@ -111,11 +114,78 @@ void write_levels_csv(const analysis::DiagnosisResult& r, const std::string& pat
   if (!out) throw InputError(path + ": write failed");
 }
 
+std::string evidence_text(const std::vector<analysis::EvidenceChange>& evidence) {
+  std::string out;
+  char part[96];
+  for (const analysis::EvidenceChange& e : evidence) {
+    std::snprintf(part, sizeof part, "%s%s %+.0f%s", out.empty() ? "" : ", ", e.name.c_str(),
+                  e.delta_chi2(), e.supports() ? " (supports)" : e.contradicts() ? " (against)" : "");
+    out += part;
+  }
+  return out;
+}
+
+// What the terminal shows: the σ budget's summary, the baseline and its fingerprints, every
+// candidate of every step with its evidence and why it was accepted or not, the verdict.
+void print_result(const analysis::DiagnosisResult& r, double bic_threshold) {
+  const nlohmann::json& budget = r.sigma_budget;
+  if (budget.is_object() && budget.contains("levels")) {
+    double cycles = 0.0, bias = 0.0, model = 0.0;
+    for (const auto& level : budget["levels"]) {
+      const double s2 = std::pow(level["sigma_j"].get<double>(), 2);
+      cycles += std::pow(level["sigma_cycles_j"].get<double>(), 2) / s2;
+      bias += std::pow(level["sigma_bias_j"].get<double>(), 2) / s2;
+      model += std::pow(level["sigma_model_j"].get<double>(), 2) / s2;
+    }
+    const double n = static_cast<double>(budget["levels"].size());
+    std::printf(
+        "sigma budget (final model; per level in report.json): H = %d checked against H = %d "
+        "(%s); share of sigma^2 on average: cycles %.0f %%, estimator bias %.0f %%, model error "
+        "%.0f %%\n",
+        budget["harmonics"].get<int>(), budget["reference_harmonics"].get<int>(),
+        budget["resolved"].get<bool>() ? "model error within target at every level"
+                                       : "model error above target at some levels",
+        100.0 * cycles / n, 100.0 * bias / n, 100.0 * model / n);
+  }
+  std::printf(
+      "baseline (paper form): cost eq. (8) %.4g J, chi2 %.4g (chi2/dof %.3g; noise "
+      "level %.3g), largest residual %.1f sigma\n",
+      r.baseline.evaluation.cost_j, r.baseline.evaluation.weighted_cost,
+      r.baseline_maps.reduced_chi2, r.noise_reduced_chi2, r.baseline_maps.max_abs_residual_sigma);
+  for (const analysis::ResponseFingerprint& f : r.baseline_maps.response.items) {
+    if (f.levels == 0) continue;
+    std::printf("  fingerprint %-11s chi2 %.4g over %d levels (chi2/level %.3g)\n", f.name.c_str(),
+                f.chi2, f.levels, f.chi2 / f.levels);
+  }
+  for (const auto& step : r.steps) {
+    if (step.effect == "none") {
+      std::printf("step: nothing accepted (joint dBIC must be < -%.0f with the EDC improved)\n",
+                  bic_threshold);
+    } else {
+      std::printf("step: %s accepted, joint dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g\n",
+                  step.effect.c_str(), step.delta_bic_joint, step.cost_before_j,
+                  step.cost_after_j, step.weighted_before, step.weighted_after);
+    }
+    for (const auto& t : step.trials) {
+      if (!t.solved) {
+        std::printf("    %-22s not solved\n", t.effect.c_str());
+        continue;
+      }
+      std::printf("    %-22s dBIC edc %9.1f joint %9.1f  [%s]  %s\n", t.effect.c_str(),
+                  t.delta_bic, t.delta_bic_joint, evidence_text(t.evidence).c_str(),
+                  analysis::candidate_outcome(step, t, bic_threshold).c_str());
+    }
+  }
+  std::printf("verdict: %s (%.1f s)%s\n", r.verdict.c_str(), r.seconds,
+              r.incomplete ? " -- INCOMPLETE: stopped at --max-seconds" : "");
+}
+
 void run(const DiagnoseOptions& o) {
   if (o.model_form != "paper") {
     throw InputError("--model-form: unknown form \"" + o.model_form + "\" (paper)");
   }
   if (o.harmonics < 1) throw InputError("--harmonics: must be at least 1");
+  if (!(o.max_seconds >= 0.0)) throw InputError("--max-seconds: must be ≥ 0");
   if (o.max_steps < 1) throw InputError("--max-steps: must be at least 1");
   if (o.baseline_evaluations < 10 || o.candidate_evaluations < 10) {
     throw InputError("--baseline-evaluations, --candidate-evaluations: must be at least 10");
@@ -130,7 +200,10 @@ void run(const DiagnoseOptions& o) {
       analysis::model_from_spec(o.model), campaign, analysis::StiffnessSource::Model, notes);
   analysis::DiagnosisOptions options;
   options.cost.hbm.harmonics = o.harmonics;
+  options.cost.max_harmonics = std::max(o.harmonics, o.max_harmonics);
   options.cost.model_error_rel = o.model_error;
+  options.max_seconds = o.max_seconds;
+  options.use_fingerprints = !o.edc_only;
   options.bic_threshold = o.bic_threshold;
   options.max_steps = o.max_steps;
   options.baseline_evaluations = o.baseline_evaluations;
@@ -144,31 +217,9 @@ void run(const DiagnoseOptions& o) {
         analysis::diagnose(campaign, analysis::ModelForm::paper(base), options, bar.callback());
   }
 
-  std::printf(
-      "baseline (paper form): cost eq. (8) %.4g J, chi2 %.4g (chi2/dof %.3g; noise "
-      "level %.3g), largest residual %.1f sigma\n",
-      result.baseline.evaluation.cost_j, result.baseline.evaluation.weighted_cost,
-      result.baseline_maps.reduced_chi2, result.noise_reduced_chi2,
-      result.baseline_maps.max_abs_residual_sigma);
-  for (const auto& step : result.steps) {
-    if (step.effect == "none") {
-      std::printf("step: no candidate passes dBIC < -%.0f (best tried: ", o.bic_threshold);
-    } else {
-      std::printf(
-          "step: %s accepted, dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g "
-          "(tried: ",
-          step.effect.c_str(), step.delta_bic, step.cost_before_j, step.cost_after_j,
-          step.weighted_before, step.weighted_after);
-    }
-    for (std::size_t i = 0; i < step.trials.size(); ++i) {
-      std::printf("%s%s %.0f", i ? ", " : "", step.trials[i].effect.c_str(),
-                  step.trials[i].delta_bic);
-    }
-    std::printf(")\n");
-  }
-  std::printf("verdict: %s (%.1f s)\n", result.verdict.c_str(), result.seconds);
+  print_result(result, o.bic_threshold);
 
-  nlohmann::json report = analysis::diagnosis_report_json(result, o.recordings);
+  nlohmann::json report = analysis::diagnosis_report_json(result, o.recordings, o.bic_threshold);
   report["notes"] = notes;
   const std::string report_path = o.out_dir + "/report.json";
   std::ofstream out(report_path);
@@ -207,10 +258,24 @@ void add_diagnose_command(CLI::App& app) {
   command->add_option("--seed", o->seed, "seed of the baseline's global search")
       ->capture_default_str();
   command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
-  command->add_option("--harmonics", o->harmonics, "harmonics H of the model's HBM")
+  command
+      ->add_option("--harmonics", o->harmonics,
+                   "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
       ->capture_default_str();
-  command->add_option("--model-error", o->model_error, "relative model-error floor of sigma")
+  command->add_option("--max-harmonics", o->max_harmonics, "largest reference H of the sigma budget's correction")
       ->capture_default_str();
+  command
+      ->add_option("--model-error", o->model_error,
+                   "fixed relative model-error floor of sigma; negative: the sigma budget (cycles, "
+                   "estimator bias, the model's truncation error per level)")
+      ->capture_default_str();
+  command
+      ->add_option("--max-seconds", o->max_seconds,
+                   "stop after this many seconds and write the result so far, marked incomplete "
+                   "(0: no limit)")
+      ->capture_default_str();
+  command->add_flag("--edc-only", o->edc_only,
+                    "compare candidates on the EDC alone (without the response fingerprints)");
   command->add_option("--bic-threshold", o->bic_threshold, "accept an effect when dBIC < -this")
       ->capture_default_str();
   command->add_option("--max-steps", o->max_steps, "effects added at most")->capture_default_str();

@@ -42,7 +42,7 @@ struct FitCommandOptions {
   int harmonics = 7;
   int bootstrap = 0;
   double model_error = -1.0;
-  int max_harmonics = 31;
+  int max_harmonics = 63;
   double freq_hz = 0.0;
   bool no_png = false;
 };
@@ -204,7 +204,7 @@ void add_fit_command(CLI::App& app) {
       ->add_option("--harmonics", o->harmonics,
                    "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
       ->capture_default_str();
-  command->add_option("--max-harmonics", o->max_harmonics, "largest H the sigma budget may choose")
+  command->add_option("--max-harmonics", o->max_harmonics, "largest reference H of the sigma budget's correction")
       ->capture_default_str();
   command
       ->add_option("--model-error", o->model_error,

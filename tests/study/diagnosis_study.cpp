@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <random>
 #include <string>
 
@@ -99,7 +100,11 @@ DiagnosisResult run_blind(const Model& truth, int seed, double freq, double nois
   options.seed = static_cast<std::uint64_t>(seed);
   const char* seconds = std::getenv("OSCILAB_DIAGNOSE_MAX_SECONDS");
   if (seconds) options.max_seconds = std::atof(seconds);
-  return diagnose(campaign, ModelForm::paper(base), options);
+  DiagnosisResult result = diagnose(campaign, ModelForm::paper(base), options);
+  if (const char* path = std::getenv("OSCILAB_STUDY_REPORT")) {
+    std::ofstream(path) << diagnosis_report_json(result, {"virtual rig"}).dump(2) << '\n';
+  }
+  return result;
 }
 
 int power_study(const std::string& effect, double scale, double freq, double noise, int seed) {
