@@ -403,10 +403,52 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     });
     if (cancel.cancelled()) break;  // an interrupted step accepts nothing
 
-    std::size_t best = order.size();
+    // Finalists: every candidate with very strong joint evidence and at least 70 % of the best
+    // one's (at most kFinalists) gets the longer refit before they are compared again. Short
+    // refits from a large misfit stop at different distances from their optima, and a law that
+    // mimics the true one (quadratic for cubic damping) can lead by a few per cent there.
+    constexpr std::size_t kFinalists = 3;
+    std::vector<std::size_t> ranked_slots;
     for (std::size_t slot = 0; slot < order.size(); ++slot) {
+      if (record.trials[slot].solved && forms[slot]) ranked_slots.push_back(slot);
+    }
+    std::sort(ranked_slots.begin(), ranked_slots.end(), [&](std::size_t a, std::size_t b) {
+      return record.trials[a].delta_bic_joint < record.trials[b].delta_bic_joint;
+    });
+    std::vector<std::size_t> finalists;
+    for (std::size_t slot : ranked_slots) {
+      const double joint = record.trials[slot].delta_bic_joint;
+      if (finalists.size() < kFinalists && joint < -options.bic_threshold &&
+          joint <= 0.7 * record.trials[ranked_slots.front()].delta_bic_joint) {
+        finalists.push_back(slot);
+      }
+    }
+    parallel_for(finalists.size(), options.threads, [&](std::size_t i) {
+      CandidateTrial& trial = record.trials[finalists[i]];
+      const ModelForm& extended = *forms[finalists[i]];
+      const FitResult fit = local_refit(extended.with_initial(trial.theta), data, cost,
+                                        options.accepted_evaluations, 0.02, cancel);
+      if (!(fit.evaluation.weighted_cost < trial.weighted_cost) || !fit.evaluation.ok) return;
+      const double added = static_cast<double>(extended.size() - current.size());
+      const ResponseFingerprints after = response_fingerprints(data, fit.evaluation);
+      trial.theta = fit.theta;
+      trial.weighted_cost = fit.evaluation.weighted_cost;
+      trial.cost_j = fit.evaluation.cost_j;
+      trial.delta_bic = fit.evaluation.weighted_cost - evaluation.weighted_cost +
+                        added * std::log(static_cast<double>(n));
+      trial.evidence = evidence_changes(evaluation.weighted_cost, fit.evaluation.weighted_cost,
+                                        maps.response, after);
+      trial.delta_bic_joint = trial.delta_bic;
+      if (options.use_fingerprints && after.count > 0) {
+        trial.delta_bic_joint = fit.evaluation.weighted_cost - evaluation.weighted_cost +
+                                after.chi2 - maps.response.chi2 +
+                                added * std::log(static_cast<double>(n + after.count));
+      }
+    });
+    if (cancel.cancelled()) break;
+    std::size_t best = order.size();
+    for (std::size_t slot : ranked_slots) {
       const CandidateTrial& t = record.trials[slot];
-      if (!t.solved || !forms[slot]) continue;
       if (best == order.size() || t.delta_bic_joint < record.trials[best].delta_bic_joint) {
         best = slot;
       }
@@ -421,13 +463,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       break;
     }
     const CandidateTrial& accepted = record.trials[best];
-    // The accepted model gets a longer refit of all its parameters (the candidates' refits are
-    // short so that all of them fit in the time).
-    {
-      const FitResult fit = local_refit(forms[best]->with_initial(accepted.theta), data, cost,
-                                        options.accepted_evaluations, 0.02, cancel);
-      theta = fit.evaluation.weighted_cost < accepted.weighted_cost ? fit.theta : accepted.theta;
-    }
+    theta = accepted.theta;
     current = forms[best]->with_initial(theta);
     cost.budget = EdcObjective::calibrate_budget(current, data, options.cost, theta);
     objective = EdcObjective(current, data, cost);

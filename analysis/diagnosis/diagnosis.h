@@ -19,7 +19,7 @@ struct DiagnosisOptions {
   EdcCostSettings cost;              // σ budget (or a fixed floor) and harmonics of every fit
   long baseline_evaluations = 1500;  // CMA-ES + polish of the model form as given
   long candidate_evaluations = 600;  // grid and BOBYQA refits of all parameters per candidate
-  long accepted_evaluations = 800;   // the longer refit of the accepted candidate
+  long accepted_evaluations = 1000;  // the longer refit of the finalists
   /// Wall-clock bound of the whole diagnosis, s (≤ 0: none). At the deadline the running fits
   /// stop with their best so far; the result keeps the steps completed and is marked incomplete.
   double max_seconds = 120.0;

@@ -137,8 +137,9 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
     }
     add(std::move(c));
   }
-  // Stiffness powers c z^p: bounded so that c Z_ref^p stays within the largest forcing, with Z_ref
-  // the largest |z| the wells reach (the wells' positions plus the largest amplitude).
+  // Stiffness powers c z^p: bounded so that c Z_ref^p stays within ten times the largest forcing,
+  // with Z_ref the largest |z| the wells reach (the wells' positions plus the largest amplitude):
+  // a stiffness power far stronger than the forcing would have moved the wells out of the test.
   double z_ref = z_max;
   for (const auto& well : form.base().equilibria())
     z_ref = std::max(z_ref, std::abs(well.z_m) + z_max);
@@ -147,7 +148,7 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
     int power;
   } powers[] = {{"quadratic-stiffness", 2}, {"cubic-stiffness", 3}, {"quintic-stiffness", 5}};
   for (const auto& p : powers) {
-    const double bound = f0_max / std::pow(z_ref, p.power);
+    const double bound = 10.0 * f0_max / std::pow(z_ref, p.power);
     std::vector<double> coefficients(static_cast<std::size_t>(p.power) + 1, 0.0);
     EffectCandidate c{p.name,
                       std::make_unique<PolynomialStiffness>(coefficients),
@@ -156,7 +157,7 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
                       std::numeric_limits<double>::quiet_NaN(),
                       true,
                       p.power};
-    for (double f : {-0.1, -0.01, 0.01, 0.1})
+    for (double f : {-0.1, -0.01, -0.001, 0.001, 0.01, 0.1})
       c.scan.push_back(Eigen::VectorXd::Constant(1, f * bound));
     out.push_back(std::move(c));
   }

@@ -19,8 +19,8 @@ namespace {
 using namespace oscilab::analysis;
 
 const EdcObjective& objective() {
-  static const EdcObjective o(ModelForm::paper(paper_model()),
-                              testing::twin_dataset(paper_model()));
+  static const EdcObjective o(ModelForm::paper(paper_model()), testing::twin_dataset(paper_model()),
+                              testing::twin_settings());
   return o;
 }
 

@@ -20,7 +20,8 @@ namespace {
 // Twin data of the paper's model; the truth is Table 3 (ModelForm::paper reads it back).
 const EdcObjective& twin_objective() {
   static const EdcObjective objective(ModelForm::paper(paper_model()),
-                                      testing::twin_dataset(paper_model()));
+                                      testing::twin_dataset(paper_model()),
+                                      testing::twin_settings());
   return objective;
 }
 
@@ -137,7 +138,7 @@ TEST(EdcFitSlow, CovarianceAndBootstrapAgreeOnNoisyTwinData) {
       level.cycles = 16;
     }
   }
-  EdcCostSettings settings;
+  EdcCostSettings settings = testing::twin_settings();
   settings.model_error_rel = 0.0;  // the noise is all there is
   const EdcObjective objective(ModelForm::paper(truth), data, settings);
   FitOptions options;

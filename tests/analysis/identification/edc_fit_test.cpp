@@ -18,7 +18,7 @@ namespace {
 const EdcObjective& twin_objective() {
   static const EdcObjective objective(
       ModelForm::paper(paper_model()),
-      testing::twin_dataset(paper_model(), {}, testing::few_levels_n()));
+      testing::twin_dataset(paper_model(), {}, testing::few_levels_n()), testing::twin_settings());
   return objective;
 }
 
@@ -55,7 +55,7 @@ TEST(EdcFit, LocalPolishFromANeighbourReturnsToTheTruth) {
   off.c_ns_m *= 1.1;
   off.vt_m_s *= 0.9;
   const EdcObjective objective(ModelForm::paper(paper_model(off)),
-                               testing::twin_dataset(truth_model));
+                               testing::twin_dataset(truth_model), testing::twin_settings());
   const Eigen::VectorXd truth = ModelForm::paper(truth_model).initial();
   FitOptions options;
   options.method = FitMethod::Local;
