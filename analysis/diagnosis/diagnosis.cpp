@@ -12,6 +12,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/common/parallel_for.h"
 #include "analysis/diagnosis/effect_candidates.h"
+#include "analysis/diagnosis/joint_refit.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/sigma_budget_report.h"
 
@@ -34,9 +35,6 @@ double fingerprint_score(const EffectCandidate& c, const DiscrepancyMaps& maps) 
   if (!slope.valid() || !std::isfinite(slope.standard_error)) return 5.0;
   return std::abs(slope.slope - c.expected_slope) / std::max(slope.standard_error, 0.25);
 }
-
-// Starting points of the three best short refits of a candidate.
-constexpr std::size_t kRefitStarts = 3;
 
 // The grid over a candidate's own parameters: per parameter 10 values (one parameter) or 5
 // (two), log-spaced over its bounds (from 1e-3 of the upper bound when the lower is 0; both signs
@@ -67,21 +65,6 @@ std::vector<Eigen::VectorXd> candidate_grid(const EffectCandidate& c) {
     if (a == axes.size()) break;
   }
   return grid;
-}
-
-// A local refit (BOBYQA from the form's initial θ) on one thread, no uncertainty: the diagnosis's
-// control, candidate and acceptance refits.
-FitResult local_refit(const ModelForm& form, const EdcDataset& data, const EdcCostSettings& cost,
-                      long evaluations, double initial_step, const CancelToken& cancel) {
-  const EdcObjective objective(form, data, cost);
-  FitOptions refit;
-  refit.method = FitMethod::Local;
-  refit.max_evaluations = evaluations;
-  refit.threads = 1;
-  refit.compute_uncertainty = false;
-  refit.check_truncation = false;
-  refit.polish.initial_step = initial_step;
-  return fit_edc(objective, refit, {}, cancel);
 }
 
 std::vector<std::pair<std::string, double>> named(const ModelForm& form,
@@ -236,6 +219,28 @@ std::vector<EvidenceChange> evidence_changes(double edc_before, double edc_after
   return out;
 }
 
+// Scores a candidate's refit against the current model: ΔBIC of the EDC alone and jointly with
+// the fingerprints, and how each piece of evidence moved.
+void score_trial(CandidateTrial& trial, const JointRefit& fit, const EdcEvaluation& current,
+                 const ResponseFingerprints& current_fingerprints, int added, int levels,
+                 bool use_fingerprints) {
+  trial.theta = fit.theta;
+  trial.joint_chi2 = fit.joint_chi2;
+  trial.weighted_cost = fit.evaluation.weighted_cost;
+  trial.cost_j = fit.evaluation.cost_j;
+  trial.solved = fit.evaluation.ok;
+  trial.delta_bic = fit.evaluation.weighted_cost - current.weighted_cost +
+                    added * std::log(static_cast<double>(levels));
+  trial.evidence = evidence_changes(current.weighted_cost, fit.evaluation.weighted_cost,
+                                    current_fingerprints, fit.fingerprints);
+  trial.delta_bic_joint = trial.delta_bic;
+  if (use_fingerprints && fit.fingerprints.count > 0) {
+    trial.delta_bic_joint = fit.joint_chi2 -
+                            joint_chi2(current, current_fingerprints, true) +
+                            added * std::log(static_cast<double>(levels + fit.fingerprints.count));
+  }
+}
+
 }  // namespace
 
 DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form,
@@ -287,14 +292,17 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   // The control refit: the current model alone, refitted locally with a candidate's budget. A
   // candidate's gain is measured against it, so that a baseline search that stopped short of
   // its optimum does not credit the first added term with the rest of the convergence.
+  const bool use_fp = options.use_fingerprints;
   const auto refit_current = [&] {
-    const FitResult fit =
-        local_refit(current, data, cost, options.candidate_evaluations, 0.02, cancel);
-    if (fit.evaluation.weighted_cost < evaluation.weighted_cost) {
+    const EdcObjective current_objective(current, data, cost);
+    const JointRefit fit = joint_refit(current_objective, theta, use_fp,
+                                       static_cast<int>(options.candidate_evaluations), cancel);
+    result.evaluations += fit.evaluations;
+    if (fit.theta.size() > 0 && fit.joint_chi2 < joint_chi2(evaluation, maps.response, use_fp)) {
       theta = fit.theta;
       current = current.with_initial(theta);
       evaluation = fit.evaluation;
-      maps = discrepancy_maps(EdcObjective(current, data, cost), theta, evaluation, campaign);
+      maps = discrepancy_maps(current_objective, theta, evaluation, campaign);
     }
   };
   for (int step = 0; step < options.max_steps && !cancel.cancelled(); ++step) {
@@ -333,69 +341,52 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       ModelForm extended = current;
       extended.add_term(c.term->clone(), c.free);
       const EdcObjective extended_objective(extended, data, cost);
-      // Three stages. (1) A grid over the new term's own parameters with the others at the
-      // current θ (cheap: χ² of one evaluation each); (2) short refits of all parameters from the
-      // three best and from the candidate's scan points; (3) the rest of the budget from the
-      // best of those. A new term that starts too strong or too weak, or whose effect the current
-      // parameters partly mimic, leaves a single local refit at its bound.
-      std::vector<std::pair<double, Eigen::VectorXd>> ranked;
-      const std::vector<Eigen::VectorXd> grid = candidate_grid(c);
-      for (const Eigen::VectorXd& s : grid) {
-        if (cancel.cancelled()) break;
-        Eigen::VectorXd point(extended.size());
-        point << theta, s;
-        point = extended.clamp(point);
-        ranked.emplace_back(extended_objective.evaluate(point).weighted_cost, point);
+      // Two stages. (1) A grid over the new term's own parameters, and its scan points spread
+      // over the plausible range, with the others at the current θ (one evaluation each).
+      // (2) Levenberg–Marquardt refits of all parameters from the two best grid points and the
+      // two best scan points: a new term that starts too strong or too weak, or whose effect the
+      // current parameters partly mimic, needs more than one start.
+      const auto scored = [&](const std::vector<Eigen::VectorXd>& own) {
+        std::vector<std::pair<double, Eigen::VectorXd>> out;
+        for (const Eigen::VectorXd& s : own) {
+          if (cancel.cancelled()) break;
+          Eigen::VectorXd point(extended.size());
+          point << theta, s;
+          point = extended.clamp(point);
+          const EdcEvaluation e = extended_objective.evaluate(point);
+          out.emplace_back(joint_chi2(e, response_fingerprints(data, e), use_fp), point);
+        }
+        std::sort(out.begin(), out.end(),
+                  [](const auto& x, const auto& y) { return x.first < y.first; });
+        return out;
+      };
+      const auto grid = scored(candidate_grid(c));
+      const auto scan = scored(c.scan);
+      std::vector<Eigen::VectorXd> starts;
+      for (std::size_t i = 0; i < std::min<std::size_t>(2, grid.size()); ++i) {
+        starts.push_back(grid[i].second);
       }
-      std::sort(ranked.begin(), ranked.end(),
-                [](const auto& a, const auto& b) { return a.first < b.first; });
-      // The grid's best at fixed θ favour a weak term (the current parameters already mimic part
-      // of the effect), so the candidate's own scan points, spread over its plausible range,
-      // start refits too.
-      std::vector<std::pair<double, Eigen::VectorXd>> starts(
-          ranked.begin(), ranked.begin() + std::min(ranked.size(), kRefitStarts));
-      for (const Eigen::VectorXd& s : c.scan) {
-        Eigen::VectorXd point(extended.size());
-        point << theta, s;
-        starts.emplace_back(0.0, extended.clamp(point));
+      for (std::size_t i = 0; i < std::min<std::size_t>(2, scan.size()); ++i) {
+        starts.push_back(scan[i].second);
       }
-      long spent = static_cast<long>(grid.size());
+      long spent = static_cast<long>(grid.size() + scan.size());
+      JointRefit fit;
+      fit.joint_chi2 = std::numeric_limits<double>::infinity();
       const long per_start = std::max<long>(
-          20, (options.candidate_evaluations - spent) / (2 * static_cast<long>(starts.size())));
-      FitResult fit;
-      fit.evaluation.weighted_cost = std::numeric_limits<double>::infinity();
-      for (const auto& [unused, point] : starts) {
+          40, (options.candidate_evaluations - spent) / std::max<long>(1, starts.size()));
+      for (const Eigen::VectorXd& point : starts) {
         if (cancel.cancelled()) break;
-        FitResult short_fit =
-            local_refit(extended.with_initial(point), data, cost, per_start, 0.05, cancel);
-        spent += short_fit.evaluations;
-        if (short_fit.evaluation.weighted_cost < fit.evaluation.weighted_cost) fit = short_fit;
+        JointRefit attempt =
+            joint_refit(extended_objective, point, use_fp, static_cast<int>(per_start), cancel);
+        spent += attempt.evaluations;
+        if (attempt.theta.size() > 0 && attempt.joint_chi2 < fit.joint_chi2) fit = std::move(attempt);
       }
-      if (!std::isfinite(fit.evaluation.weighted_cost) || cancel.cancelled()) {
+      if (fit.theta.size() == 0 || cancel.cancelled()) {
         trial.solved = false;
         return;
       }
-      if (options.candidate_evaluations > spent) {
-        FitResult long_fit = local_refit(extended.with_initial(fit.theta), data, cost,
-                                         options.candidate_evaluations - spent, 0.02, cancel);
-        if (long_fit.evaluation.weighted_cost < fit.evaluation.weighted_cost) fit = long_fit;
-      }
-      trial.theta = fit.theta;
-      trial.weighted_cost = fit.evaluation.weighted_cost;
-      trial.cost_j = fit.evaluation.cost_j;
-      trial.solved = fit.evaluation.ok && !cancel.cancelled();
-      const double added = static_cast<double>(c.free.size());
-      trial.delta_bic = fit.evaluation.weighted_cost - evaluation.weighted_cost +
-                        added * std::log(static_cast<double>(n));
-      const ResponseFingerprints after = response_fingerprints(data, fit.evaluation);
-      trial.evidence = evidence_changes(evaluation.weighted_cost, fit.evaluation.weighted_cost,
-                                        maps.response, after);
-      trial.delta_bic_joint = trial.delta_bic;
-      if (options.use_fingerprints && after.count > 0) {
-        trial.delta_bic_joint = fit.evaluation.weighted_cost - evaluation.weighted_cost +
-                                after.chi2 - maps.response.chi2 +
-                                added * std::log(static_cast<double>(n + after.count));
-      }
+      score_trial(trial, fit, evaluation, maps.response, static_cast<int>(c.free.size()), n,
+                  use_fp);
       forms[slot] = extended;
       const std::lock_guard lock(done_mutex);
       ++done;
@@ -426,24 +417,14 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     parallel_for(finalists.size(), options.threads, [&](std::size_t i) {
       CandidateTrial& trial = record.trials[finalists[i]];
       const ModelForm& extended = *forms[finalists[i]];
-      const FitResult fit = local_refit(extended.with_initial(trial.theta), data, cost,
-                                        options.accepted_evaluations, 0.02, cancel);
-      if (!(fit.evaluation.weighted_cost < trial.weighted_cost) || !fit.evaluation.ok) return;
-      const double added = static_cast<double>(extended.size() - current.size());
-      const ResponseFingerprints after = response_fingerprints(data, fit.evaluation);
-      trial.theta = fit.theta;
-      trial.weighted_cost = fit.evaluation.weighted_cost;
-      trial.cost_j = fit.evaluation.cost_j;
-      trial.delta_bic = fit.evaluation.weighted_cost - evaluation.weighted_cost +
-                        added * std::log(static_cast<double>(n));
-      trial.evidence = evidence_changes(evaluation.weighted_cost, fit.evaluation.weighted_cost,
-                                        maps.response, after);
-      trial.delta_bic_joint = trial.delta_bic;
-      if (options.use_fingerprints && after.count > 0) {
-        trial.delta_bic_joint = fit.evaluation.weighted_cost - evaluation.weighted_cost +
-                                after.chi2 - maps.response.chi2 +
-                                added * std::log(static_cast<double>(n + after.count));
+      const JointRefit fit =
+          joint_refit(EdcObjective(extended, data, cost), trial.theta, use_fp,
+                      static_cast<int>(options.accepted_evaluations), cancel);
+      if (fit.theta.size() == 0 || !(fit.joint_chi2 < trial.joint_chi2) || !fit.evaluation.ok) {
+        return;
       }
+      score_trial(trial, fit, evaluation, maps.response, extended.size() - current.size(), n,
+                  use_fp);
     });
     if (cancel.cancelled()) break;
     std::size_t best = order.size();

@@ -54,6 +54,7 @@ struct CandidateTrial {
   double cost_j = 0.0;             // eq. (8) after the refit
   double delta_bic = 0.0;          // of the EDC alone: Δχ² + Δp ln n
   double delta_bic_joint = 0.0;    // EDC and fingerprints: Δχ²_EDC + Δχ²_fp + Δp ln(n + n_fp)
+  double joint_chi2 = 0.0;         // χ²_EDC + χ²_fp after the refit
   std::vector<EvidenceChange> evidence;
   bool solved = true;
   Eigen::VectorXd theta;  // all parameters of the extended form

@@ -1,0 +1,101 @@
+#include "analysis/diagnosis/joint_refit.h"
+
+#include <cmath>
+#include <limits>
+
+#include <unsupported/Eigen/LevenbergMarquardt>
+
+namespace oscilab::analysis {
+namespace {
+
+// A level the model cannot solve, or a fingerprint it cannot show, counts this many σ (finite,
+// so that the Gauss–Newton model stays defined; far beyond any real misfit).
+constexpr double kMissingResidual = 1e3;
+
+struct Residuals : Eigen::DenseFunctor<double> {
+  Residuals(const EdcObjective& objective, bool fingerprints, int values,
+            const CancelToken& cancel, JointRefit& best)
+      : Eigen::DenseFunctor<double>(objective.form().size(), values),
+        objective_(objective),
+        fingerprints_(fingerprints),
+        cancel_(cancel),
+        best_(best) {}
+
+  // The residual vector at the unit-cube point u; keeps the best point seen.
+  int operator()(const Eigen::VectorXd& u, Eigen::VectorXd& r) const {
+    if (cancel_.cancelled()) return -1;
+    const Eigen::VectorXd theta = objective_.form().from_unit(u.cwiseMax(0.0).cwiseMin(1.0));
+    const EdcEvaluation e = objective_.evaluate(theta);
+    ++best_.evaluations;
+    const ResponseFingerprints f = response_fingerprints(objective_.data(), e);
+    r.resize(values());
+    Eigen::Index i = 0;
+    for (Eigen::Index k = 0; k < e.residuals.size(); ++k) {
+      r[i++] = std::isfinite(e.residuals[k]) ? e.residuals[k] : kMissingResidual;
+    }
+    if (fingerprints_) {
+      for (const ResponseFingerprint& item : f.items) {
+        for (double value : item.residual_sigma) {
+          if (i < r.size()) r[i++] = std::isfinite(value) ? value : 0.0;
+        }
+      }
+    }
+    const double chi2 = joint_chi2(e, f, fingerprints_);
+    if (best_.theta.size() == 0 || chi2 < best_.joint_chi2) {
+      best_.theta = theta;
+      best_.evaluation = e;
+      best_.fingerprints = f;
+      best_.joint_chi2 = chi2;
+    }
+    return 0;
+  }
+
+  // Forward differences in the unit cube (step 1e-6, backwards at the upper bound).
+  int df(const Eigen::VectorXd& u, Eigen::MatrixXd& jacobian) const {
+    Eigen::VectorXd r0, r1;
+    if ((*this)(u, r0) < 0) return -1;
+    jacobian.resize(values(), inputs());
+    constexpr double kStep = 1e-6;
+    for (int j = 0; j < inputs(); ++j) {
+      Eigen::VectorXd shifted = u.cwiseMax(0.0).cwiseMin(1.0);
+      const double h = shifted[j] + kStep > 1.0 ? -kStep : kStep;
+      shifted[j] += h;
+      if ((*this)(shifted, r1) < 0) return -1;
+      jacobian.col(j) = (r1 - r0) / h;
+    }
+    return 0;
+  }
+
+  const EdcObjective& objective_;
+  bool fingerprints_;
+  const CancelToken& cancel_;
+  JointRefit& best_;
+};
+
+}  // namespace
+
+double joint_chi2(const EdcEvaluation& evaluation, const ResponseFingerprints& fingerprints,
+                  bool use_fingerprints) {
+  return evaluation.weighted_cost + (use_fingerprints ? fingerprints.chi2 : 0.0);
+}
+
+JointRefit joint_refit(const EdcObjective& objective, const Eigen::VectorXd& start,
+                       bool fingerprints, int max_evaluations, const CancelToken& cancel) {
+  JointRefit best;
+  best.joint_chi2 = std::numeric_limits<double>::infinity();
+  int values = objective.level_count();
+  if (fingerprints) values += 3 * objective.level_count();
+  Residuals residuals(objective, fingerprints, values, cancel, best);
+  Eigen::VectorXd u = objective.form().to_unit(objective.form().clamp(start));
+  Eigen::VectorXd r;
+  if (residuals(u, r) < 0) return best;
+  Eigen::LevenbergMarquardt<Residuals> lm(residuals);
+  // Each Jacobian costs p + 1 evaluations: the budget in function and Jacobian calls.
+  lm.setMaxfev(std::max(2, max_evaluations / (objective.form().size() + 2)));
+  lm.setXtol(1e-8);
+  lm.setFtol(1e-8);
+  lm.minimize(u);
+  return best;
+}
+
+}  // namespace oscilab::analysis
