@@ -273,15 +273,50 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   report(0.25);
   ModelForm current = form.with_initial(result.baseline.theta);
   Eigen::VectorXd theta = result.baseline.theta;
-  // The σ budget anew at the fitted θ (the model error is the fitted model's), shared by every
-  // later objective so that χ² of the control and of all candidates are comparable.
+  const bool use_fp = options.use_fingerprints;
+
+  // Settling a model: its σ budget calibrated at θ (the model error and the defect correction
+  // are the fitted model's), then a Levenberg–Marquardt refit on the joint residuals, repeated
+  // while θ moves (the correction was calibrated at the old θ), then the budget once more at the
+  // final θ. The σ budget is then shared by every objective of the step, so that the χ² of the
+  // current model and of all its candidates are comparable. A candidate's gain is measured
+  // against the settled model, so that a baseline search that stopped short of its optimum (the
+  // paper's form has a weakly identified f_d(0), §5) does not credit an added term with the rest.
   EdcCostSettings cost = options.cost;
-  cost.budget = EdcObjective::calibrate_budget(current, data, options.cost, theta);
-  EdcObjective objective(current, data, cost);
-  EdcEvaluation evaluation = objective.evaluate(theta);
+  std::optional<EdcObjective> objective;
+  EdcEvaluation evaluation;
+  DiscrepancyMaps maps;
+  Eigen::VectorXd calibrated_at;
+  const auto calibrate = [&] {
+    cost.budget = EdcObjective::calibrate_budget(current, data, options.cost, theta);
+    objective.emplace(current, data, cost);
+    evaluation = objective->evaluate(theta);
+    maps = discrepancy_maps(*objective, theta, evaluation, campaign);
+    calibrated_at = theta;
+  };
+  const auto settle = [&] {
+    constexpr int kRounds = 3;
+    for (int round = 0; round < kRounds && !cancel.cancelled(); ++round) {
+      calibrate();
+      const double before = joint_chi2(evaluation, maps.response, use_fp);
+      const JointRefit fit = joint_refit(*objective, theta, use_fp,
+                                         static_cast<int>(options.candidate_evaluations), cancel);
+      result.evaluations += fit.evaluations;
+      if (fit.theta.size() == 0 || !(fit.joint_chi2 < before)) break;
+      const double moved =
+          (current.to_unit(fit.theta) - current.to_unit(theta)).cwiseAbs().maxCoeff();
+      theta = fit.theta;
+      current = current.with_initial(theta);
+      evaluation = fit.evaluation;
+      maps = discrepancy_maps(*objective, theta, evaluation, campaign);
+      if (moved < 1e-3 || before - fit.joint_chi2 < 0.01 * before) break;
+    }
+    if (calibrated_at.size() != theta.size() || calibrated_at != theta) calibrate();
+  };
+  settle();
+  result.baseline.theta = theta;
   result.baseline.evaluation = evaluation;
-  result.baseline_maps = discrepancy_maps(objective, theta, evaluation, campaign);
-  DiscrepancyMaps maps = result.baseline_maps;
+  result.baseline_maps = maps;
   const auto noise_level = [&](int parameters) {
     const int dof = std::max(1, n - parameters);
     return 1.0 + 3.0 * std::sqrt(2.0 / dof);
@@ -289,27 +324,8 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   result.noise_reduced_chi2 = noise_level(current.size());
   std::vector<std::string> accepted_effects;
 
-  // The control refit: the current model alone, refitted locally with a candidate's budget. A
-  // candidate's gain is measured against it, so that a baseline search that stopped short of
-  // its optimum does not credit the first added term with the rest of the convergence.
-  const bool use_fp = options.use_fingerprints;
-  const auto refit_current = [&] {
-    const EdcObjective current_objective(current, data, cost);
-    const JointRefit fit = joint_refit(current_objective, theta, use_fp,
-                                       static_cast<int>(options.candidate_evaluations), cancel);
-    result.evaluations += fit.evaluations;
-    if (fit.theta.size() > 0 && fit.joint_chi2 < joint_chi2(evaluation, maps.response, use_fp)) {
-      theta = fit.theta;
-      current = current.with_initial(theta);
-      evaluation = fit.evaluation;
-      maps = discrepancy_maps(current_objective, theta, evaluation, campaign);
-    }
-  };
   for (int step = 0; step < options.max_steps && !cancel.cancelled(); ++step) {
     if (maps.reduced_chi2 <= noise_level(current.size())) break;  // explained within its noise
-    refit_current();
-    if (cancel.cancelled()) break;
-    if (maps.reduced_chi2 <= noise_level(current.size())) break;
     std::vector<EffectCandidate> candidates = effect_candidates(current, data);
     // An effect already accepted is not offered again (stiffness powers share one term type).
     std::erase_if(candidates, [&](const EffectCandidate& c) {
@@ -446,10 +462,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     const CandidateTrial& accepted = record.trials[best];
     theta = accepted.theta;
     current = forms[best]->with_initial(theta);
-    cost.budget = EdcObjective::calibrate_budget(current, data, options.cost, theta);
-    objective = EdcObjective(current, data, cost);
-    evaluation = objective.evaluate(theta);
-    maps = discrepancy_maps(objective, theta, evaluation, campaign);
+    settle();
     record.effect = accepted.effect;
     record.evidence = accepted.evidence;
     record.delta_bic_joint = accepted.delta_bic_joint;
@@ -469,7 +482,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   result.final_theta = theta;
   result.final_evaluation = evaluation;
   result.final_maps = maps;
-  result.sigma_budget = sigma_budget_json(EdcObjective(current, data, cost));
+  result.sigma_budget = sigma_budget_json(*objective);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (deadline.expired()) {
     result.incomplete = true;

@@ -1,4 +1,4 @@
-// Fingerprints of the model-gap workflow (issue 9): power-law slopes, candidate catalogue, and the
+// Fingerprints of the model-gap workflow: power-law slopes, candidate catalogue, and the
 // maps on twin data with a known missing energy.
 #include <cmath>
 #include <random>
@@ -98,7 +98,7 @@ TEST(DiscrepancyMaps, MissingEnergySlopeNamesTheLaw) {
       m.edc_j += 0.05 * s_max * std::pow(m.amplitude_m / 1e-2, 3.0);
     }
   }
-  const EdcObjective objective(form, data);
+  const EdcObjective objective(form, data, testing::twin_settings());
   const EdcEvaluation e = objective.evaluate(form.initial());
   const DiscrepancyMaps maps = discrepancy_maps(objective, form.initial(), e, CampaignAnalysis{});
   ASSERT_GE(maps.slopes.missing_all.points, 5);
