@@ -226,9 +226,8 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   // The σ budget of the final model, per level.
   budget_table_ = new QTableWidget(0, 8);
   budget_table_->setHorizontalHeaderLabels(
-      {tr("well"), tr("f0 [N]"), tr("S_mes [mJ]"), tr("\u03c3 cycles [mJ]"),
-       tr("\u03c3 bias [mJ]"), tr("\u03c3 model [mJ]"), tr("\u03c3 [mJ]"),
-       tr("correction [mJ]")});
+      {tr("well"), tr("f0 [N]"), tr("S_mes [mJ]"), tr("\u03c3 cycles [mJ]"), tr("\u03c3 bias [mJ]"),
+       tr("\u03c3 model [mJ]"), tr("\u03c3 [mJ]"), tr("correction [mJ]")});
   budget_table_->horizontalHeader()->setStretchLastSection(true);
   budget_table_->verticalHeader()->hide();
   budget_label_ = new QLabel;
@@ -571,8 +570,9 @@ QString verdict_details(const analysis::DiagnosisResult& r) {
                         .arg(r.final_maps.response.items[i].chi2 / b.levels, 0, 'g', 3);
   }
   if (!fingerprints.isEmpty()) {
-    out += QObject::tr("<br>Response fingerprints, \u03c7\u00b2 per level (baseline \u2192 "
-                       "final): %1")
+    out += QObject::tr(
+               "<br>Response fingerprints, \u03c7\u00b2 per level (baseline \u2192 "
+               "final): %1")
                .arg(fingerprints);
   }
   if (r.incomplete) {
@@ -654,8 +654,7 @@ void IdentificationPanel::show_diagnosis(const Outcome& outcome) {
       }
       step_table_->setItem(row, 8, cell(supported.isEmpty() ? QStringLiteral("—") : supported));
       step_table_->setItem(
-          row, 9,
-          cell(QString::fromStdString(analysis::candidate_outcome(s, t, bic_threshold_))));
+          row, 9, cell(QString::fromStdString(analysis::candidate_outcome(s, t, bic_threshold_))));
       ++row;
     }
   }

@@ -1,11 +1,11 @@
 #include "analysis/diagnosis/diagnosis.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <limits>
-#include <atomic>
 #include <condition_variable>
+#include <limits>
 #include <mutex>
 #include <thread>
 
@@ -235,8 +235,7 @@ void score_trial(CandidateTrial& trial, const JointRefit& fit, const EdcEvaluati
                                     current_fingerprints, fit.fingerprints);
   trial.delta_bic_joint = trial.delta_bic;
   if (use_fingerprints && fit.fingerprints.count > 0) {
-    trial.delta_bic_joint = fit.joint_chi2 -
-                            joint_chi2(current, current_fingerprints, true) +
+    trial.delta_bic_joint = fit.joint_chi2 - joint_chi2(current, current_fingerprints, true) +
                             added * std::log(static_cast<double>(levels + fit.fingerprints.count));
   }
 }
@@ -396,7 +395,8 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         JointRefit attempt =
             joint_refit(extended_objective, point, use_fp, static_cast<int>(per_start), cancel);
         spent += attempt.evaluations;
-        if (attempt.theta.size() > 0 && attempt.joint_chi2 < fit.joint_chi2) fit = std::move(attempt);
+        if (attempt.theta.size() > 0 && attempt.joint_chi2 < fit.joint_chi2)
+          fit = std::move(attempt);
       }
       if (fit.theta.size() == 0 || cancel.cancelled()) {
         trial.solved = false;
@@ -634,9 +634,9 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
         result.final_maps.reduced_chi2 <= result.noise_reduced_chi2
             ? "the model form explains the data within its noise (reduced chi2 at or below the "
               "noise level)"
-            : result.incomplete
-                ? "stopped at the time limit before a candidate was accepted"
-                : "no candidate effect improves the fit by the required evidence (dBIC threshold)";
+        : result.incomplete
+            ? "stopped at the time limit before a candidate was accepted"
+            : "no candidate effect improves the fit by the required evidence (dBIC threshold)";
   }
   out["noise_reduced_chi2"] = result.noise_reduced_chi2;
   if (result.final_form) {

@@ -53,8 +53,8 @@ struct CandidateTrial {
   double weighted_cost = 0.0;      // χ² after the refit
   double cost_j = 0.0;             // eq. (8) after the refit
   double delta_bic = 0.0;          // of the EDC alone: Δχ² + Δp ln n
-  double delta_bic_joint = 0.0;    // EDC and fingerprints: Δχ²_EDC + Δχ²_fp + Δp ln(n + n_fp)
-  double joint_chi2 = 0.0;         // χ²_EDC + χ²_fp after the refit
+  double delta_bic_joint = 0.0;  // EDC and fingerprints: Δχ²_EDC + Δχ²_fp + Δp ln(n + n_fp)
+  double joint_chi2 = 0.0;       // χ²_EDC + χ²_fp after the refit
   std::vector<EvidenceChange> evidence;
   bool solved = true;
   Eigen::VectorXd theta;  // all parameters of the extended form
@@ -65,8 +65,8 @@ struct DiagnosisStep {
   double cost_before_j = 0.0, cost_after_j = 0.0;
   double weighted_before = 0.0, weighted_after = 0.0;
   double reduced_chi2_before = 0.0, reduced_chi2_after = 0.0;
-  double delta_bic = 0.0;        // of the accepted model after its longer refit (EDC)
-  double delta_bic_joint = 0.0;  // the accepted candidate's joint ΔBIC
+  double delta_bic = 0.0;                // of the accepted model after its longer refit (EDC)
+  double delta_bic_joint = 0.0;          // the accepted candidate's joint ΔBIC
   std::vector<EvidenceChange> evidence;  // of the accepted candidate
   DiscrepancyMaps maps_before;
   std::vector<CandidateTrial> trials;  // in the order tried (fingerprint ranking)
@@ -77,7 +77,7 @@ struct DiagnosisStep {
 struct DiagnosisResult {
   JobStatus status = JobStatus::Ok;
   std::string message;
-  bool incomplete = false;  // stopped at max_seconds: the steps done so far, no more
+  bool incomplete = false;      // stopped at max_seconds: the steps done so far, no more
   nlohmann::json sigma_budget;  // of the final model (sigma_budget_json)
   FitResult baseline;
   DiscrepancyMaps baseline_maps, final_maps;

@@ -13,8 +13,8 @@ namespace {
 constexpr double kMissingResidual = 1e3;
 
 struct Residuals : Eigen::DenseFunctor<double> {
-  Residuals(const EdcObjective& objective, bool fingerprints, int values,
-            const CancelToken& cancel, JointRefit& best)
+  Residuals(const EdcObjective& objective, bool fingerprints, int values, const CancelToken& cancel,
+            JointRefit& best)
       : Eigen::DenseFunctor<double>(objective.form().size(), values),
         objective_(objective),
         fingerprints_(fingerprints),

@@ -26,8 +26,8 @@ inline constexpr double kHarmonicRatioBias = 1.5e-4;
 ///   the laws apart where the EDC alone lets the paper's form mimic them.
 struct ResponseFingerprint {
   std::string name;
-  double chi2 = 0.0;  // Σ residual²
-  int levels = 0;     // levels with a measurement
+  double chi2 = 0.0;                   // Σ residual²
+  int levels = 0;                      // levels with a measurement
   std::vector<double> residual_sigma;  // per level in group order (NaN where not measured)
 };
 

@@ -20,10 +20,11 @@ namespace oscilab::analysis {
 ///   sensitivities, e.g. the Dahl element). One period is a map s_N = Φ(s_0) with slope
 ///   A = Π_k ∂s_{k+1}/∂s_k, so the periodic state is the root of g(s_0) = Φ(s_0) − s_0, found by
 ///   Newton, s_0 ← s_0 + g / (1 − A), exact in one step for the Dahl element, whose steps are
-///   affine in s: then the marched states shift by P_k Δs_0 and one march is all it takes. 1 − A is taken as −expm1(Σ ln ∂s_{k+1}/∂s_k), accurate even for loops far below
-///   the presliding length (A → 1), where marching period after period would settle only as
-///   A^periods. The same recurrence gives the force's exact derivative with respect to the orbit
-///   (sensitivity()): for a perturbation δz_k of the samples,
+///   affine in s: then the marched states shift by P_k Δs_0 and one march is all it takes. 1 − A is
+///   taken as −expm1(Σ ln ∂s_{k+1}/∂s_k), accurate even for loops far below the presliding length
+///   (A → 1), where marching period after period would settle only as A^periods. The same
+///   recurrence gives the force's exact derivative with respect to the orbit (sensitivity()): for a
+///   perturbation δz_k of the samples,
 ///
 ///     δs_{k+1} = a_k δs_k + p_k δz_k + q_k δz_{k+1},   δs_0 = δs_N (periodic),
 ///
@@ -55,8 +56,8 @@ class HysteresisMarch {
   void sensitivity(const Eigen::MatrixXd& dz_m, Eigen::MatrixXd& dforce_n) const;
 
  private:
-  int exact_forces(const Model& model, const Eigen::VectorXd& z_m,
-                   const Eigen::VectorXd& z_dot_m_s, Eigen::VectorXd& force_n);
+  int exact_forces(const Model& model, const Eigen::VectorXd& z_m, const Eigen::VectorXd& z_dot_m_s,
+                   Eigen::VectorXd& force_n);
   int marched_forces(const Model& model, const Eigen::VectorXd& z_m,
                      const Eigen::VectorXd& z_dot_m_s, double period_s, Eigen::VectorXd& force_n);
 

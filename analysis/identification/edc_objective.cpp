@@ -19,8 +19,8 @@ struct LevelQuantities {
   std::vector<double> edc_j, z1_abs_m, h2_ratio, h3_ratio;
 };
 
-LevelQuantities model_quantities(const Model& model, const EdcDataset& data,
-                                 const HbmOptions& hbm, bool& ok) {
+LevelQuantities model_quantities(const Model& model, const EdcDataset& data, const HbmOptions& hbm,
+                                 bool& ok) {
   LevelQuantities out;
   ok = true;
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -122,7 +122,8 @@ SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDatas
         const double measurement = std::hypot(budget.cycles_j[k], budget.bias_j[k]);
         if (!(error <= settings.model_error_target * measurement)) budget.resolved = false;
         // The defect correction: what H harmonics miss against the reference, at this θ.
-        const auto defect = [&](const std::vector<double>& fine, const std::vector<double>& coarse) {
+        const auto defect = [&](const std::vector<double>& fine,
+                                const std::vector<double>& coarse) {
           const double d = fine[k] - coarse[k];
           return std::isfinite(d) ? d : 0.0;
         };
@@ -137,9 +138,9 @@ SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDatas
   }
   budget.total_j.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
-    budget.total_j[k] = std::sqrt(budget.cycles_j[k] * budget.cycles_j[k] +
-                                  budget.bias_j[k] * budget.bias_j[k] +
-                                  budget.model_j[k] * budget.model_j[k]);
+    budget.total_j[k] =
+        std::sqrt(budget.cycles_j[k] * budget.cycles_j[k] + budget.bias_j[k] * budget.bias_j[k] +
+                  budget.model_j[k] * budget.model_j[k]);
   }
   return budget;
 }

@@ -41,8 +41,8 @@ struct SigmaBudget {
   int reference_harmonics = 0;  // H_ref of the correction (0: none); σ_model from 2H_ref + 1
   double model_error_target = 0.0;
   bool resolved = true;  // every level's model error met the target within max H
-  std::vector<double> cycles_j, bias_j, model_j, total_j;  // per level, group order
-  std::vector<double> correction_j;  // δ_k added to S_k(H)
+  std::vector<double> cycles_j, bias_j, model_j, total_j;             // per level, group order
+  std::vector<double> correction_j;                                   // δ_k added to S_k(H)
   std::vector<double> correction_z1_m, correction_h2, correction_h3;  // the same for the response
 };
 
@@ -94,9 +94,10 @@ struct EdcEvaluation {
 ///
 ///   χ²(θ) = Σ_k w_k ((S_k^mes − S_k^mod(θ)) / σ_k)²,
 ///
-/// with σ_k from the level's σ budget (SigmaBudget: cycles, estimator bias, model error). EDCs span three decades from 0.2 to 2.7 N, so eq. (8) is blind to the
-/// low levels where v_t and k_s act (§5.1); χ² weighs every level by its own precision. Weights
-/// w_k default to 1 (a bootstrap sets them to resampling multiplicities).
+/// with σ_k from the level's σ budget (SigmaBudget: cycles, estimator bias, model error). EDCs span
+/// three decades from 0.2 to 2.7 N, so eq. (8) is blind to the low levels where v_t and k_s act
+/// (§5.1); χ² weighs every level by its own precision. Weights w_k default to 1 (a bootstrap sets
+/// them to resampling multiplicities).
 ///
 /// Thread-safety: evaluate() is safe to call concurrently; the evaluation counter is atomic.
 class EdcObjective {

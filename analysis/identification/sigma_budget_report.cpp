@@ -31,16 +31,17 @@ nlohmann::json sigma_budget_json(const EdcObjective& objective) {
                       {"correction_j", b.correction_j[k]}});
   });
   const bool fixed = objective.settings().model_error_rel >= 0.0;
-  return {{"harmonics", b.harmonics},
-          {"reference_harmonics", b.reference_harmonics},
-          {"model_error", fixed ? "fixed floor"
-                                : "estimated: |S(H_ref) - S(2 H_ref + 1)|, S(H) corrected to H_ref"},
-          {"model_error_floor_rel", fixed ? nlohmann::json(objective.settings().model_error_rel)
-                                          : nlohmann::json(nullptr)},
-          {"model_error_target", b.model_error_target},
-          {"resolved", b.resolved},
-          {"estimator_bias_rel", fixed ? 0.0 : kEdcEstimatorBiasRel},
-          {"levels", levels}};
+  return {
+      {"harmonics", b.harmonics},
+      {"reference_harmonics", b.reference_harmonics},
+      {"model_error",
+       fixed ? "fixed floor" : "estimated: |S(H_ref) - S(2 H_ref + 1)|, S(H) corrected to H_ref"},
+      {"model_error_floor_rel",
+       fixed ? nlohmann::json(objective.settings().model_error_rel) : nlohmann::json(nullptr)},
+      {"model_error_target", b.model_error_target},
+      {"resolved", b.resolved},
+      {"estimator_bias_rel", fixed ? 0.0 : kEdcEstimatorBiasRel},
+      {"levels", levels}};
 }
 
 std::vector<std::string> sigma_budget_lines(const EdcObjective& objective) {

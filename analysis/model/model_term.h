@@ -22,11 +22,11 @@ struct TermPartials {
 /// Sensitivities of one step s₁ = advance(s₀; z₀ → z₁) of a one-value, rate-independent state:
 /// what a periodic-state solver needs for an exact periodic state and an analytic Jacobian.
 struct StateStepSensitivity {
-  double d_state = 1.0;      // ∂s₁/∂s₀
-  double d_z0 = 0.0;         // ∂s₁/∂z₀
-  double d_z1 = 0.0;         // ∂s₁/∂z₁
+  double d_state = 1.0;  // ∂s₁/∂s₀
+  double d_z0 = 0.0;     // ∂s₁/∂z₀
+  double d_z1 = 0.0;     // ∂s₁/∂z₁
   double log_d_state = 0.0;  // ln ∂s₁/∂s₀ when ∂s₁/∂s₀ > 0 (products of many steps in logs)
-  bool affine = false;       // s₁ is affine in s₀ (a shift of s₀ shifts s₁ by ∂s₁/∂s₀ times it)
+  bool affine = false;  // s₁ is affine in s₀ (a shift of s₀ shifts s₁ by ∂s₁/∂s₀ times it)
 };
 
 /// One named contribution to the restoring surface R(z, ż) of eq. (1): m z̈ + Σ F_i(z, ż, s_i) = f.

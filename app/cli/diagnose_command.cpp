@@ -119,7 +119,10 @@ std::string evidence_text(const std::vector<analysis::EvidenceChange>& evidence)
   char part[96];
   for (const analysis::EvidenceChange& e : evidence) {
     std::snprintf(part, sizeof part, "%s%s %+.0f%s", out.empty() ? "" : ", ", e.name.c_str(),
-                  e.delta_chi2(), e.supports() ? " (supports)" : e.contradicts() ? " (against)" : "");
+                  e.delta_chi2(),
+                  e.supports()      ? " (supports)"
+                  : e.contradicts() ? " (against)"
+                                    : "");
     out += part;
   }
   return out;
@@ -163,16 +166,16 @@ void print_result(const analysis::DiagnosisResult& r, double bic_threshold) {
                   bic_threshold);
     } else {
       std::printf("step: %s accepted, joint dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g\n",
-                  step.effect.c_str(), step.delta_bic_joint, step.cost_before_j,
-                  step.cost_after_j, step.weighted_before, step.weighted_after);
+                  step.effect.c_str(), step.delta_bic_joint, step.cost_before_j, step.cost_after_j,
+                  step.weighted_before, step.weighted_after);
     }
     for (const auto& t : step.trials) {
       if (!t.solved) {
         std::printf("    %-22s not solved\n", t.effect.c_str());
         continue;
       }
-      std::printf("    %-22s dBIC edc %9.1f joint %9.1f  [%s]  %s\n", t.effect.c_str(),
-                  t.delta_bic, t.delta_bic_joint, evidence_text(t.evidence).c_str(),
+      std::printf("    %-22s dBIC edc %9.1f joint %9.1f  [%s]  %s\n", t.effect.c_str(), t.delta_bic,
+                  t.delta_bic_joint, evidence_text(t.evidence).c_str(),
                   analysis::candidate_outcome(step, t, bic_threshold).c_str());
     }
   }
@@ -259,10 +262,13 @@ void add_diagnose_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
   command
-      ->add_option("--harmonics", o->harmonics,
-                   "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
+      ->add_option(
+          "--harmonics", o->harmonics,
+          "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
       ->capture_default_str();
-  command->add_option("--max-harmonics", o->max_harmonics, "largest reference H of the sigma budget's correction")
+  command
+      ->add_option("--max-harmonics", o->max_harmonics,
+                   "largest reference H of the sigma budget's correction")
       ->capture_default_str();
   command
       ->add_option("--model-error", o->model_error,

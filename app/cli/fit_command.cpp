@@ -201,10 +201,13 @@ void add_fit_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
   command
-      ->add_option("--harmonics", o->harmonics,
-                   "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
+      ->add_option(
+          "--harmonics", o->harmonics,
+          "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
       ->capture_default_str();
-  command->add_option("--max-harmonics", o->max_harmonics, "largest reference H of the sigma budget's correction")
+  command
+      ->add_option("--max-harmonics", o->max_harmonics,
+                   "largest reference H of the sigma budget's correction")
       ->capture_default_str();
   command
       ->add_option("--model-error", o->model_error,

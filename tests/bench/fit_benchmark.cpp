@@ -8,8 +8,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "analysis/identification/edc_fit.h"
 #include "analysis/hbm/level_response.h"
+#include "analysis/identification/edc_fit.h"
 #include "analysis/model/dahl_friction.h"
 #include "analysis/model/reference_models.h"
 #include "tests/analysis/identification/twin_data.h"

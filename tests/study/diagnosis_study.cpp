@@ -31,8 +31,9 @@ namespace {
 using namespace oscilab::analysis;
 
 int bias_study(int seeds) {
-  std::printf("freq_hz,noise_scale,seed,well,f0_n,edc_mes_j,edc_true_j,sigma_cycles_j,"
-              "z1_mes_m,z1_true_m,z1_se_m,h2_mes,h2_true,h2_se,h3_mes,h3_true,h3_se\n");
+  std::printf(
+      "freq_hz,noise_scale,seed,well,f0_n,edc_mes_j,edc_true_j,sigma_cycles_j,"
+      "z1_mes_m,z1_true_m,z1_se_m,h2_mes,h2_true,h2_se,h3_mes,h3_true,h3_se\n");
   const Model truth = paper_model();
   HbmOptions converged;
   converged.harmonics = 31;
@@ -54,11 +55,12 @@ int bias_study(int seeds) {
             const MeasuredLevel& l = g.levels[i];
             const Eigen::VectorXd& x = r.coefficients[i];
             const double a1 = std::hypot(x[1], x[2]);
-            std::printf("%g,%g,%d,%s,%.6g,%.9g,%.9g,%.4g,%.9g,%.9g,%.4g,%.6g,%.6g,%.4g,%.6g,%.6g,%.4g\n",
-                        freq, noise, seed, g.positive_well ? "positive" : "negative", l.f0_n,
-                        l.edc_j, r.edc_j[i], l.sigma_of_mean_j(), l.amplitude_m, a1,
-                        l.z1_abs_se_m, l.h2_ratio, std::hypot(x[3], x[4]) / a1, l.h2_ratio_se,
-                        l.h3_ratio, std::hypot(x[5], x[6]) / a1, l.h3_ratio_se);
+            std::printf(
+                "%g,%g,%d,%s,%.6g,%.9g,%.9g,%.4g,%.9g,%.9g,%.4g,%.6g,%.6g,%.4g,%.6g,%.6g,%.4g\n",
+                freq, noise, seed, g.positive_well ? "positive" : "negative", l.f0_n, l.edc_j,
+                r.edc_j[i], l.sigma_of_mean_j(), l.amplitude_m, a1, l.z1_abs_se_m, l.h2_ratio,
+                std::hypot(x[3], x[4]) / a1, l.h2_ratio_se, l.h3_ratio, std::hypot(x[5], x[6]) / a1,
+                l.h3_ratio_se);
           }
         }
         std::fflush(stdout);
@@ -69,8 +71,9 @@ int bias_study(int seeds) {
 }
 
 void print_header() {
-  std::printf("case,effect,scale,freq_hz,noise_scale,seed,verdict,correct,status,seconds,"
-              "baseline_reduced_chi2,noise_reduced_chi2,steps,accepted\n");
+  std::printf(
+      "case,effect,scale,freq_hz,noise_scale,seed,verdict,correct,status,seconds,"
+      "baseline_reduced_chi2,noise_reduced_chi2,steps,accepted\n");
 }
 
 void print_result(const std::string& kind, const std::string& effect, double scale, double freq,
@@ -82,9 +85,8 @@ void print_result(const std::string& kind, const std::string& effect, double sca
   const bool correct = r.verdict == effect;
   std::printf("%s,%s,%g,%g,%g,%d,%s,%d,%s,%.1f,%.4g,%.4g,%zu,%s\n", kind.c_str(), effect.c_str(),
               scale, freq, noise, seed, r.verdict.c_str(), correct ? 1 : 0,
-              r.incomplete ? "incomplete" : "complete", r.seconds,
-              r.baseline_maps.reduced_chi2, r.noise_reduced_chi2, r.steps.size(),
-              accepted.empty() ? "-" : accepted.c_str());
+              r.incomplete ? "incomplete" : "complete", r.seconds, r.baseline_maps.reduced_chi2,
+              r.noise_reduced_chi2, r.steps.size(), accepted.empty() ? "-" : accepted.c_str());
   std::fflush(stdout);
 }
 

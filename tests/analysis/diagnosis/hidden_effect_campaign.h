@@ -58,8 +58,8 @@ inline Model truth_with_effect(const std::string& effect, double scale) {
     model.add_term(
         std::make_unique<PolynomialStiffness>(std::vector<double>{0, 0, 0, 3.7e4 * scale}));
   } else if (effect == "quintic-stiffness") {
-    model.add_term(std::make_unique<PolynomialStiffness>(
-        std::vector<double>{0, 0, 0, 0, 0, 1.2e7 * scale}));
+    model.add_term(
+        std::make_unique<PolynomialStiffness>(std::vector<double>{0, 0, 0, 0, 0, 1.2e7 * scale}));
   } else if (effect != "none") {
     throw InputError("unknown hidden effect \"" + effect + "\"");
   }

@@ -57,9 +57,9 @@ TEST_P(HiddenEffectDetection, NamesTheEffectAndClosesTheGap) {
     truth = testing::truth_with_effect(c.effect, c.scale);
   }
   const DiagnosisResult r = diagnose_blind(truth, seed);
-  std::printf("%s %g: verdict %s, reduced chi2 %.4g -> %.4g, %zu steps, %.1f s\n",
-              c.effect.c_str(), c.scale, r.verdict.c_str(), r.baseline_maps.reduced_chi2,
-              r.final_maps.reduced_chi2, r.steps.size(), r.seconds);
+  std::printf("%s %g: verdict %s, reduced chi2 %.4g -> %.4g, %zu steps, %.1f s\n", c.effect.c_str(),
+              c.scale, r.verdict.c_str(), r.baseline_maps.reduced_chi2, r.final_maps.reduced_chi2,
+              r.steps.size(), r.seconds);
   EXPECT_FALSE(r.incomplete) << r.message;
   EXPECT_EQ(r.verdict, c.effect);
   if (c.effect == "none") return;
@@ -75,9 +75,9 @@ TEST_P(HiddenEffectDetection, NamesTheEffectAndClosesTheGap) {
 
 std::vector<Case> cases() {
   std::vector<Case> out;
-  for (const char* effect : {"presliding-hysteresis", "quadratic-damping", "cubic-damping",
-                             "stribeck-friction", "quadratic-stiffness", "cubic-stiffness",
-                             "quintic-stiffness"}) {
+  for (const char* effect :
+       {"presliding-hysteresis", "quadratic-damping", "cubic-damping", "stribeck-friction",
+        "quadratic-stiffness", "cubic-stiffness", "quintic-stiffness"}) {
     out.push_back({effect, 0.3});
     out.push_back({effect, 3.0});
   }

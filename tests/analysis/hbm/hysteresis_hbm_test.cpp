@@ -163,7 +163,8 @@ TEST(HysteresisHbm, ExactJacobianMatchesCentralDifferences) {
       xm[j] -= h;
       hbm.residual(xp, 1.0, r_plus);
       hbm.residual(xm, 1.0, r_minus);
-      worst = std::max(worst, ((r_plus - r_minus) / (2 * h) - jacobian.col(j)).cwiseAbs().maxCoeff());
+      worst =
+          std::max(worst, ((r_plus - r_minus) / (2 * h) - jacobian.col(j)).cwiseAbs().maxCoeff());
     }
     EXPECT_LT(worst / jacobian.cwiseAbs().maxCoeff(), 1e-4) << "presliding length " << length;
   }

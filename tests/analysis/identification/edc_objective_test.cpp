@@ -107,10 +107,10 @@ TEST(SigmaBudget, AddsCyclesBiasAndModelErrorInQuadrature) {
     for (const MeasuredLevel& level : g.levels) {
       EXPECT_NEAR(b.cycles_j[k], 1e-3 * level.edc_j, 1e-15);
       EXPECT_NEAR(b.bias_j[k], kEdcEstimatorBiasRel * level.edc_j, 1e-15);
-      EXPECT_NEAR(b.total_j[k] * b.total_j[k],
-                  b.cycles_j[k] * b.cycles_j[k] + b.bias_j[k] * b.bias_j[k] +
-                      b.model_j[k] * b.model_j[k],
-                  1e-12 * b.total_j[k] * b.total_j[k]);
+      EXPECT_NEAR(
+          b.total_j[k] * b.total_j[k],
+          b.cycles_j[k] * b.cycles_j[k] + b.bias_j[k] * b.bias_j[k] + b.model_j[k] * b.model_j[k],
+          1e-12 * b.total_j[k] * b.total_j[k]);
       EXPECT_DOUBLE_EQ(objective.sigma_j()[k], b.total_j[k]);
       ++k;
     }
@@ -118,11 +118,11 @@ TEST(SigmaBudget, AddsCyclesBiasAndModelErrorInQuadrature) {
 }
 
 // Convergence under refinement: data of the paper's model from harmonic balance at H = 40 (off the
-// budget's ladder of references 15, 23, 31, 47, 63, so the reference is another discretisation). The fit's model side runs at H = 7, whose
-// truncation alone misses these EDCs by many σ (σ is only the 5e-4 estimator bias here: twin data
-// has no cycles); the defect correction brings the truth within 1 σ at every level, as the budget
-// promises (its model error is at most 0.3 of the measurement σ, and the correction is exact at
-// the calibration θ, which is the truth here).
+// budget's ladder of references 15, 23, 31, 47, 63, so the reference is another discretisation).
+// The fit's model side runs at H = 7, whose truncation alone misses these EDCs by many σ (σ is only
+// the 5e-4 estimator bias here: twin data has no cycles); the defect correction brings the truth
+// within 1 σ at every level, as the budget promises (its model error is at most 0.3 of the
+// measurement σ, and the correction is exact at the calibration θ, which is the truth here).
 TEST(SigmaBudget, DefectCorrectionReachesTheReferenceAccuracy) {
   HbmOptions converged;
   converged.harmonics = 40;

@@ -6,8 +6,8 @@
 
 #include "analysis/hbm/level_response.h"
 #include "analysis/identification/edc_dataset.h"
-#include "analysis/identification/edc_objective.h"
 #include "analysis/identification/edc_fit.h"
+#include "analysis/identification/edc_objective.h"
 #include "analysis/model/model.h"
 
 namespace oscilab::analysis::testing {
