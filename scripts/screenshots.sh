@@ -16,7 +16,8 @@ shot "$neg" "$out/review-levels.png" --size 1400x900 --hide-panel --tab levels -
   --mark 116.2:"check bolt" --cursor 116.2 "$pos"
 shot "$neg" "$out/review-rfs.png" --size 1400x900 --hide-panel --tab rfs "$pos"
 shot "$neg" "$out/fit-panel.png" --size 1700x1000 --run fit "$pos"
-shot "$neg" "$out/diagnosis-panel.png" --size 1700x1000 --run diagnose "$pos"
+shot "$root/samples/presliding_negative.flac" "$out/diagnosis-panel.png" --size 1700x1000 \
+  --run diagnose "$root/samples/presliding_positive.flac"
 shot "$neg" "$out/fit-hbm.png" --size 1000x820 --run fit --dialog hbm "$pos"
 shot "$neg" "$out/fit-map.png" --size 1000x1180 --run fit --dialog map "$pos"
 shot "$pos" "$out/live-monitor.png" --size 1600x1000 --hide-panel --live rig

@@ -223,6 +223,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
        tr("outcome")});
   step_table_->horizontalHeader()->setStretchLastSection(true);
   step_table_->verticalHeader()->hide();
+  step_table_->setMinimumHeight(180);
   // The σ budget of the final model, per level.
   budget_table_ = new QTableWidget(0, 8);
   budget_table_->setHorizontalHeaderLabels(
@@ -255,7 +256,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   auto* diagnosis_page = new QWidget;
   auto* diagnosis_layout = new QVBoxLayout(diagnosis_page);
   diagnosis_layout->addWidget(verdict_label_);
-  diagnosis_layout->addWidget(step_table_, 1);
+  diagnosis_layout->addWidget(step_table_, 3);
   diagnosis_layout->addWidget(residual_plot_, 2);
   tabs_ = new QTabWidget;
   tabs_->addTab(edc_plot_, tr("EDC"));
@@ -407,11 +408,13 @@ void IdentificationPanel::start(bool diagnosis) {
         const auto& r = outcome->diagnosis_result;
         if (r.final_form) {
           outcome->objective = std::make_shared<const analysis::EdcObjective>(
-              *r.final_form, analysis::edc_dataset(campaign), diagnosis_options.cost);
+              *r.final_form, analysis::edc_dataset(campaign), r.final_cost);
         }
       } else {
+        analysis::EdcCostSettings cost;
+        cost.cancel = cancel;  // the σ budget's calibration stops with the job
         const auto objective = std::make_shared<const analysis::EdcObjective>(
-            form, analysis::edc_dataset(campaign), analysis::EdcCostSettings{});
+            form, analysis::edc_dataset(campaign), cost);
         outcome->objective = objective;
         const long budget = fit_options.method == analysis::FitMethod::Genetic
                                 ? static_cast<long>(fit_options.genetic.population) *

@@ -260,7 +260,9 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
 
   // Baseline: the form as given, searched globally, its σ budget calibrated at the form's
   // initial θ.
-  const EdcObjective baseline_objective(form, data, options.cost);
+  EdcCostSettings base_cost = options.cost;
+  base_cost.cancel = cancel;  // the calibrations stop with the job
+  const EdcObjective baseline_objective(form, data, base_cost);
   FitOptions baseline_options;
   baseline_options.max_evaluations = options.baseline_evaluations;
   baseline_options.seed = options.seed;
@@ -281,13 +283,13 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   // current model and of all its candidates are comparable. A candidate's gain is measured
   // against the settled model, so that a baseline search that stopped short of its optimum (the
   // paper's form has a weakly identified f_d(0), §5) does not credit an added term with the rest.
-  EdcCostSettings cost = options.cost;
+  EdcCostSettings cost = base_cost;
   std::optional<EdcObjective> objective;
   EdcEvaluation evaluation;
   DiscrepancyMaps maps;
   Eigen::VectorXd calibrated_at;
   const auto calibrate = [&] {
-    cost.budget = EdcObjective::calibrate_budget(current, data, options.cost, theta);
+    cost.budget = EdcObjective::calibrate_budget(current, data, base_cost, theta);
     objective.emplace(current, data, cost);
     evaluation = objective->evaluate(theta);
     maps = discrepancy_maps(*objective, theta, evaluation, campaign);
@@ -409,7 +411,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       // that the candidates' χ² remain comparable.
       EdcCostSettings& own = own_costs[slot];
       {
-        EdcCostSettings reference = options.cost;
+        EdcCostSettings reference = base_cost;
         reference.max_harmonics = std::min(options.cost.max_harmonics, 31);
         const SigmaBudget calibrated =
             EdcObjective::calibrate_budget(extended, data, reference, fit.theta);
@@ -506,6 +508,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   result.final_evaluation = evaluation;
   result.final_maps = maps;
   result.sigma_budget = sigma_budget_json(*objective);
+  result.final_cost = cost;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (deadline.expired()) {
     result.incomplete = true;

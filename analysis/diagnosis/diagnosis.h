@@ -79,6 +79,7 @@ struct DiagnosisResult {
   std::string message;
   bool incomplete = false;      // stopped at max_seconds: the steps done so far, no more
   nlohmann::json sigma_budget;  // of the final model (sigma_budget_json)
+  EdcCostSettings final_cost;   // the final model's cost settings, its σ budget included
   FitResult baseline;
   DiscrepancyMaps baseline_maps, final_maps;
   std::vector<DiagnosisStep> steps;

@@ -1,8 +1,10 @@
 #include "analysis/identification/edc_objective.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -20,16 +22,19 @@ struct LevelQuantities {
 };
 
 LevelQuantities model_quantities(const Model& model, const EdcDataset& data, const HbmOptions& hbm,
-                                 bool& ok) {
+                                 bool& ok, const CancelToken& cancel) {
   LevelQuantities out;
   ok = true;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const EdcGroup& group : data.groups) {
+    if (cancel.cancelled()) ok = false;
     std::vector<double> f0;
     for (const MeasuredLevel& level : group.levels) f0.push_back(level.f0_n);
     LevelResponse response;
     try {
-      response = level_response(model, group.freq_hz, group.positive_well, f0, hbm);
+      if (!cancel.cancelled()) {
+        response = level_response(model, group.freq_hz, group.positive_well, f0, hbm);
+      }
     } catch (const InputError&) {
       response.status = JobStatus::NoConvergence;
     }
@@ -98,23 +103,39 @@ SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDatas
     } catch (const InputError&) {
       budget.resolved = false;
     }
-    bool fit_ok = true;
-    const LevelQuantities at_fit =
-        model ? model_quantities(*model, data, settings.hbm, fit_ok) : LevelQuantities{};
+    // Quantities per H, computed once: the check of one rung (2H_ref + 1) is the reference of a
+    // later one (31, 47, 63).
+    std::map<int, std::pair<LevelQuantities, bool>> computed;
+    const auto at = [&](int harmonics) -> const std::pair<LevelQuantities, bool>& {
+      auto found = computed.find(harmonics);
+      if (found != computed.end()) return found->second;
+      HbmOptions hbm = settings.hbm;
+      hbm.harmonics = harmonics;
+      hbm.samples = 0;
+      std::pair<LevelQuantities, bool> value;
+      value.second = true;
+      value.first = model_quantities(*model, data, hbm, value.second, settings.cancel);
+      return computed.emplace(harmonics, std::move(value)).first->second;
+    };
+    bool fit_ok = model.has_value();
+    const LevelQuantities* at_fit = nullptr;
+    if (model) {
+      const auto& fit = at(settings.hbm.harmonics);
+      at_fit = &fit.first;
+      fit_ok = fit.second;
+    }
     const std::vector<int> ladder =
         settings.adaptive_harmonics
             ? reference_ladder(settings.hbm.harmonics, settings.max_harmonics)
             : std::vector<int>{settings.hbm.harmonics};
     for (std::size_t rung = 0; model && fit_ok && rung < ladder.size(); ++rung) {
-      HbmOptions reference = settings.hbm, check = settings.hbm;
-      reference.harmonics = ladder[rung];
-      reference.samples = 0;
-      check.harmonics = 2 * ladder[rung] + 1;
-      check.samples = 0;
-      bool reference_ok = true, check_ok = true;
-      const LevelQuantities s_reference = model_quantities(*model, data, reference, reference_ok);
-      const LevelQuantities s_check = model_quantities(*model, data, check, check_ok);
-      budget.reference_harmonics = reference.harmonics;
+      if (settings.cancel.cancelled()) {
+        budget.resolved = false;
+        break;
+      }
+      const auto& [s_reference, reference_ok] = at(ladder[rung]);
+      const auto& [s_check, check_ok] = at(2 * ladder[rung] + 1);
+      budget.reference_harmonics = ladder[rung];
       budget.resolved = reference_ok && check_ok;
       for (std::size_t k = 0; k < n; ++k) {
         const double error = std::abs(s_reference.edc_j[k] - s_check.edc_j[k]);
@@ -127,10 +148,10 @@ SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDatas
           const double d = fine[k] - coarse[k];
           return std::isfinite(d) ? d : 0.0;
         };
-        budget.correction_j[k] = defect(s_reference.edc_j, at_fit.edc_j);
-        budget.correction_z1_m[k] = defect(s_reference.z1_abs_m, at_fit.z1_abs_m);
-        budget.correction_h2[k] = defect(s_reference.h2_ratio, at_fit.h2_ratio);
-        budget.correction_h3[k] = defect(s_reference.h3_ratio, at_fit.h3_ratio);
+        budget.correction_j[k] = defect(s_reference.edc_j, at_fit->edc_j);
+        budget.correction_z1_m[k] = defect(s_reference.z1_abs_m, at_fit->z1_abs_m);
+        budget.correction_h2[k] = defect(s_reference.h2_ratio, at_fit->h2_ratio);
+        budget.correction_h3[k] = defect(s_reference.h3_ratio, at_fit->h3_ratio);
       }
       if (budget.resolved) break;
     }
@@ -204,6 +225,36 @@ std::vector<double> EdcObjective::edc_at(const Model& model, bool positive_well,
   std::vector<double> out(f0_n.size(), 0.0);
   for (std::size_t k = 0; k < response.edc_j.size() && k < out.size(); ++k) {
     out[k] = response.edc_j[k];
+  }
+  // The group's corrections at its measured levels, interpolated linearly in f0.
+  std::vector<double> level_f0, correction;
+  std::size_t k = 0;
+  for (const EdcGroup& group : data_.groups) {
+    const bool same = group.positive_well == positive_well &&
+                      std::abs(group.freq_hz - freq_hz) <= 1e-9 * std::abs(freq_hz);
+    for (const MeasuredLevel& level : group.levels) {
+      if (same) {
+        level_f0.push_back(level.f0_n);
+        correction.push_back(budget_.correction_j[k]);
+      }
+      ++k;
+    }
+  }
+  if (level_f0.empty()) return out;
+  for (std::size_t i = 0; i < response.edc_j.size() && i < out.size(); ++i) {
+    const double f0 = f0_n[i];
+    const auto upper = std::lower_bound(level_f0.begin(), level_f0.end(), f0);
+    double delta = 0.0;
+    if (upper == level_f0.begin()) {
+      delta = correction.front();
+    } else if (upper == level_f0.end()) {
+      delta = correction.back();
+    } else {
+      const std::size_t j = static_cast<std::size_t>(upper - level_f0.begin());
+      const double w = (f0 - level_f0[j - 1]) / (level_f0[j] - level_f0[j - 1]);
+      delta = (1.0 - w) * correction[j - 1] + w * correction[j];
+    }
+    out[i] += delta;
   }
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "analysis/common/job.h"
 #include "analysis/hbm/harmonic_balance.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/model_form.h"
@@ -63,6 +64,9 @@ struct EdcCostSettings {
   /// A budget computed before (the diagnosis computes it once per model and shares it): used as
   /// is, with its harmonics, instead of calibrating anew. Must match the dataset's level count.
   std::optional<SigmaBudget> budget;
+  /// Polled by the calibration between its harmonic-balance sweeps: a cancelled calibration
+  /// returns at once, its budget marked unresolved (the job is ending anyway).
+  CancelToken cancel;
 };
 
 /// The model's EDCs at every measured level and how far they are from the measurement.
@@ -127,7 +131,9 @@ class EdcObjective {
   /// without a solution count as S^mod = 0 (a large, finite cost) and ok = false.
   EdcEvaluation evaluate(const Eigen::VectorXd& theta,
                          const std::vector<double>* level_weights = nullptr) const;
-  /// The model's EDC at the given levels of one well (for plots and sensitivity curves).
+  /// The model's EDC at the given levels of one well (for plots and sensitivity curves), with the
+  /// budget's defect correction interpolated in f0 between the measured levels of that well and
+  /// frequency (held at the ends; none for a well or frequency without measured levels).
   std::vector<double> edc_at(const Model& model, bool positive_well, double freq_hz,
                              const std::vector<double>& f0_n) const;
 
