@@ -71,13 +71,17 @@ TEST(EdcFitSlow, PaperGeneticAlgorithmRunsWithPaperSettings) {
               100.0 * testing::worst_required_error(fit, objective.form().initial()), fit.seconds);
 }
 
-// Issue 6 target on data as the lab gets it: the paper's model on the virtual rig (sensor bias,
-// noise, quantisation, table creep), both wells, 0.2 → 2.7 N, analysed by the project's own
-// pipeline, fitted by CMA-ES at H = 7. The fit must explain the data at least about as well as
-// the true parameters do (mean EDC deviation per well within 1.2× the truth's: the truth is not
-// the minimiser here, since the model's H = 7 truncation and the estimator's bias differ from the
-// simulated physics), and the reported 95 % intervals must hold the true f_d(z±*) and c.
-TEST(EdcFitSlow, NoisyRigRecordsFitAsWellAsTheTruthWithTruthInsideIntervals) {
+// On data as the lab gets it: the paper's model on the virtual rig (sensor bias, noise,
+// quantisation, table creep), both wells, 0.2 → 2.7 N, analysed by the project's own pipeline,
+// fitted by CMA-ES with the σ budget (harmonic balance at H = 7, defect-corrected). The model side
+// is then as accurate as the measurement, so the truth explains the data within its noise (reduced
+// χ² at or below 1 + 3√(2/ν), three standard deviations of a correct model's), the fit explains it
+// as well as the truth to within two standard deviations of χ² (√(2ν) ≈ 10: a difference the data
+// cannot tell apart; measured χ² 11.1 fitted, 7.5 true, CMA-ES stops short of the sharp minimum
+// along the weakly identified f_d(0)), both within 0.1 % mean deviation per well (measured:
+// 0.03 % / 0.01 %; the old 1 % floor allowed 1.4 %), and the reported 95 % intervals hold the
+// true f_d(z±*) and c.
+TEST(EdcFitSlow, NoisyRigRecordsFitWithinTheirNoiseWithTruthInsideIntervals) {
   const Model truth = paper_model();
   SteppedSineSchedule schedule;
   schedule.levels_n = testing::paper_levels_n();
@@ -105,8 +109,13 @@ TEST(EdcFitSlow, NoisyRigRecordsFitAsWellAsTheTruthWithTruthInsideIntervals) {
               fit.evaluation.mean_deviation_pct_positive,
               fit.evaluation.mean_deviation_pct_negative, at_truth.mean_deviation_pct_positive,
               at_truth.mean_deviation_pct_negative);
-  EXPECT_LE(fit.evaluation.mean_deviation_pct_positive, 1.2 * at_truth.mean_deviation_pct_positive);
-  EXPECT_LE(fit.evaluation.mean_deviation_pct_negative, 1.2 * at_truth.mean_deviation_pct_negative);
+  const double dof = objective.level_count() - objective.form().size();
+  std::printf("noisy rig: chi2 fitted %.4g, truth %.4g (%d levels)\n", fit.evaluation.weighted_cost,
+              at_truth.weighted_cost, objective.level_count());
+  EXPECT_LE(at_truth.weighted_cost / dof, 1.0 + 3.0 * std::sqrt(2.0 / dof));
+  EXPECT_LE(fit.evaluation.weighted_cost, at_truth.weighted_cost + 2.0 * std::sqrt(2.0 * dof));
+  EXPECT_LT(fit.evaluation.mean_deviation_pct_positive, 0.1);
+  EXPECT_LT(fit.evaluation.mean_deviation_pct_negative, 0.1);
 
   const Eigen::VectorXd theta_true = objective.form().theta_of(truth);
   for (const ParameterUncertainty& p : fit.uncertainty.parameters) {
