@@ -9,6 +9,8 @@
 #include "analysis/common/input_error.h"
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/identification/campaign_model.h"
+#include "analysis/identification/edc_dataset.h"
+#include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/model_json.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
@@ -130,25 +132,14 @@ std::string evidence_text(const std::vector<analysis::EvidenceChange>& evidence)
 
 // What the terminal shows: the σ budget's summary, the baseline and its fingerprints, every
 // candidate of every step with its evidence and why it was accepted or not, the verdict.
-void print_result(const analysis::DiagnosisResult& r, double bic_threshold) {
-  const nlohmann::json& budget = r.sigma_budget;
-  if (budget.is_object() && budget.contains("levels")) {
-    double cycles = 0.0, bias = 0.0, model = 0.0;
-    for (const auto& level : budget["levels"]) {
-      const double s2 = std::pow(level["sigma_j"].get<double>(), 2);
-      cycles += std::pow(level["sigma_cycles_j"].get<double>(), 2) / s2;
-      bias += std::pow(level["sigma_bias_j"].get<double>(), 2) / s2;
-      model += std::pow(level["sigma_model_j"].get<double>(), 2) / s2;
+void print_result(const analysis::DiagnosisResult& r, const analysis::EdcDataset& data,
+                  double bic_threshold) {
+  if (r.final_form) {
+    // The final model's σ budget per level (no calibration: the result carries it).
+    const analysis::EdcObjective final_objective(*r.final_form, data, r.final_cost);
+    for (const std::string& line : analysis::sigma_budget_lines(final_objective)) {
+      std::printf("%s\n", line.c_str());
     }
-    const double n = static_cast<double>(budget["levels"].size());
-    std::printf(
-        "sigma budget (final model; per level in report.json): H = %d checked against H = %d "
-        "(%s); share of sigma^2 on average: cycles %.0f %%, estimator bias %.0f %%, model error "
-        "%.0f %%\n",
-        budget["harmonics"].get<int>(), budget["reference_harmonics"].get<int>(),
-        budget["resolved"].get<bool>() ? "model error within target at every level"
-                                       : "model error above target at some levels",
-        100.0 * cycles / n, 100.0 * bias / n, 100.0 * model / n);
   }
   std::printf(
       "baseline (paper form): cost eq. (8) %.4g J, chi2 %.4g (chi2/dof %.3g; noise "
@@ -220,7 +211,7 @@ void run(const DiagnoseOptions& o) {
         analysis::diagnose(campaign, analysis::ModelForm::paper(base), options, bar.callback());
   }
 
-  print_result(result, o.bic_threshold);
+  print_result(result, analysis::edc_dataset(campaign), o.bic_threshold);
 
   nlohmann::json report = analysis::diagnosis_report_json(result, o.recordings, o.bic_threshold);
   report["notes"] = notes;
