@@ -14,6 +14,7 @@
 #include "analysis/model/model_json.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
+#include "app/cli/cost_options.h"
 #include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
 
@@ -29,9 +30,7 @@ struct DiagnoseOptions {
   std::string out_dir;
   unsigned long long seed = 1;
   int threads = 0;
-  int harmonics = 7;
-  int max_harmonics = 63;
-  double model_error = -1.0;
+  CostOptions cost;
   double bic_threshold = 10.0;
   double max_seconds = 120.0;
   int max_steps = 3;
@@ -178,7 +177,6 @@ void run(const DiagnoseOptions& o) {
   if (o.model_form != "paper") {
     throw InputError("--model-form: unknown form \"" + o.model_form + "\" (paper)");
   }
-  if (o.harmonics < 1) throw InputError("--harmonics: must be at least 1");
   if (!(o.max_seconds >= 0.0)) throw InputError("--max-seconds: must be ≥ 0");
   if (o.max_steps < 1) throw InputError("--max-steps: must be at least 1");
   if (o.baseline_evaluations < 10 || o.candidate_evaluations < 10) {
@@ -193,9 +191,7 @@ void run(const DiagnoseOptions& o) {
   const analysis::Model base = analysis::campaign_model(
       analysis::model_from_spec(o.model), campaign, analysis::StiffnessSource::Model, notes);
   analysis::DiagnosisOptions options;
-  options.cost.hbm.harmonics = o.harmonics;
-  options.cost.max_harmonics = std::max(o.harmonics, o.max_harmonics);
-  options.cost.model_error_rel = o.model_error;
+  options.cost = cost_settings(o.cost);
   options.max_seconds = o.max_seconds;
   options.use_fingerprints = !o.edc_only;
   options.bic_threshold = o.bic_threshold;
@@ -252,20 +248,7 @@ void add_diagnose_command(CLI::App& app) {
   command->add_option("--seed", o->seed, "seed of the baseline's global search")
       ->capture_default_str();
   command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
-  command
-      ->add_option(
-          "--harmonics", o->harmonics,
-          "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
-      ->capture_default_str();
-  command
-      ->add_option("--max-harmonics", o->max_harmonics,
-                   "largest reference H of the sigma budget's correction")
-      ->capture_default_str();
-  command
-      ->add_option("--model-error", o->model_error,
-                   "fixed relative model-error floor of sigma; negative: the sigma budget (cycles, "
-                   "estimator bias, the model's truncation error per level)")
-      ->capture_default_str();
+  add_cost_options(command, o->cost);
   command
       ->add_option("--max-seconds", o->max_seconds,
                    "stop after this many seconds and write the result so far, marked incomplete "

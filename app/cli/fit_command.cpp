@@ -16,6 +16,7 @@
 #include "analysis/pipeline/offline_analysis.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
+#include "app/cli/cost_options.h"
 #include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
 #include "ui/fit_figures.h"
@@ -39,10 +40,8 @@ struct FitCommandOptions {
   bool polish_ga = false;
   unsigned long long seed = 1;
   int threads = 0;
-  int harmonics = 7;
+  CostOptions cost;
   int bootstrap = 0;
-  double model_error = -1.0;
-  int max_harmonics = 63;
   double freq_hz = 0.0;
   bool no_png = false;
 };
@@ -92,7 +91,6 @@ void run(const FitCommandOptions& o) {
   if (o.model_form != "paper") {
     throw InputError("--model-form: unknown form \"" + o.model_form + "\" (paper)");
   }
-  if (o.harmonics < 1) throw InputError("--harmonics: must be at least 1");
   if (o.bootstrap < 0) throw InputError("--bootstrap: must be ≥ 0");
   if (o.evaluations < 10) throw InputError("--evaluations: must be at least 10");
   if (!(o.mutation >= 0.0 && o.mutation <= 1.0)) throw InputError("--mutation: must lie in [0, 1]");
@@ -114,10 +112,7 @@ void run(const FitCommandOptions& o) {
   const analysis::Model base =
       analysis::campaign_model(analysis::model_from_spec(o.model), campaign, stiffness, notes);
   const analysis::EdcDataset data = analysis::edc_dataset(campaign);
-  analysis::EdcCostSettings cost;
-  cost.hbm.harmonics = o.harmonics;
-  cost.model_error_rel = o.model_error;
-  cost.max_harmonics = std::max(o.max_harmonics, o.harmonics);
+  const analysis::EdcCostSettings cost = cost_settings(o.cost);
   const analysis::EdcObjective objective(analysis::ModelForm::paper(base), data, cost);
 
   std::printf("fit: %d levels (", objective.level_count());
@@ -200,20 +195,7 @@ void add_fit_command(CLI::App& app) {
   command->add_option("--seed", o->seed, "random seed (same seed, same result)")
       ->capture_default_str();
   command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
-  command
-      ->add_option(
-          "--harmonics", o->harmonics,
-          "harmonics H of the model's HBM (the first rung when the sigma budget chooses H)")
-      ->capture_default_str();
-  command
-      ->add_option("--max-harmonics", o->max_harmonics,
-                   "largest reference H of the sigma budget's correction")
-      ->capture_default_str();
-  command
-      ->add_option("--model-error", o->model_error,
-                   "fixed relative model-error floor of each level's sigma; negative: the sigma "
-                   "budget (cycles, estimator bias, the model's truncation error per level)")
-      ->capture_default_str();
+  add_cost_options(command, o->cost);
   command->add_option("--bootstrap", o->bootstrap, "bootstrap replicates over levels (0: none)")
       ->capture_default_str();
   command->add_option("--stiffness", o->stiffness, "K(z) from the model or from the records' RFS")
