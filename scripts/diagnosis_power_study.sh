@@ -63,3 +63,9 @@ awk -F, 'NR > 1 {
   for (k in n) printf "%s,%d,%d,%.2f,%.1f\n", k, n[k], hit[k], hit[k] / n[k], t[k] / n[k]
 }' "$results" | sort -t, -k1,1 -k3,3n -k4,4n -k2,2g > "$out/summary.csv"
 echo "study: $(($(wc -l < "$results") - 1)) diagnoses in $results; summary in $out/summary.csv"
+if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
+  /usr/bin/python3 scripts/diagnosis_power_plot.py "$results" "$out/detection_power.png"
+  echo "study: curves in $out/detection_power.png"
+else
+  echo "study: no matplotlib (apt-get install python3-matplotlib) -- no curves drawn"
+fi
