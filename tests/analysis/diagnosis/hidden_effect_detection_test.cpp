@@ -4,7 +4,7 @@
 // (hidden_effect_campaign.h: the strengths of the first campaign, each several σ above detection),
 // and at ten times that, one seed each, and two controls (the paper's model with its friction
 // parameters moved by up to ±30 %). Asserted per run, against the truth only this test knows:
-// - the verdict names the hidden effect (`none` for a control), within the time bound;
+// - the verdict names the hidden effect (`none` for a control);
 // - the effect is named on its own first (one accepted step for it), and the EDC itself supports
 //   it (Δχ² < −9);
 // - the gap closes: the final reduced χ² is at most half the baseline's (measured: from hundreds or
@@ -36,6 +36,9 @@ DiagnosisResult diagnose_blind(const Model& truth, std::uint64_t seed) {
   const Model base = campaign_model(paper_model(), campaign, StiffnessSource::Model, notes);
   DiagnosisOptions options;
   options.seed = seed;
+  // No wall-clock bound here: this test checks what is named, not how fast (the study and its
+  // timings say that); under a loaded CI machine a bound would make the verdict timing-dependent.
+  options.max_seconds = 0.0;
   return diagnose(campaign, ModelForm::paper(base), options);
 }
 
