@@ -40,8 +40,18 @@ inline std::vector<HiddenEffect> hidden_effects() {
 /// The paper's model plus `effect` at `scale` × its reference strength (the campaign's strengths
 /// above; stiffness powers at 10 % of k2 and 5 % of k3 of Table 1 for c2 and c3). The scale
 /// multiplies the term's force (F_c, f_s, c_p) and keeps its shape (presliding length, v_s).
+/// Several effects hidden together: their names joined by '+' ("presliding-hysteresis+
+/// quadratic-damping"), each at `scale`.
 inline Model truth_with_effect(const std::string& effect, double scale) {
   Model model = paper_model();
+  if (const std::size_t plus = effect.find('+'); plus != std::string::npos) {
+    Model first = truth_with_effect(effect.substr(0, plus), scale);
+    const Model rest = truth_with_effect(effect.substr(plus + 1), scale);
+    for (std::size_t i = model.terms().size(); i < rest.terms().size(); ++i) {
+      first.add_term(rest.terms()[i]->clone());
+    }
+    return first;
+  }
   if (effect == "presliding-hysteresis") {
     model.add_term(std::make_unique<DahlFriction>(0.06 * scale, 3e3 * scale));
   } else if (effect == "quadratic-damping") {
