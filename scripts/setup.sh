@@ -68,7 +68,7 @@ run_main() {
   echo "setup: EDC table and summary written to $out/"
 }
 
-format_check() {  # CI fails on a format diff (style.md)
+format_check() {  # CI fails on a format diff (.clang-format)
   local files
   mapfile -t files < <(git ls-files '*.cpp' '*.h' 2>/dev/null || find analysis daq ui app tests -name '*.cpp' -o -name '*.h')
   if ! clang-format --dry-run --Werror "${files[@]}"; then

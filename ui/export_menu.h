@@ -13,7 +13,7 @@ class BackgroundJob;
 class MainWindow;
 class PlotContextMenus;
 
-/// File ▸ Export of the main window (issue 8): a plot as PNG, SVG or PDF (the plot under the
+/// File ▸ Export of the main window: a plot as PNG, SVG or PDF (the plot under the
 /// mouse, else the one the mouse was over last, else the first of the current tab), the level
 /// table as CSV, the recording shown as MATLAB .mat or UFF 58, the EDC table of the analysis as
 /// .mat; and "Export plot…" in the context menu of every plot (PlotContextMenus). The writing is

@@ -9,9 +9,9 @@
 
 namespace oscilab::ui {
 
-/// The FIT JSON that `oscilab-cli fit --out` writes and the fit panel exports (contracts.md §2):
-/// analysis::fit_report_json of the fit, plus `notes`, how the base model was set up from the
-/// records (analysis::campaign_model). Qt-free.
+/// The FIT JSON that `oscilab-cli fit --out` writes and the fit panel exports
+/// (docs/contracts.md §3): analysis::fit_report_json of the fit, plus `notes`, how the base model
+/// was set up from the records (analysis::campaign_model). Qt-free.
 nlohmann::json fit_json(const analysis::FitResult& fit, const analysis::EdcObjective& objective,
                         const std::vector<std::string>& records,
                         const std::vector<std::string>& notes);

@@ -24,10 +24,10 @@ struct CsvBranch {
   int period = 1;
 };
 
-/// The branch CSV of contract §2 (analysis::write_branch_csv) of one branch, or of several with
-/// a `well` column appended (`well_column`), and with `period` appended after it
-/// (`period_column`): the contract's own columns come first and keep their order. Throws
-/// InputError naming the file when it cannot be written.
+/// The branch CSV of docs/contracts.md §3 (analysis::write_branch_csv) of one branch, or of several
+/// with a `well` column appended (`well_column`), and with `period` appended after it
+/// (`period_column`): the contract's own columns come first and keep their order. Throws InputError
+/// naming the file when it cannot be written.
 void write_branches_csv(const std::vector<CsvBranch>& branches, bool well_column,
                         bool period_column, const std::string& path);
 

@@ -65,7 +65,7 @@ QString number(double value, int digits = 4) {
   return std::isfinite(value) ? QString::number(value, 'g', digits) : QStringLiteral("—");
 }
 
-// The live EDC curve is redrawn at most 5 times a second (issue 8).
+// The live EDC curve is redrawn at most 5 times a second.
 constexpr auto kPreviewInterval = std::chrono::milliseconds(200);
 
 // S^mod of the model at θ at every measured level, per group (0 where it is not solved), J. Runs

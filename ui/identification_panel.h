@@ -30,7 +30,7 @@ struct FitFigureData;
 struct NamedFigure;
 
 /// The best model of a running fit so far, made on the fit's worker thread and handed to the UI
-/// thread by a queued signal: its EDC at every measured level (issue 8, live progress).
+/// thread by a queued signal: its EDC at every measured level (live progress).
 struct FitPreview {
   long evaluations = 0;
   double best_weighted_cost = 0.0;  // χ² of the best θ so far
@@ -41,7 +41,7 @@ struct FitPreview {
   std::vector<std::vector<double>> edc_mod_j;
 };
 
-/// The fit and model-gap panel (issues 6 and 9): recordings of a stepped-sine campaign, a fit of
+/// The fit and model-gap panel: recordings of a stepped-sine campaign, a fit of
 /// the paper's θ (eq. (9)) by CMA-ES or the paper's GA, and a diagnosis that names the missing
 /// effect; both run on a worker thread with progress and cancel. Results: the identified
 /// parameters with standard errors and 95 % intervals (Table 3 style), the EDC per well measured
@@ -50,7 +50,7 @@ struct FitPreview {
 ///
 /// While a fit runs, the EDC tab draws the model EDC of the best θ so far over the measured
 /// points, at most 5 times a second (the worker computes it and sends a FitPreview). After a
-/// fit (issue 8): "Figures…" shows Figs. 13–16 (ui/fit_figures), "Export results…" writes the
+/// fit: "Figures…" shows Figs. 13–16 (ui/fit_figures), "Export results…" writes the
 /// FIT JSON of `oscilab-cli fit` and the figures as PNG + CSV into a folder, "HBM branch…" and
 /// "Bifurcation map…" open the fitted model's branches and map (ResponseDialog). The data the
 /// figures need beyond the fit (cost slices, sensitivity curves) is computed once, on demand, on

@@ -43,7 +43,7 @@ namespace oscilab::ui {
 
 class BackgroundJob;
 
-/// The live monitor (issue 8): one live source (the virtual rig, a recording replayed, or a
+/// The live monitor: one live source (the virtual rig, a recording replayed, or a
 /// network stream received on 127.0.0.1) through daq::Acquisition, shown as it arrives:
 ///
 /// - controls: source, Start/Stop; the rig's f₀ and ν (Set, Step +ΔN); the replay's speed, pause

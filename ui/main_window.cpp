@@ -74,7 +74,7 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   central_tabs_->setObjectName("central_tabs");
   central_tabs_->setDocumentMode(true);
   central_tabs_->addTab(review_view_, tr("Review"));
-  // The live monitor (issue 8); the session keeps its settings ("live").
+  // The live monitor; the session keeps its settings ("live").
   auto* live_monitor = new LiveMonitor;
   live_monitor->setObjectName("live_monitor");
   central_tabs_->addTab(live_monitor, tr("Live"));

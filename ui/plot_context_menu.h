@@ -10,7 +10,7 @@ class QWidget;
 
 namespace oscilab::ui {
 
-/// A right-click menu with "Export plot…" on every QCustomPlot of the application (issue 8): an
+/// A right-click menu with "Export plot…" on every QCustomPlot of the application: an
 /// event filter on the application object sees the context-menu request of any plot, wherever
 /// it sits (the review, the fit panel, dialogs, pages added later), unless the plot has a
 /// context-menu policy of its own (anything but Qt::DefaultContextMenu). It also remembers the

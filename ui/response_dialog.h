@@ -23,7 +23,7 @@ namespace oscilab::ui {
 
 class BackgroundJob;
 
-/// The response of a model (the fitted one, from the fit panel) in a window of its own (issue 8):
+/// The response of a model (the fitted one, from the fit panel) in a window of its own:
 ///
 /// - Kind::Branch: one harmonic-balance branch per well by pseudo-arclength continuation in the
 ///   forcing amplitude f0 at the test frequency (analysis::continue_branch, as `oscilab-cli
@@ -33,8 +33,8 @@ class BackgroundJob;
 ///   once per forcing period at each level, over the HBM orbit of the same branches.
 ///
 /// The settings (f0 range, harmonics, step; for the map: level step, periods per level, periods
-/// sampled) sit above the plot; Compute runs the work on a worker thread with progress and
-/// cancel, "Export CSV…" writes the branch CSV (contract §2, a `well` column with two wells) or
+/// sampled) sit above the plot; Compute runs the work on a worker thread with progress and cancel,
+/// "Export CSV…" writes the branch CSV (docs/contracts.md §3, a `well` column with two wells) or
 /// the map CSV. The dialog shows; the computing is the analysis core's. UI thread only.
 class ResponseDialog : public QDialog {
   Q_OBJECT

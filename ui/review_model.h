@@ -50,7 +50,7 @@ struct LevelKey {
   auto operator<=>(const LevelKey&) const = default;
 };
 
-/// One row of the level table (contract §2 names, SI).
+/// One row of the level table (docs/contracts.md §3 names, SI).
 struct LevelRow {
   LevelKey key;
   std::string record;  // the record's name (its file name)

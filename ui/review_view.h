@@ -27,7 +27,7 @@ namespace oscilab::ui {
 class LevelTable;
 class RecordView;
 
-/// The record review (issue 8): the opened recordings over time (RecordView) above tabs with the
+/// The record review: the opened recordings over time (RecordView) above tabs with the
 /// levels of the offline analysis (a sortable table and the Fig. 9 response-input loop of the
 /// selected levels), each cycle's EDC over time, the restoring-force slices (stiffness slice with
 /// the fitted K(z) of eq. (2), damping slices of Fig. 7c) and the annotations.

@@ -11,7 +11,7 @@
 
 namespace oscilab::analysis {
 
-/// A physical effect a diagnosis may add (contracts.md §3 names): the term, its free parameters
+/// A physical effect a diagnosis may add (docs/contracts.md §4 names): the term, its free parameters
 /// with bounds scaled to the data, starting points to scan, and what its fingerprint looks like.
 struct EffectCandidate {
   std::string effect;  // e.g. "quadratic-damping"
@@ -32,7 +32,7 @@ struct EffectCandidate {
 /// position-dependent friction) are not offered again.
 std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcDataset& data);
 
-/// The vocabulary of contracts.md §3, `none` last.
+/// The vocabulary of docs/contracts.md §4, `none` last.
 const std::vector<std::string>& effect_vocabulary();
 
 }  // namespace oscilab::analysis

@@ -39,7 +39,7 @@ struct LevelOptions {
   double steady_rel_tol = 2e-4;
 };
 
-/// One row of the EDC table (contract §2 names) with what backs it.
+/// One row of the EDC table (docs/contracts.md §3 names) with what backs it.
 struct LevelResult {
   std::string well;  // positive | negative | cross-well | unknown
   double f0_n = 0.0;

@@ -53,8 +53,8 @@ struct BranchEvent {
   std::size_t point_index = 0;
 };
 
-/// The result of a continuation (architecture.md, "Branch"): points in continuation order, folds
-/// and bifurcations marked, and how the run ended.
+/// The result of a continuation: points in continuation order, folds and bifurcations marked,
+/// and how the run ended.
 struct Branch {
   JobStatus status = JobStatus::Ok;
   std::string message;  // why, whenever status != Ok
@@ -71,11 +71,11 @@ struct Branch {
   std::vector<BranchEvent> events_of(PointMarker kind) const;
 };
 
-/// Branch CSV of contract §2: `f0_n,amp_m,z1_abs_m,phase_rad,edc_j,stable` in continuation order,
-/// then extra columns: `freq_hz,edc_dissipation_j,mu1_abs,mu2_abs,mu1_re,mu1_im,mu2_re,mu2_im,
-/// marker,newton_iterations`. z1 is the complex amplitude of e^{iωt} and phase_rad its argument
-/// (docs/conventions.md); `stable` is 1 or 0 (0 also when stability was not computed, in which
-/// case the multiplier columns are empty).
+/// Branch CSV of docs/contracts.md §3: `f0_n,amp_m,z1_abs_m,phase_rad,edc_j,stable` in
+/// continuation order, then extra columns: `freq_hz,edc_dissipation_j,mu1_abs,mu2_abs,mu1_re,
+/// mu1_im,mu2_re,mu2_im,marker,newton_iterations`. z1 is the complex amplitude of e^{iωt} and
+/// phase_rad its argument (docs/conventions.md); `stable` is 1 or 0 (0 also when stability was
+/// not computed, in which case the multiplier columns are empty).
 void write_branch_csv(const Branch& branch, std::ostream& out);
 /// Throws InputError naming the file when it cannot be written.
 void write_branch_csv(const Branch& branch, const std::string& path);

@@ -12,7 +12,7 @@
 namespace oscilab::analysis {
 
 /// Options of a switch from a period-νT branch onto the period-2νT branch born at its period
-/// doubling (issue 5, "sub-harmonic ansatz to follow period-doubled branches").
+/// doubling (a sub-harmonic ansatz follows the period-doubled branch).
 struct PeriodDoublingSwitchOptions {
   /// The continuation of the new branch. hbm.harmonics, hbm.samples and hbm.subharmonic describe
   /// the ansatz of the *flip point* (ν, as on the branch it comes from); the new branch uses 2ν

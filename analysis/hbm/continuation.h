@@ -12,7 +12,7 @@
 
 namespace oscilab::analysis {
 
-/// Options of a pseudo-arclength continuation of harmonic-balance solutions (issue 5).
+/// Options of a pseudo-arclength continuation of harmonic-balance solutions.
 struct ContinuationOptions {
   BranchParameter parameter = BranchParameter::ForcingAmplitude;
   double start = 0.0;  // f0 in N (amplitude continuation) or frequency in Hz

@@ -34,7 +34,7 @@ struct HbmOptions {
   int resolved_samples() const;
 };
 
-/// Result of a Newton solve: a status and a message, never an exception (style.md, "Errors").
+/// Result of a Newton solve: a status and a message, never an exception.
 struct NewtonReport {
   enum class Status { Converged, NoConvergence, NumericalIssue };
   Status status = Status::NoConvergence;

@@ -9,8 +9,8 @@
 
 namespace oscilab::analysis {
 
-/// The FIT JSON of contracts.md §2: `parameters` (θ by name: fd_zminus_n, fd_zero_n, fd_zplus_n,
-/// ks, c_ns_m, vt_m_s for the paper's form), `cost_j` (eq. (8)), `mean_deviation_pct`
+/// The FIT JSON of docs/contracts.md §3: `parameters` (θ by name: fd_zminus_n, fd_zero_n,
+/// fd_zplus_n, ks, c_ns_m, vt_m_s for the paper's form), `cost_j` (eq. (8)), `mean_deviation_pct`
 /// {positive, negative}, `evaluations`, `seconds`; and beyond the contract: "format"
 /// ("oscilab-fit/1"), the records, the fitted cost (name and value), α, β, γ of f_d(z) (eq. (6)),
 /// standard errors, 95 % intervals, the bootstrap, the correlation matrix, the weakly identified

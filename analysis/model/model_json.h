@@ -30,7 +30,7 @@ namespace oscilab::analysis {
 Model model_from_spec(const std::string& spec);
 
 /// {"name", "mass_kg", "equilibria": [{"z_m", "stable", "linear_frequency_hz"}], "terms"}: the
-/// model summary of contract §2, with linear_frequency_hz null at an unstable equilibrium.
+/// model summary of docs/contracts.md §3, with linear_frequency_hz null at an unstable equilibrium.
 nlohmann::json model_summary(const Model& model);
 
 }  // namespace oscilab::analysis

@@ -54,7 +54,8 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
                                   const PipelineSettings& settings, const ProgressFn& progress = {},
                                   const CancelToken& cancel = {});
 
-/// Summary JSON (contract §2 `stiffness_fit`, plus settings, per-record detections, noise).
+/// Summary JSON (docs/contracts.md §3 `stiffness_fit`, plus settings, per-record detections,
+/// noise).
 nlohmann::json campaign_summary(const CampaignAnalysis& campaign);
 
 }  // namespace oscilab::analysis

@@ -9,7 +9,7 @@
 
 namespace oscilab::analysis {
 
-/// One bin of a slice of the restoring surface (CSV columns of contract §2).
+/// One bin of a slice of the restoring surface (CSV columns of docs/contracts.md §3).
 struct SliceBin {
   double x = 0.0;        // bin centre: z_m for the stiffness slice, z_dot_m_s for a damping slice
   double force_n = 0.0;  // mean force of the samples in the bin

@@ -235,7 +235,7 @@ void add_diagnose_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "diagnose",
       "Find where the fitted model and the measurement disagree, name the missing physical "
-      "effect (contracts.md §3), add it, refit and show the gap shrink (or say none)");
+      "effect (docs/contracts.md §4), add it, refit and show the gap shrink (or say none)");
   command
       ->add_option("recordings", o->recordings,
                    "stepped-sine recordings of both wells (and random records for the RFS)")

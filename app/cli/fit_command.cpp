@@ -1,5 +1,5 @@
 // oscilab-cli fit REC... --model-form paper --method ga|cmaes|local ... --out FIT.json
-// (contract §2; issue 6): identification of the friction model from measured EDCs (§4, §5).
+// (docs/contracts.md §2): identification of the friction model from measured EDCs (§4, §5).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>

@@ -1,4 +1,4 @@
-// oscilab-cli merge FIT.json... --out TABLE.csv (issue 6): many independent fits (a campaign run
+// oscilab-cli merge FIT.json... --out TABLE.csv: many independent fits (a campaign run
 // by Slurm or GNU parallel, scripts/) joined into one table, one row per fit.
 #include <cmath>
 #include <cstdio>

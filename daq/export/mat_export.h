@@ -38,7 +38,7 @@ std::vector<std::string> mat_channel_variables(const Sidecar& sidecar);
 /// half-written file. Throws InputError naming `path` on any failure.
 void write_recording_mat(const Recording& recording, const std::string& path);
 
-/// One row of the EDC table (contract §2) with the record it comes from.
+/// One row of the EDC table (docs/contracts.md §3) with the record it comes from.
 struct EdcTableRow {
   std::string record;  // the recording's name; may be empty
   analysis::LevelResult level;

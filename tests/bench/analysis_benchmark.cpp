@@ -1,4 +1,4 @@
-// Speed of the measurement analysis (issue: offline analysis of the 262.5 s stepped-sine record
+// Speed of the measurement analysis (target: offline analysis of the 262.5 s stepped-sine record
 // at ≥ 5000× real time on one core, i.e. ≤ 52 ms; the live pipeline at 512 Hz under 1 % of one
 // core). Records come from the virtual rig once, outside the timed loops.
 #include <cstdio>

@@ -1,4 +1,4 @@
-// Speed of the EDC identification (issue 6): a 2000-evaluation fit of the paper's θ (both wells,
+// Speed of the EDC identification: a 2000-evaluation fit of the paper's θ (both wells,
 // 52 levels, H = 7) by CMA-ES + polish and by the paper's GA (target ≤ 10 s wall on the 2-core
 // machine for either), on all hardware threads; and how long a running fit takes to stop after
 // cancel() (target ≤ 200 ms). Noise-free twin data of the paper's model. Google Benchmark

@@ -1,4 +1,4 @@
-// Speed of harmonic balance with continuation (issue 5): one branch of the paper's model
+// Speed of harmonic balance with continuation: one branch of the paper's model
 // (positive well, 9 Hz, H = 7, f0 0.1 → 3.7 N) with Floquet stability at every point (target
 // ≤ 50 ms) and without (≤ 5 ms), and one identification cost evaluation: the EDC at the 26 levels
 // 0.2 → 2.7 N of both wells (≤ 5 ms). Counters: points per branch and time per point. Google

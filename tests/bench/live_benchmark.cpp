@@ -1,4 +1,4 @@
-// Speed of the live chain (issue 7): source → queue → acquisition (fault checks, calibration,
+// Speed of the live chain: source → queue → acquisition (fault checks, calibration,
 // derived traces, per-cycle EDC) → recorder, measured end to end in one process.
 //   - at 512 Hz, real time: CPU used by the whole process / wall time, target < 5 % of one core;
 //     latency from the arrival of a cycle's first sample to its EDC, target < 1 cycle + 100 ms;

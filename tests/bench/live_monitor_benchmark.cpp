@@ -1,4 +1,4 @@
-// Frame rate of the live monitor (issue 8: ≥ 30 frames per second on a 2-core machine): the real
+// Frame rate of the live monitor (target: ≥ 30 frames per second on a 2-core machine): the real
 // widget replaying the bundled stepped sine at 1× with 10 minutes of history on screen. The
 // history is filled first by replaying 600 s of stream as fast as possible (the file loops), then
 // the replay runs at 1× and the frames the trace plot draws in 1.5 s of the application's event

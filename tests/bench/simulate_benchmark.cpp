@@ -1,4 +1,4 @@
-// Speed of the time simulation (issue: ≥ 200× real time on one core for the default stepped-sine
+// Speed of the time simulation (target: ≥ 200× real time on one core for the default stepped-sine
 // test of 262.5 s with its 512 Hz output). The counter `x_realtime` is simulated seconds per
 // wall-clock second; Google Benchmark reports the median over repetitions.
 #include <benchmark/benchmark.h>

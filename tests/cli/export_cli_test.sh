@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# oscilab-cli export (issue 8): MATLAB, UFF 58 and EDC MATLAB files from the samples, and the error
+# oscilab-cli export: MATLAB, UFF 58 and EDC MATLAB files from the samples, and the error
 # paths. The file contents are checked in depth by daq_export_tests; here the command's wiring:
 #   export_cli_test.sh OSCILAB_CLI SOURCE_DIR
 set -uo pipefail

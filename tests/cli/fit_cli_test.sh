@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# oscilab-cli fit and merge from the command line, and the campaign scripts (issue 6):
+# oscilab-cli fit and merge from the command line, and the campaign scripts:
 #   fit_cli_test.sh OSCILAB_CLI SOURCE_DIR
 # Small GA budgets keep it fast; the numbers themselves are checked by the GoogleTest suites.
 set -uo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# oscilab-cli record and stream from the command line (issue 7):
+# oscilab-cli record and stream from the command line:
 #   live_cli_test.sh OSCILAB_CLI SOURCE_DIR
 # A sample streamed over TCP and recorded on the other side must analyse exactly as the sample
 # itself (lossless); the rig records unattended; SIGTERM ends a recording cleanly; bad input

@@ -1,4 +1,4 @@
-// GUI test of File ▸ Export and the plots' context menu (issue 8) on the bundled samples under the
+// GUI test of File ▸ Export and the plots' context menu on the bundled samples under the
 // offscreen platform: each export writes a file that an independent reader accepts (QImage for
 // the PNG, the CSV header of the level table, matio for the MAT-files, the dataset lines of the
 // UFF), and a failed export is reported, not thrown.

@@ -1,4 +1,4 @@
-// GUI test of what the fit panel offers after a fit (issue 8), on the bundled samples under the
+// GUI test of what the fit panel offers after a fit, on the bundled samples under the
 // offscreen platform: the figures dialog (Figs. 13–16), "Export results…" (FIT JSON, PNG, CSV),
 // and the HBM branch and bifurcation map dialogs of the fitted model, each checked against an
 // independent reader or a direct call of the analysis core with the same settings.
@@ -210,7 +210,7 @@ class FitResultsTest : public QObject {
     QTemporaryDir dir;
     const QString csv = dir.filePath("branches.csv");
     QVERIFY(dialog->export_csv(csv));
-    // Contract §2 columns first, the well column last (two wells).
+    // docs/contracts.md §3 columns first, the well column last (two wells).
     const std::string header = first_line(csv);
     QVERIFY2(header.rfind("f0_n,amp_m,z1_abs_m,phase_rad,edc_j,stable", 0) == 0, header.c_str());
     QVERIFY(header.size() > 5 && header.substr(header.size() - 5) == ",well");

@@ -1,4 +1,4 @@
-// GUI test of the fit and diagnosis panel (issues 6, 8 and 9), driving the real widgets under the
+// GUI test of the fit and diagnosis panel, driving the real widgets under the
 // offscreen platform on the bundled samples: a fit fills the parameter table and the EDC plot, a
 // running fit draws the best model's EDC as it goes and cancels within 200 ms, the event loop
 // stays responsive during a real fit, a diagnosis of the paper's own model says none, a bad
@@ -33,11 +33,11 @@ namespace {
 
 const std::string kSamples = std::string(OSCILAB_SOURCE_DIR) + "/samples/";
 
-// Issue 8: a cancelled fit reports back within this (the searches poll the token before every
+// A cancelled fit reports back within this (the searches poll the token before every
 // model evaluation, ~3 ms each, so what remains is one evaluation per thread and the queued
 // finished signal).
 constexpr qint64 kCancelLatencyMs = 200;
-// Issue 8: the largest gap between ticks of a 5 ms timer while a fit runs; above ~50 ms a user
+// The largest gap between ticks of a 5 ms timer while a fit runs; above ~50 ms a user
 // sees the window stutter (three frames at 60 Hz).
 constexpr qint64 kEventLoopGapMs = 50;
 

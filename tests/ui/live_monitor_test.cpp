@@ -1,4 +1,4 @@
-// GUI test of the live monitor (issue 8), driving the real widget under the offscreen platform:
+// GUI test of the live monitor, driving the real widget under the offscreen platform:
 // a replay of the bundled stepped sine builds the EDC plot level by level (equal to the
 // acquisition's levels and to the offline analysis of the same file), the status strip shows the
 // counters, Record/Stop writes a readable recording, a paused view keeps the acquisition going,
@@ -232,7 +232,7 @@ class LiveMonitorTest : public QObject {
         "max %.1f ms; %ld trace frames in %.1f s\n",
         gaps_ms.size(), median, max, monitor.frames_drawn(),
         1e-9 * static_cast<double>(clock.nsecsElapsed()));
-    QVERIFY2(max <= 50.0, qPrintable(QString("largest gap %1 ms").arg(max)));  // issue 8
+    QVERIFY2(max <= 50.0, qPrintable(QString("largest gap %1 ms").arg(max)));  // no visible stutter
   }
 
   void recordThenStopWritesAReadableRecording() {
@@ -456,7 +456,7 @@ class LiveMonitorTest : public QObject {
     fs::remove_all(dir);
   }
 
-  // Issue 8's "done when": a whole test in the app from the virtual rig to a fitted model. The
+  // The end-to-end goal: a whole test in the app from the virtual rig to a fitted model. The
   // rig runs a stepped sine in each well (as fast as it goes) and records it; each finished
   // recording opens for review and joins the fit panel; a fit of both runs ends, and the live
   // EDC plot then draws the fitted model, whose θ reproduces the rig's own friction within the

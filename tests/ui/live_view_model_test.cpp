@@ -1,4 +1,4 @@
-// The live monitor's Qt-free logic (issue 8): settings, schedule, time window and scroll-back,
+// The live monitor's Qt-free logic: settings, schedule, time window and scroll-back,
 // fault counting and colouring, status and event texts, EDC points, the restoring-force slices,
 // the cycle loop and the spectrum of z, each against an independent expectation.
 #include "ui/live_view_model.h"

@@ -1,4 +1,4 @@
-// The Qt-free logic of the record review (issue 8): level rows, level loops and their area, the
+// The Qt-free logic of the record review: level rows, level loops and their area, the
 // excitation force, the samples behind the restoring-force slices and the K(z) text.
 #include "ui/review_model.h"
 

@@ -1,4 +1,4 @@
-// Session files of the record review (issue 8): round trip, paths relative to the session file,
+// Session files of the record review: round trip, paths relative to the session file,
 // and one error naming the file and field for each kind of bad content.
 #include "ui/review_session.h"
 

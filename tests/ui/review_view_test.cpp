@@ -1,4 +1,4 @@
-// GUI test of the record review (issue 8), driving the real widgets under the offscreen platform
+// GUI test of the record review, driving the real widgets under the offscreen platform
 // on the bundled samples: both recordings open and are analysed on a worker thread, the level
 // table lists every level with the EDCs of an independent offline analysis, a selected level
 // draws its Fig. 9 loop (whose area is its EDC) and moves the shared cursor, annotations are

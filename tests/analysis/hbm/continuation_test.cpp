@@ -221,7 +221,7 @@ TEST(Continuation, PaperModelEdcMatchesTimeSimulationInBothWells) {
       ASSERT_EQ(response.status, JobStatus::Ok) << response.message;
       ASSERT_EQ(response.edc_j.size(), run.levels.size());
       for (std::size_t i = 0; i < run.levels.size(); ++i) {
-        // The targets: 0.5 % (H = 15), 2 % (H = 7); measured worst 0.37 % and 1.41 %.
+        // The targets: 0.5 % (H = 15), 2 % (H = 7); measured worst 0.37 % and 1.41 %.
         EXPECT_NEAR(response.edc_j[i] / run.levels[i].edc_j, 1.0, tolerance)
             << (positive ? "positive" : "negative") << " well, H = " << harmonics
             << ", f0 = " << schedule.levels_n[i];
@@ -286,7 +286,8 @@ TEST(BranchCsv, WritesContractColumnsInContinuationOrder) {
   std::istringstream lines(csv.str());
   std::string header;
   std::getline(lines, header);
-  EXPECT_EQ(header.rfind("f0_n,amp_m,z1_abs_m,phase_rad,edc_j,stable,", 0), 0u);  // contract §2
+  // The columns of docs/contracts.md §3 come first.
+  EXPECT_EQ(header.rfind("f0_n,amp_m,z1_abs_m,phase_rad,edc_j,stable,", 0), 0u);
   std::string line;
   std::size_t rows = 0;
   double last_f0 = -1.0;

@@ -1,5 +1,5 @@
 // Harmonic balance of models with presliding hysteresis (the Dahl element, a term with internal
-// state; issue 9): the marched periodic force against the Dahl loop's closed form, and the EDC of
+// state): the marched periodic force against the Dahl loop's closed form, and the EDC of
 // harmonic balance against the time simulation's exact energy at stepped-sine levels.
 #include <cmath>
 #include <cstdio>

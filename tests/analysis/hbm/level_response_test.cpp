@@ -14,7 +14,7 @@
 namespace oscilab::analysis {
 namespace {
 
-// The illustrative example of eq. (14) folds at 1.3778 N and 1.3477 N (H = 7, issue 5): a sweep
+// The illustrative example of eq. (14) folds at 1.3778 N and 1.3477 N (H = 7): a sweep
 // up from rest jumps at the upper fold. Levels across it make the fast path stop at the fold and
 // hand over to arclength continuation from the last level it reached; the result must equal the
 // first crossings of one continuation from rest.

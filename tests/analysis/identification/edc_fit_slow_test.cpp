@@ -1,5 +1,5 @@
-// EDC identification on noise-free twin data of the paper's model, the issue-6 targets: CMA-ES
-// recovers θ in 3 of 4 seeds within 2000 evaluations; the paper's GA runs with its settings.
+// EDC identification on noise-free twin data of the paper's model, the identification targets:
+// CMA-ES recovers θ in 3 of 4 seeds within 2000 evaluations; the paper's GA runs with its settings.
 // Labelled slow: release build only (tests/CMakeLists.txt).
 #include <cmath>
 #include <cstdio>
@@ -25,9 +25,9 @@ const EdcObjective& twin_objective() {
   return objective;
 }
 
-// Issue 6 target: the stronger method recovers f_d(z±*), k_s, c and v_t within 1 % in at least
-// 3 of 4 seeds within 2000 model evaluations (noise-free data: the truth is the exact minimiser,
-// so 1 % measures the optimiser alone).
+// Identification target: the stronger method recovers f_d(z±*), k_s, c and v_t within 1 % in at
+// least 3 of 4 seeds within 2000 model evaluations (noise-free data: the truth is the exact
+// minimiser, so 1 % measures the optimiser alone).
 TEST(EdcFitSlow, CmaesRecoversPaperFrictionInThreeOfFourSeeds) {
   const EdcObjective& objective = twin_objective();
   const Eigen::VectorXd truth = objective.form().initial();
@@ -49,7 +49,7 @@ TEST(EdcFitSlow, CmaesRecoversPaperFrictionInThreeOfFourSeeds) {
   EXPECT_GE(recovered, 3);
 }
 
-// The paper's GA setting runs and reports its result as it is (issue 6: "even when it is worse").
+// The paper's GA setting runs and reports its result as it is, even when it is worse.
 TEST(EdcFitSlow, PaperGeneticAlgorithmRunsWithPaperSettings) {
   const EdcObjective& objective = twin_objective();
   FitOptions options;

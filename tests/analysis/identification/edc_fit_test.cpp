@@ -1,4 +1,4 @@
-// EDC identification (issue 6): the optimisers on noise-free twin data of the paper's model.
+// EDC identification: the optimisers on noise-free twin data of the paper's model.
 #include "analysis/identification/edc_fit.h"
 
 #include <chrono>

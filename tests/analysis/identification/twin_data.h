@@ -43,8 +43,8 @@ inline EdcCostSettings twin_settings(const HbmOptions& hbm = {}) {
   return settings;
 }
 
-/// Largest relative error of a fit over the parameters issue 6 requires (f_d(z±*), k_s, c, v_t);
-/// f_d(0) is weakly identified from EDCs and is reported, not required.
+/// Largest relative error of a fit over the parameters the identification targets require
+/// (f_d(z±*), k_s, c, v_t); f_d(0) is weakly identified from EDCs and is reported, not required.
 inline double worst_required_error(const FitResult& fit, const Eigen::VectorXd& truth) {
   double worst = 0.0;
   for (int i = 0; i < truth.size(); ++i) {

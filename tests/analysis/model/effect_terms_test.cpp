@@ -1,4 +1,4 @@
-// The terms a diagnosis adds (contracts.md §3 effect names; issue 9): forces against their
+// The terms a diagnosis adds (docs/contracts.md §4 effect names): forces against their
 // definitions and closed-form cycle energies, analytic partials against central differences, JSON
 // round trips and domain errors.
 #include <cmath>

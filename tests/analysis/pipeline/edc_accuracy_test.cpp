@@ -1,4 +1,4 @@
-// The measurement analysis against the virtual rig's truth (issue: every level's mean EDC within
+// The measurement analysis against the virtual rig's truth (target: every level's mean EDC within
 // 0.5 % + 5 noise-floor σ of the simulator's true dissipated energy, both wells, 0.2 to 2.7 N).
 #include <cmath>
 #include <numbers>
@@ -38,7 +38,7 @@ void expect_matches_truth(const RecordAnalysis& analysis, const daq::RigRecordin
     EXPECT_TRUE(measured.usable()) << measured.flags();
     EXPECT_GE(measured.cycles, 15);
     EXPECT_NEAR(measured.f0_n, rig.levels[i].f0_n, 0.01 * rig.levels[i].f0_n);
-    // The issue's bound: 0.5 % of the value plus 5 σ of the noise floor derived from the sensors.
+    // The accuracy bound: 0.5 % of the value plus 5 σ of the noise floor derived from the sensors.
     EXPECT_NEAR(measured.edc_mean_j, truth, 0.005 * truth + 5.0 * measured.edc_noise_floor_j);
   }
 }
@@ -92,8 +92,8 @@ TEST(EdcAnalysis, LiveBlocksGiveTheOfflineLevels) {
   live.finish();
   ASSERT_EQ(live.levels().size(), offline.levels.size());
   for (std::size_t k = 0; k < offline.levels.size(); ++k) {
-    // The issue allows 0.5 %; the engine is the same code on the same samples, so the only
-    // difference is the block timestamps' rounding (t0 + i/fs vs i/fs): 1e-9 relative.
+    // The accuracy target allows 0.5 %; the engine is the same code on the same samples, so the
+    // only difference is the block timestamps' rounding (t0 + i/fs vs i/fs): 1e-9 relative.
     EXPECT_NEAR(live.levels()[k].edc_mean_j, offline.levels[k].edc_mean_j,
                 1e-9 * offline.levels[k].edc_mean_j);
     EXPECT_EQ(live.levels()[k].cycles, offline.levels[k].cycles);
@@ -128,7 +128,7 @@ TEST(EdcAnalysis, VibrometerVelocityAndUnknownMassStillGiveTheEnergy) {
 }
 
 TEST(EdcAnalysis, FlagsPeriodDoublingBeyondThreePointFiveNewton) {
-  // The paper's model doubles its period on the z₊* branch near 3.4 N (issue 5); at 3.7 N the
+  // The paper's model doubles its period on the z₊* branch near 3.4 N (docs/hbm.md); at 3.7 N the
   // response is not period-1 and must be kept out of fits.
   SteppedSineSchedule schedule;
   schedule.levels_n = {2.7, 3.7};

@@ -1,4 +1,4 @@
-// The stiffness slice and K(z) fit against the model's true K(z) (issue: within 2 % of the force
+// The stiffness slice and K(z) fit against the model's true K(z) (target: within 2 % of the force
 // span over the travelled range; k3 and k1 within 5 %), on noisy virtual-rig records.
 #include <cmath>
 

@@ -63,7 +63,7 @@ RigSource::Options stepped_rig(double speed) {
 }
 
 TEST(Acquisition, LiveRecordingAnalysesOfflineToTheSameEdcs) {
-  // Issue 7: "a recording made live analyses to the same EDCs as the same data offline". The
+  // A recording made live analyses to the same EDCs as the same data offline. The
   // live chain and the offline analysis run the same pipeline on the same stored values, with
   // the levels the recorder wrote as they were operated: the EDCs agree to the last bit.
   const fs::path dir = temp_dir("same_edc");
@@ -255,7 +255,7 @@ TEST(Acquisition, BlocksAQueueCouldNotTakeBecomeOneGapOfExactlyTheirSamples) {
 }
 
 TEST(Acquisition, ARecordingKilledMidRunOpensAndHoldsAllButTheLastSecond) {
-  // Issue 7: SIGKILL the recording process; the files it leaves open and hold everything up to
+  // SIGKILL the recording process; the files it leaves open and hold everything up to
   // at most the last second before the kill. The child records the rig in real time; the
   // parent notes when the stream started (from the child, through a pipe) and when it killed.
   const fs::path dir = temp_dir("kill");

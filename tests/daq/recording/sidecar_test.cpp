@@ -17,7 +17,8 @@ namespace {
 using nlohmann::json;
 using testing::input_error_of;
 
-// The example of contract §1, verbatim.
+// A complete sidecar in the format of docs/contracts.md §1: format, rate, mass, two channels, a
+// stepped-sine excitation with one level, notes.
 json contract_example() {
   return json::parse(R"({
     "format": "oscilab-recording/1",
