@@ -1,0 +1,238 @@
+#include "analysis/diagnosis/diagnosis.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "analysis/identification/sigma_budget_report.h"
+
+// The diagnosis report (docs/contracts.md §3) and the words for each candidate's outcome.
+namespace oscilab::analysis {
+namespace {
+
+std::vector<std::pair<std::string, double>> named(const ModelForm& form,
+                                                  const Eigen::VectorXd& theta) {
+  std::vector<std::pair<std::string, double>> out;
+  for (int i = 0; i < form.size(); ++i) out.emplace_back(form.parameters()[i].name, theta(i));
+  return out;
+}
+
+nlohmann::json slope_json(const LogSlope& s) {
+  const auto number = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  if (!s.valid()) return {{"points", s.points}};
+  return {{"points", s.points},
+          {"slope", s.slope},
+          {"standard_error", number(s.standard_error)},
+          {"interval_95", {number(s.lower_95), number(s.upper_95)}}};
+}
+
+nlohmann::json maps_json(const DiscrepancyMaps& maps) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (const LevelDiscrepancy& d : maps.levels) {
+    levels.push_back({{"well", d.positive_well ? "positive" : "negative"},
+                      {"f0_n", d.f0_n},
+                      {"amplitude_m", d.amplitude_m},
+                      {"edc_mes_j", d.edc_mes_j},
+                      {"edc_mod_j", d.edc_mod_j},
+                      {"sigma_j", d.sigma_j},
+                      {"residual_sigma", d.residual_sigma},
+                      {"residual_cycle_sigma", std::isfinite(d.residual_cycles)
+                                                   ? nlohmann::json(d.residual_cycles)
+                                                   : nlohmann::json(nullptr)}});
+  }
+  nlohmann::json stiffness = {{"available", maps.stiffness.available}};
+  if (maps.stiffness.available) {
+    stiffness["rms_n"] = maps.stiffness.rms_n;
+    nlohmann::json tests = nlohmann::json::array();
+    for (const auto& t : maps.stiffness.tests) {
+      tests.push_back({{"power", t.power},
+                       {"coefficient", t.coefficient},
+                       {"f_statistic", t.f_statistic},
+                       {"p_value", t.p_value}});
+    }
+    stiffness["power_tests"] = tests;
+  }
+  nlohmann::json response = nlohmann::json::array();
+  for (const ResponseFingerprint& f : maps.response.items) {
+    nlohmann::json residuals = nlohmann::json::array();
+    for (double r : f.residual_sigma) {
+      residuals.push_back(std::isfinite(r) ? nlohmann::json(r) : nlohmann::json(nullptr));
+    }
+    response.push_back(
+        {{"name", f.name}, {"chi2", f.chi2}, {"levels", f.levels}, {"residual_sigma", residuals}});
+  }
+  return {{"max_abs_residual_sigma", maps.max_abs_residual_sigma},
+          {"response_fingerprints", response},
+          {"reduced_chi2", std::isfinite(maps.reduced_chi2) ? nlohmann::json(maps.reduced_chi2)
+                                                            : nlohmann::json(nullptr)},
+          {"edc_slope_measured",
+           {{"low", slope_json(maps.slopes.measured_low)},
+            {"high", slope_json(maps.slopes.measured_high)}}},
+          {"missing_energy_slope",
+           {{"low", slope_json(maps.slopes.missing_low)},
+            {"high", slope_json(maps.slopes.missing_high)},
+            {"all", slope_json(maps.slopes.missing_all)}}},
+          {"missing_levels", maps.slopes.missing_levels},
+          {"excess_levels", maps.slopes.excess_levels},
+          {"stiffness_residual", stiffness},
+          {"levels", levels}};
+}
+
+nlohmann::json evidence_json(const std::vector<EvidenceChange>& evidence) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const EvidenceChange& e : evidence) {
+    out.push_back({{"name", e.name},
+                   {"chi2_before", e.chi2_before},
+                   {"chi2_after", e.chi2_after},
+                   {"delta_chi2", e.delta_chi2()},
+                   {"supports", e.supports()},
+                   {"contradicts", e.contradicts()}});
+  }
+  return out;
+}
+
+nlohmann::json parameters_json(const std::vector<std::pair<std::string, double>>& parameters) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, value] : parameters) out[name] = value;
+  return out;
+}
+
+}  // namespace
+
+std::string candidate_outcome(const DiagnosisStep& step, const CandidateTrial& trial,
+                              double bic_threshold) {
+  char text[160];
+  if (!trial.solved) return "not solved (the refit stopped or the model had no solution)";
+  if (trial.effect == step.effect) return "accepted";
+  const CandidateTrial* best = nullptr;
+  for (const CandidateTrial& t : step.trials) {
+    if (t.solved && (!best || t.delta_bic_joint < best->delta_bic_joint)) best = &t;
+  }
+  if (best && best != &trial && best->delta_bic_joint < trial.delta_bic_joint &&
+      best->delta_bic_joint < -bic_threshold) {
+    std::snprintf(text, sizeof text, "rejected: %s explains more (joint dBIC %.3g)",
+                  best->effect.c_str(), best->delta_bic_joint);
+    return text;
+  }
+  if (!(trial.delta_bic_joint < -bic_threshold)) {
+    std::snprintf(text, sizeof text, "rejected: joint dBIC %.3g is not below -%.3g",
+                  trial.delta_bic_joint, bic_threshold);
+    return text;
+  }
+  for (const EvidenceChange& e : trial.evidence) {
+    if (e.name == "edc" && !(e.delta_chi2() < 0.0)) return "rejected: the EDC fit gets worse";
+  }
+  return "rejected";
+}
+
+nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
+                                     const std::vector<std::string>& records,
+                                     double bic_threshold) {
+  const auto deviations = [](const EdcEvaluation& e) {
+    const auto number = [](double v) {
+      return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    };
+    return nlohmann::json{{"positive", number(e.mean_deviation_pct_positive)},
+                          {"negative", number(e.mean_deviation_pct_negative)}};
+  };
+  nlohmann::json out;
+  out["format"] = "oscilab-diagnosis/1";
+  out["records"] = records;
+  out["status"] = result.status != JobStatus::Ok ? "cancelled"
+                  : result.incomplete            ? "incomplete"
+                                                 : "ok";
+  if (!result.message.empty()) out["message"] = result.message;
+  out["sigma_budget"] = result.sigma_budget;
+  const FitResult& b = result.baseline;
+  out["baseline"] = {{"cost_j", b.evaluation.cost_j},
+                     {"weighted_cost", b.evaluation.weighted_cost},
+                     {"reduced_chi2", result.baseline_maps.reduced_chi2},
+                     {"mean_deviation_pct", deviations(b.evaluation)},
+                     {"evaluations", b.evaluations},
+                     {"parameters", parameters_json([&] {
+                        std::vector<std::pair<std::string, double>> p;
+                        for (std::size_t i = 0; i < b.names.size(); ++i)
+                          p.emplace_back(b.names[i], b.theta(static_cast<Eigen::Index>(i)));
+                        return p;
+                      }())},
+                     {"maps", maps_json(result.baseline_maps)}};
+  nlohmann::json steps = nlohmann::json::array();
+  for (const DiagnosisStep& s : result.steps) {
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const CandidateTrial& t : s.trials) {
+      candidates.push_back({{"effect", t.effect},
+                            {"fingerprint_score", t.fingerprint_score},
+                            {"weighted_cost", t.weighted_cost},
+                            {"cost_j", t.cost_j},
+                            {"delta_bic", t.delta_bic},
+                            {"delta_bic_joint", t.delta_bic_joint},
+                            {"evidence", evidence_json(t.evidence)},
+                            {"outcome", candidate_outcome(s, t, bic_threshold)},
+                            {"solved", t.solved}});
+    }
+    nlohmann::json evidence = {
+        {"weighted_cost_before", s.weighted_before},
+        {"reduced_chi2_before", s.reduced_chi2_before},
+        {"max_abs_residual_sigma_before", s.maps_before.max_abs_residual_sigma},
+        {"missing_energy_slope",
+         {{"low", slope_json(s.maps_before.slopes.missing_low)},
+          {"high", slope_json(s.maps_before.slopes.missing_high)},
+          {"all", slope_json(s.maps_before.slopes.missing_all)}}},
+        {"candidates", candidates}};
+    nlohmann::json step = {
+        {"effect", s.effect}, {"evidence", evidence}, {"cost_before_j", s.cost_before_j}};
+    if (s.effect != "none") {
+      step["evidence"]["delta_bic"] = s.delta_bic;
+      step["evidence"]["delta_bic_joint"] = s.delta_bic_joint;
+      step["evidence"]["changes"] = evidence_json(s.evidence);
+      nlohmann::json supported = nlohmann::json::array();
+      for (const EvidenceChange& e : s.evidence) {
+        if (e.supports()) supported.push_back(e.name);
+      }
+      step["evidence"]["supported_by"] = supported;
+      step["evidence"]["weighted_cost_after"] = s.weighted_after;
+      step["evidence"]["reduced_chi2_after"] = s.reduced_chi2_after;
+      step["cost_after_j"] = s.cost_after_j;
+      step["parameters_after"] = parameters_json(s.parameters_after);
+    } else {
+      step["cost_after_j"] = s.cost_before_j;  // nothing was added
+    }
+    steps.push_back(step);
+  }
+  out["steps"] = steps;
+  out["verdict"] = result.verdict;
+  for (const DiagnosisStep& s : result.steps) {
+    if (s.effect != result.verdict) continue;
+    nlohmann::json supported = nlohmann::json::array();
+    for (const EvidenceChange& e : s.evidence) {
+      if (e.supports()) supported.push_back(e.name);
+    }
+    out["verdict_supported_by"] = supported;
+  }
+  if (result.verdict == "none") {
+    out["verdict_reason"] =
+        result.final_maps.reduced_chi2 <= result.noise_reduced_chi2
+            ? "the model form explains the data within its noise (reduced chi2 at or below the "
+              "noise level)"
+        : result.incomplete
+            ? "stopped at the time limit before a candidate was accepted"
+            : "no candidate effect improves the fit by the required evidence (dBIC threshold)";
+  }
+  out["noise_reduced_chi2"] = result.noise_reduced_chi2;
+  if (result.final_form) {
+    out["final_model"] = result.final_form->build(result.final_theta).to_json();
+    out["final"] = {{"cost_j", result.final_evaluation.cost_j},
+                    {"weighted_cost", result.final_evaluation.weighted_cost},
+                    {"reduced_chi2", result.final_maps.reduced_chi2},
+                    {"mean_deviation_pct", deviations(result.final_evaluation)},
+                    {"parameters", parameters_json(named(*result.final_form, result.final_theta))},
+                    {"maps", maps_json(result.final_maps)}};
+  }
+  out["excluded_levels"] = result.excluded_levels;
+  out["seconds"] = result.seconds;
+  out["evaluations"] = result.evaluations;
+  return out;
+}
+
+}  // namespace oscilab::analysis
