@@ -10,6 +10,7 @@
 
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/identification/edc_fit.h"
+#include "ui/diagnosis_view.h"
 
 class QComboBox;
 class QCustomPlot;
@@ -96,12 +97,12 @@ class IdentificationPanel : public QWidget {
   QPushButton* diagnose_button() const { return diagnose_button_; }
   QPushButton* cancel_button() const { return cancel_button_; }
   QTableWidget* parameter_table() const { return parameter_table_; }
-  QTableWidget* step_table() const { return step_table_; }
-  QTableWidget* budget_table() const { return budget_table_; }
+  QTableWidget* step_table() const { return diagnosis_view_->step_table(); }
+  QTableWidget* budget_table() const { return diagnosis_view_->budget_table(); }
   QLabel* status_label() const { return status_label_; }
-  QLabel* verdict_label() const { return verdict_label_; }
+  QLabel* verdict_label() const { return diagnosis_view_->verdict_label(); }
   QCustomPlot* edc_plot() const { return edc_plot_; }
-  QCustomPlot* residual_plot() const { return residual_plot_; }
+  QCustomPlot* residual_plot() const { return diagnosis_view_->residual_plot(); }
   /// Best χ² against model evaluations, growing while a fit runs (Fig. 14).
   QCustomPlot* convergence_plot() const { return convergence_plot_; }
   QTabWidget* tabs() const { return tabs_; }
@@ -141,7 +142,6 @@ class IdentificationPanel : public QWidget {
   void add_convergence_point(long evaluations, double best_weighted_cost);
   void show_fit(const Outcome& outcome);
   void show_diagnosis(const Outcome& outcome);
-  void show_budget(const analysis::DiagnosisResult& result);
   void plot_edc(const analysis::EdcObjective& objective,
                 const std::vector<std::vector<double>>& edc_mod_j, const QString& model_name);
 
@@ -174,14 +174,10 @@ class IdentificationPanel : public QWidget {
   QPushButton* map_button_ = nullptr;
   QProgressBar* progress_ = nullptr;
   QLabel* status_label_ = nullptr;
-  QLabel* verdict_label_ = nullptr;
   QTabWidget* tabs_ = nullptr;
   QTableWidget* parameter_table_ = nullptr;
-  QTableWidget* step_table_ = nullptr;
-  QTableWidget* budget_table_ = nullptr;
-  QLabel* budget_label_ = nullptr;
+  DiagnosisView* diagnosis_view_ = nullptr;
   QCustomPlot* edc_plot_ = nullptr;
-  QCustomPlot* residual_plot_ = nullptr;
   QCustomPlot* convergence_plot_ = nullptr;
 };
 

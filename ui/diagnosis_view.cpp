@@ -1,0 +1,212 @@
+#include "ui/diagnosis_view.h"
+
+#include <QHeaderView>
+#include <QLabel>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include <qcustomplot.h>
+
+#include "ui/table_cells.h"
+#include "ui/well_colours.h"
+
+namespace oscilab::ui {
+namespace {
+
+QTableWidgetItem* cell(const QString& text) { return read_only_cell(text); }
+QString number(double value, int digits = 4) { return number_text(value, digits); }
+
+// The verdict's supporting evidence and the response fingerprints before and after, for the
+// label under the verdict.
+QString verdict_details(const analysis::DiagnosisResult& r) {
+  QString out;
+  for (const auto& s : r.steps) {
+    if (s.effect != r.verdict) continue;
+    QString supported;
+    for (const auto& e : s.evidence) {
+      if (e.supports()) {
+        supported += QStringLiteral("%1%2 (\u0394\u03c7\u00b2 %3)")
+                         .arg(supported.isEmpty() ? "" : ", ")
+                         .arg(QString::fromStdString(e.name))
+                         .arg(e.delta_chi2(), 0, 'g', 3);
+      }
+    }
+    out += QObject::tr("<br>Supported by: %1").arg(supported.isEmpty() ? "—" : supported);
+  }
+  QString fingerprints;
+  for (std::size_t i = 0; i < r.baseline_maps.response.items.size(); ++i) {
+    const auto& b = r.baseline_maps.response.items[i];
+    if (b.levels == 0 || i >= r.final_maps.response.items.size()) continue;
+    fingerprints += QStringLiteral("%1%2 %3 \u2192 %4")
+                        .arg(fingerprints.isEmpty() ? "" : ", ")
+                        .arg(QString::fromStdString(b.name))
+                        .arg(b.chi2 / b.levels, 0, 'g', 3)
+                        .arg(r.final_maps.response.items[i].chi2 / b.levels, 0, 'g', 3);
+  }
+  if (!fingerprints.isEmpty()) {
+    out += QObject::tr(
+               "<br>Response fingerprints, \u03c7\u00b2 per level (baseline \u2192 "
+               "final): %1")
+               .arg(fingerprints);
+  }
+  if (r.incomplete) {
+    out += QObject::tr("<br><b>Incomplete:</b> %1").arg(QString::fromStdString(r.message));
+  }
+  return out;
+}
+
+}  // namespace
+
+DiagnosisView::DiagnosisView(QWidget* parent) : QWidget(parent) {
+  verdict_label_ = new QLabel;
+  verdict_label_->setObjectName("verdict");
+  verdict_label_->setWordWrap(true);
+
+  // One row per candidate of every step: its ΔBIC on the EDC alone and jointly with the response
+  // fingerprints, how each piece of evidence moved (Δχ²), and why it was accepted or not.
+  step_table_ = new QTableWidget(0, 10);
+  step_table_->setHorizontalHeaderLabels(
+      {tr("step"), tr("candidate"), tr("outcome"), tr("\u0394BIC joint"), tr("\u0394BIC EDC"),
+       tr("\u0394\u03c7\u00b2 EDC"), tr("\u0394\u03c7\u00b2 |Z1|"),
+       tr("\u0394\u03c7\u00b2 |Z2|/|Z1|"), tr("\u0394\u03c7\u00b2 |Z3|/|Z1|"), tr("supported by")});
+  step_table_->horizontalHeader()->setStretchLastSection(true);
+  step_table_->verticalHeader()->hide();
+  step_table_->setMinimumHeight(180);
+  // The σ budget of the final model, per level.
+  budget_table_ = new QTableWidget(0, 8);
+  budget_table_->setHorizontalHeaderLabels(
+      {tr("well"), tr("f0 [N]"), tr("S_mes [mJ]"), tr("\u03c3 cycles [mJ]"), tr("\u03c3 bias [mJ]"),
+       tr("\u03c3 model [mJ]"), tr("\u03c3 [mJ]"), tr("correction [mJ]")});
+  budget_table_->horizontalHeader()->setStretchLastSection(true);
+  budget_table_->verticalHeader()->hide();
+  budget_label_ = new QLabel;
+  budget_label_->setWordWrap(true);
+
+  residual_plot_ = new QCustomPlot;
+  residual_plot_->setMinimumHeight(200);
+  residual_plot_->xAxis->setLabel(tr("forcing amplitude f0 [N]"));
+  residual_plot_->yAxis->setLabel(tr("(S_mes - S_mod) / \u03c3"));
+  residual_plot_->legend->setVisible(true);
+
+  auto* layout = new QVBoxLayout(this);
+  layout->addWidget(verdict_label_);
+  layout->addWidget(step_table_, 3);
+  layout->addWidget(residual_plot_, 2);
+  budget_page_ = new QWidget(this);
+  auto* budget_layout = new QVBoxLayout(budget_page_);
+  budget_layout->addWidget(budget_label_);
+  budget_layout->addWidget(budget_table_, 1);
+}
+
+void DiagnosisView::show_result(const analysis::DiagnosisResult& r, double bic_threshold) {
+  verdict_label_->setText(
+      tr("<b>Verdict: %1</b> &nbsp; baseline cost %2 mJ (\u03c7\u00b2/\u03bd %3, noise level "
+         "%4) \u2192 final %5 mJ (\u03c7\u00b2/\u03bd %6)")
+          .arg(QString::fromStdString(r.verdict))
+          .arg(1e3 * r.baseline.evaluation.cost_j, 0, 'g', 4)
+          .arg(r.baseline_maps.reduced_chi2, 0, 'g', 3)
+          .arg(r.noise_reduced_chi2, 0, 'g', 3)
+          .arg(1e3 * r.final_evaluation.cost_j, 0, 'g', 4)
+          .arg(r.final_maps.reduced_chi2, 0, 'g', 3) +
+      verdict_details(r));
+  show_steps(r, bic_threshold);
+  show_residuals(r);
+  show_budget(r);
+}
+
+void DiagnosisView::show_steps(const analysis::DiagnosisResult& r, double bic_threshold) {
+  int rows = 0;
+  for (const auto& s : r.steps) rows += static_cast<int>(s.trials.size());
+  step_table_->setRowCount(rows);
+  int row = 0;
+  for (int i = 0; i < static_cast<int>(r.steps.size()); ++i) {
+    const auto& s = r.steps[static_cast<std::size_t>(i)];
+    for (const auto& t : s.trials) {
+      step_table_->setItem(row, 0, cell(QString::number(i + 1)));
+      step_table_->setItem(row, 1, cell(QString::fromStdString(t.effect)));
+      step_table_->setItem(
+          row, 2, cell(QString::fromStdString(analysis::candidate_outcome(s, t, bic_threshold))));
+      step_table_->setItem(row, 3,
+                           cell(t.solved ? number(t.delta_bic_joint) : QStringLiteral("—")));
+      step_table_->setItem(row, 4, cell(t.solved ? number(t.delta_bic) : QStringLiteral("—")));
+      QString supported;
+      for (int column = 5; column < 9; ++column) step_table_->setItem(row, column, cell("—"));
+      for (const auto& e : t.evidence) {
+        const int column = e.name == "edc"          ? 5
+                           : e.name == "amplitude"  ? 6
+                           : e.name == "harmonic-2" ? 7
+                                                    : 8;
+        step_table_->setItem(row, column, cell(number(e.delta_chi2())));
+        if (e.supports()) {
+          supported += (supported.isEmpty() ? "" : ", ") + QString::fromStdString(e.name);
+        }
+      }
+      step_table_->setItem(row, 9, cell(supported.isEmpty() ? QStringLiteral("—") : supported));
+      ++row;
+    }
+  }
+  step_table_->resizeColumnsToContents();
+}
+
+void DiagnosisView::show_residuals(const analysis::DiagnosisResult& r) {
+  residual_plot_->clearGraphs();
+  const auto add = [&](const analysis::DiscrepancyMaps& maps, bool positive, const QString& name,
+                       QCPScatterStyle::ScatterShape shape) {
+    QVector<double> x, y;
+    for (const auto& d : maps.levels) {
+      if (d.positive_well != positive) continue;
+      x.push_back(d.f0_n);
+      y.push_back(d.residual_sigma);
+    }
+    if (x.isEmpty()) return;
+    QCPGraph* g = residual_plot_->addGraph();
+    g->setName(name);
+    g->setData(x, y);
+    g->setLineStyle(QCPGraph::lsNone);
+    g->setPen(QPen(well_colour(positive ? "positive" : "negative")));
+    g->setScatterStyle(QCPScatterStyle(shape, 7));
+  };
+  add(r.baseline_maps, true, tr("z+* baseline"), QCPScatterStyle::ssCircle);
+  add(r.baseline_maps, false, tr("z-* baseline"), QCPScatterStyle::ssCircle);
+  add(r.final_maps, true, tr("z+* final"), QCPScatterStyle::ssDisc);
+  add(r.final_maps, false, tr("z-* final"), QCPScatterStyle::ssDisc);
+  residual_plot_->rescaleAxes();
+  residual_plot_->xAxis->scaleRange(1.08);  // keep the edge points off the frame
+  residual_plot_->yAxis->scaleRange(1.25);  // and room for the legend
+  residual_plot_->replot();
+}
+
+void DiagnosisView::show_budget(const analysis::DiagnosisResult& r) {
+  const nlohmann::json& b = r.sigma_budget;
+  if (!b.is_object() || !b.contains("levels")) {
+    budget_table_->setRowCount(0);
+    budget_label_->clear();
+    return;
+  }
+  budget_label_->setText(
+      tr("Each level's \u03c3\u00b2 = \u03c3_cycles\u00b2 + \u03c3_bias\u00b2 + "
+         "\u03c3_model\u00b2 (final model). Harmonic balance at H = %1, corrected to H = %2; "
+         "model error |S(%2) \u2212 S(%3)|: %4.")
+          .arg(b.value("harmonics", 0))
+          .arg(b.value("reference_harmonics", 0))
+          .arg(2 * b.value("reference_harmonics", 0) + 1)
+          .arg(b.value("resolved", false) ? tr("within target at every level")
+                                          : tr("above target at some levels")));
+  const auto& levels = b["levels"];
+  budget_table_->setRowCount(static_cast<int>(levels.size()));
+  int row = 0;
+  for (const auto& level : levels) {
+    budget_table_->setItem(row, 0, cell(QString::fromStdString(level.value("well", ""))));
+    budget_table_->setItem(row, 1, cell(number(level.value("f0_n", 0.0))));
+    const char* keys[] = {"edc_mes_j",     "sigma_cycles_j", "sigma_bias_j",
+                          "sigma_model_j", "sigma_j",        "correction_j"};
+    for (int column = 2; column < 8; ++column) {
+      budget_table_->setItem(row, column,
+                             cell(number(1e3 * level.value(keys[column - 2], 0.0), 3)));
+    }
+    ++row;
+  }
+  budget_table_->resizeColumnsToContents();
+}
+
+}  // namespace oscilab::ui

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <QWidget>
+
+#include "analysis/diagnosis/diagnosis.h"
+
+class QCustomPlot;
+class QLabel;
+class QTableWidget;
+
+namespace oscilab::ui {
+
+/// What a model-gap diagnosis found, for the fit panel: the verdict with the evidence that
+/// supported it and the response fingerprints before and after; every candidate of every step
+/// with its ΔBIC (EDC alone and joint), how each piece of evidence moved (Δχ²) and why it was
+/// accepted or not; the EDC residuals in σ before and after; and, on a page of its own
+/// (budget_page()), the final model's σ budget per level. It displays; the numbers come from
+/// analysis::diagnose.
+class DiagnosisView : public QWidget {
+ public:
+  explicit DiagnosisView(QWidget* parent = nullptr);
+
+  void show_result(const analysis::DiagnosisResult& result, double bic_threshold);
+
+  QWidget* budget_page() const { return budget_page_; }
+  QLabel* verdict_label() const { return verdict_label_; }
+  QTableWidget* step_table() const { return step_table_; }
+  QCustomPlot* residual_plot() const { return residual_plot_; }
+  QTableWidget* budget_table() const { return budget_table_; }
+
+ private:
+  void show_steps(const analysis::DiagnosisResult& result, double bic_threshold);
+  void show_residuals(const analysis::DiagnosisResult& result);
+  void show_budget(const analysis::DiagnosisResult& result);
+
+  QLabel* verdict_label_ = nullptr;
+  QTableWidget* step_table_ = nullptr;
+  QCustomPlot* residual_plot_ = nullptr;
+  QWidget* budget_page_ = nullptr;
+  QLabel* budget_label_ = nullptr;
+  QTableWidget* budget_table_ = nullptr;
+};
+
+}  // namespace oscilab::ui
