@@ -7,10 +7,10 @@
 
 namespace oscilab::analysis {
 
-/// Bias floors of the measured harmonic content, measured like kEdcEstimatorBiasRel on
-/// virtual-rig records of the paper's model against its converged harmonic balance
-/// (`diagnosis_study bias`, docs/diagnosis.md): what the cycle fits get wrong that their scatter
-/// does not show. |Z1| relative; the ratios |Z2|/|Z1| and |Z3|/|Z1| absolute.
+/// Bias floors of the measured harmonic content, measured like kEdcEstimatorBiasRel
+/// (scripts/estimator_bias_study.sh, 1248 levels): what the cycle fits get wrong that their
+/// scatter does not show, rounded up from 3.5e-4 (|Z1|, relative; 2.8e-4 … 4.1e-4 per condition)
+/// and 1.2e-4 / 0.9e-4 (|Z2|/|Z1| and |Z3|/|Z1|, absolute; at most 1.34e-4 per condition).
 inline constexpr double kAmplitudeBiasRel = 4e-4;
 inline constexpr double kHarmonicRatioBias = 1.5e-4;
 

@@ -15,11 +15,13 @@
 
 namespace oscilab::analysis {
 
-/// Relative bias of the stepped-sine EDC estimator (edc_mean_j: per-cycle harmonic fits,
-/// docs/analysis.md) against the exact dissipated energy, measured on virtual-rig records of the
-/// paper's model with the default sensors (scripts/estimator_bias_study.sh): the root mean square
-/// of the relative deviation left after the cycles' own standard error is taken out. It stands in
-/// each level's σ for what the estimator gets wrong that its cycles do not show.
+/// Relative bias of the stepped-sine EDC (edc_mean_j: per-cycle harmonic fits, docs/analysis.md)
+/// against the converged harmonic balance of the true model, measured on virtual-rig records of
+/// the paper's model at 8, 9 and 10 Hz with sensor noise ×1 and ×3
+/// (scripts/estimator_bias_study.sh): the ρ for which the deviations' mean square equals σ_cycles²
+/// + (ρ S)², 4.6e-4 over 1248 levels (3.2e-4 … 5.4e-4 per condition, not growing with the noise),
+/// rounded up. It stands in each level's σ for what the chain gets wrong that the level's cycles do
+/// not show.
 inline constexpr double kEdcEstimatorBiasRel = 5e-4;
 
 /// Each level's σ_k and where it comes from (docs/identification.md, "σ budget"):
