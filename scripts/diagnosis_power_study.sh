@@ -8,8 +8,8 @@
 #
 #   bash scripts/diagnosis_power_study.sh OUT [quick|full]
 #
-# quick: 2 seeds at 9 Hz, noise x1, scales 0.03 0.1 0.3 1 10; 1 seed at 8 Hz, 10 Hz and noise x3
-#        for scales 0.3 and 1; 20 control seeds.   full: 5 seeds everywhere, 7 scales.
+# quick: 2 seeds at 9 Hz, noise x1, scales 0.003 ... 10; 1 seed at 8 Hz, 10 Hz and noise x3
+#        for scales 0.3 and 1; 20 control seeds.   full: 5 seeds everywhere, 9 scales.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:?usage: diagnosis_power_study.sh OUT [quick|full]}
@@ -23,9 +23,9 @@ results=$out/results.csv
 effects=(presliding-hysteresis quadratic-damping cubic-damping stribeck-friction coulomb-friction
          quadratic-stiffness cubic-stiffness quintic-stiffness)
 if [ "$mode" = full ]; then
-  scales=(0.01 0.03 0.1 0.3 1 3 10); seeds=5; side_scales=(0.1 0.3 1 3); side_seeds=5; controls=40
+  scales=(0.001 0.003 0.01 0.03 0.1 0.3 1 3 10); seeds=5; side_scales=(0.1 0.3 1 3); side_seeds=5; controls=40
 else
-  scales=(0.03 0.1 0.3 1 10); seeds=2; side_scales=(0.3 1); side_seeds=1; controls=20
+  scales=(0.003 0.01 0.03 0.1 0.3 1 10); seeds=2; side_scales=(0.3 1); side_seeds=1; controls=20
 fi
 
 done_already() {  # case effect scale freq noise seed
