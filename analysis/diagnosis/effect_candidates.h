@@ -11,8 +11,9 @@
 
 namespace oscilab::analysis {
 
-/// A physical effect a diagnosis may add (docs/contracts.md §4 names): the term, its free parameters
-/// with bounds scaled to the data, starting points to scan, and what its fingerprint looks like.
+/// A physical effect a diagnosis may add (docs/contracts.md §4 names): the term, its free
+/// parameters with bounds scaled to the data, starting points to scan, and what its fingerprint
+/// looks like.
 struct EffectCandidate {
   std::string effect;  // e.g. "quadratic-damping"
   std::unique_ptr<ModelTerm> term;

@@ -23,8 +23,8 @@ struct HiddenEffect {
   std::unique_ptr<ModelTerm> term;  // nullptr: the control
 };
 
-/// The effects of the first hidden-effect campaign, each strong enough to leave a misfit of several σ at
-/// some level when the paper's form is fitted (checked by the tests through the baseline).
+/// The effects of the first hidden-effect campaign, each strong enough to leave a misfit of several
+/// σ at some level when the paper's form is fitted (checked by the tests through the baseline).
 inline std::vector<HiddenEffect> hidden_effects() {
   std::vector<HiddenEffect> out;
   out.push_back({"presliding-hysteresis", std::make_unique<DahlFriction>(0.06, 3e3)});
