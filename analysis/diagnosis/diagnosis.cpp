@@ -403,6 +403,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     current = forms[best]->with_initial(theta);
     settle();
     record.effect = accepted.effect;
+    record.strength_parameter = candidates[order[best]].free.front().name;
     record.evidence = accepted.evidence;
     record.delta_bic_joint = accepted.delta_bic_joint;
     record.cost_after_j = evaluation.cost_j;
@@ -413,8 +414,20 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         static_cast<double>(current.size() - form_size_before) * std::log(static_cast<double>(n));
     record.parameters_after = named(current, theta);
     accepted_effects.push_back(accepted.effect);
-    if (result.verdict == "none") result.verdict = accepted.effect;
     result.steps.push_back(std::move(record));
+  }
+  // An effect accepted early can lose its part to effects accepted after it (a cubic damping
+  // that stood in for a quadratic one and a presliding hysteresis together): its strength
+  // vanishes in the final refit. It is withdrawn, and the verdict is the first effect that stands.
+  for (DiagnosisStep& s : result.steps) {
+    if (s.effect == "none") continue;
+    for (int i = 0; i < current.size(); ++i) {
+      const FreeParameter& p = current.parameters()[i];
+      if (p.name != s.strength_parameter) continue;
+      const double scale = std::max(std::abs(p.lower), std::abs(p.upper));
+      s.withdrawn = std::abs(theta(i)) <= 1e-3 * scale;
+    }
+    if (!s.withdrawn && result.verdict == "none") result.verdict = s.effect;
   }
   // A trailing "none" step records what was tried last; it is not an accepted effect.
   result.final_form = current;

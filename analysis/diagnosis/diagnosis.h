@@ -61,7 +61,11 @@ struct CandidateTrial {
 };
 
 struct DiagnosisStep {
-  std::string effect;  // the accepted effect
+  std::string effect;              // the accepted effect
+  std::string strength_parameter;  // the added term's strength (its first free parameter)
+  /// The term's strength vanished (≤ 1e-3 of its bound) in the final model, after later effects
+  /// were added: the effect is kept in the report but not named in the verdict.
+  bool withdrawn = false;
   double cost_before_j = 0.0, cost_after_j = 0.0;
   double weighted_before = 0.0, weighted_after = 0.0;
   double reduced_chi2_before = 0.0, reduced_chi2_after = 0.0;

@@ -194,6 +194,11 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
       step["evidence"]["weighted_cost_after"] = s.weighted_after;
       step["evidence"]["reduced_chi2_after"] = s.reduced_chi2_after;
       step["cost_after_j"] = s.cost_after_j;
+      step["withdrawn"] = s.withdrawn;
+      if (s.withdrawn) {
+        step["withdrawn_reason"] = "its strength " + s.strength_parameter +
+                                   " vanished in the final model after later effects were added";
+      }
       step["parameters_after"] = parameters_json(s.parameters_after);
     } else {
       step["cost_after_j"] = s.cost_before_j;  // nothing was added
