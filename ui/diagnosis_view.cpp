@@ -7,8 +7,9 @@
 
 #include <qcustomplot.h>
 
+#include "analysis/figures/diagnosis_figures.h"
+#include "ui/figure_renderer.h"
 #include "ui/table_cells.h"
-#include "ui/well_colours.h"
 
 namespace oscilab::ui {
 namespace {
@@ -82,11 +83,8 @@ DiagnosisView::DiagnosisView(QWidget* parent) : QWidget(parent) {
   budget_label_ = new QLabel;
   budget_label_->setWordWrap(true);
 
-  residual_plot_ = new QCustomPlot;
-  residual_plot_->setMinimumHeight(200);
-  residual_plot_->xAxis->setLabel(tr("forcing amplitude f0 [N]"));
-  residual_plot_->yAxis->setLabel(tr("(S_mes - S_mod) / \u03c3"));
-  residual_plot_->legend->setVisible(true);
+  residual_plot_ = new QCustomPlot;  // one panel per well (figures::residual_figure)
+  residual_plot_->setMinimumHeight(360);
 
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(verdict_label_);
@@ -149,30 +147,9 @@ void DiagnosisView::show_steps(const analysis::DiagnosisResult& r, double bic_th
 }
 
 void DiagnosisView::show_residuals(const analysis::DiagnosisResult& r) {
-  residual_plot_->clearGraphs();
-  const auto add = [&](const analysis::DiscrepancyMaps& maps, bool positive, const QString& name,
-                       QCPScatterStyle::ScatterShape shape) {
-    QVector<double> x, y;
-    for (const auto& d : maps.levels) {
-      if (d.positive_well != positive) continue;
-      x.push_back(d.f0_n);
-      y.push_back(d.residual_sigma);
-    }
-    if (x.isEmpty()) return;
-    QCPGraph* g = residual_plot_->addGraph();
-    g->setName(name);
-    g->setData(x, y);
-    g->setLineStyle(QCPGraph::lsNone);
-    g->setPen(QPen(well_colour(positive ? "positive" : "negative")));
-    g->setScatterStyle(QCPScatterStyle(shape, 7));
-  };
-  add(r.baseline_maps, true, tr("z+* baseline"), QCPScatterStyle::ssCircle);
-  add(r.baseline_maps, false, tr("z-* baseline"), QCPScatterStyle::ssCircle);
-  add(r.final_maps, true, tr("z+* final"), QCPScatterStyle::ssDisc);
-  add(r.final_maps, false, tr("z-* final"), QCPScatterStyle::ssDisc);
-  residual_plot_->rescaleAxes();
-  residual_plot_->xAxis->scaleRange(1.08);  // keep the edge points off the frame
-  residual_plot_->yAxis->scaleRange(1.25);  // and room for the legend
+  figures::Figure figure = figures::residual_figure(r);  // the figure of `diagnose`'s residuals.png
+  figure.title.clear();                                  // the verdict above says what it is
+  render_figure(*residual_plot_, figure);
   residual_plot_->replot();
 }
 

@@ -8,6 +8,7 @@
 
 #include <qcustomplot.h>
 
+#include "analysis/figures/figure_png.h"
 #include "ui/figure_renderer.h"
 #include "ui/plot_context_menu.h"
 
@@ -29,19 +30,19 @@ FigureDialog::FigureDialog(QWidget* parent) : QDialog(parent) {
   resize(1080, 900);
 }
 
-void FigureDialog::set_figures(const std::vector<std::pair<QString, Figure>>& figures) {
+void FigureDialog::set_figures(const std::vector<std::pair<QString, figures::Figure>>& tabs) {
   while (tabs_->count() > 0) {
     QWidget* page = tabs_->widget(0);
     tabs_->removeTab(0);
     delete page;
   }
   plots_.clear();
-  for (const auto& [name, figure] : figures) {
+  for (const auto& [name, figure] : tabs) {
     auto* plot = new QCustomPlot;
     render_figure(*plot, figure);
     // The figure's own height (panels of 220 to 520 px), so that a tall one scrolls rather than
     // squeezes its panels; the width follows the window.
-    plot->setMinimumSize(600, figure_height_px(figure));
+    plot->setMinimumSize(600, figures::figure_height_px(figure));
     auto* scroll = new QScrollArea;
     scroll->setWidgetResizable(true);
     scroll->setWidget(plot);

@@ -6,16 +6,16 @@
 #include <QDialog>
 #include <QString>
 
-#include "ui/figure.h"
+#include "analysis/figures/figure.h"
 
 class QCustomPlot;
 class QTabWidget;
 
 namespace oscilab::ui {
 
-/// Figures (ui/figure.h) in a window, one tab each, drawn by render_figure at their own height
-/// (a tall one scrolls). The figures come ready-made; the dialog draws them. Each plot exports
-/// from its context menu (ui/plot_context_menu.h). UI thread only.
+/// Figures (analysis/figures/figure.h) in a window, one tab each, drawn by render_figure at their
+/// own height (a tall one scrolls). The figures come ready-made; the dialog draws them. Each plot
+/// exports from its context menu (ui/plot_context_menu.h). UI thread only.
 class FigureDialog : public QDialog {
   Q_OBJECT
 
@@ -23,7 +23,7 @@ class FigureDialog : public QDialog {
   explicit FigureDialog(QWidget* parent = nullptr);
 
   /// Replaces the tabs: one per (tab name, figure), in order.
-  void set_figures(const std::vector<std::pair<QString, Figure>>& figures);
+  void set_figures(const std::vector<std::pair<QString, figures::Figure>>& tabs);
   QTabWidget* tabs() const { return tabs_; }
   /// The plot of tab `index`, or null.
   QCustomPlot* plot(int index) const;

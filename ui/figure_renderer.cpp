@@ -1,10 +1,8 @@
 #include "ui/figure_renderer.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
-#include <QApplication>
 #include <QColor>
 #include <QFont>
 #include <QPen>
@@ -14,16 +12,13 @@
 namespace oscilab::ui {
 namespace {
 
-// Okabe & Ito (2008) colour-blind-safe palette, black first.
-QColor palette_color(int index) {
-  static const std::array<QColor, 8> colors = {
-      QColor(0, 0, 0),       QColor(0, 114, 178), QColor(213, 94, 0),   QColor(0, 158, 115),
-      QColor(204, 121, 167), QColor(230, 159, 0), QColor(86, 180, 233), QColor(240, 228, 66)};
-  return colors[static_cast<std::size_t>(std::abs(index)) % colors.size()];
+QColor palette_qcolor(int index) {
+  const figures::Rgb c = figures::palette_color(index);
+  return {c.red, c.green, c.blue};
 }
 
-void add_series(QCPAxisRect* rect, QCPLegend* legend, const FigureSeries& series) {
-  const QColor color = palette_color(series.color);
+void add_series(QCPAxisRect* rect, QCPLegend* legend, const figures::FigureSeries& series) {
+  const QColor color = palette_qcolor(series.color);
   // Split at NaN: each finite run becomes one curve; only the first goes in the legend.
   bool first_curve = true;
   std::size_t i = 0;
@@ -42,19 +37,19 @@ void add_series(QCPAxisRect* rect, QCPLegend* legend, const FigureSeries& series
     QPen pen(color);
     pen.setWidthF(series.width_px);
     switch (series.style) {
-      case FigureSeries::Style::Line:
+      case figures::FigureSeries::Style::Line:
         curve->setPen(pen);
         break;
-      case FigureSeries::Style::DashedLine:
+      case figures::FigureSeries::Style::DashedLine:
         pen.setStyle(Qt::DashLine);
         curve->setPen(pen);
         break;
-      case FigureSeries::Style::Dots:
+      case figures::FigureSeries::Style::Dots:
         curve->setLineStyle(QCPCurve::lsNone);
         curve->setScatterStyle(
             QCPScatterStyle(QCPScatterStyle::ssDisc, color, color, series.width_px));
         break;
-      case FigureSeries::Style::Markers:
+      case figures::FigureSeries::Style::Markers:
         curve->setLineStyle(QCPCurve::lsNone);
         pen.setWidthF(1.5);
         curve->setScatterStyle(
@@ -71,12 +66,7 @@ void add_series(QCPAxisRect* rect, QCPLegend* legend, const FigureSeries& series
 
 }  // namespace
 
-int figure_height_px(const Figure& figure) {
-  return figure.panel_height_px * static_cast<int>(figure.panels.size()) +
-         (figure.title.empty() ? 0 : 30);
-}
-
-void render_figure(QCustomPlot& plot, const Figure& figure) {
+void render_figure(QCustomPlot& plot, const figures::Figure& figure) {
   plot.clearPlottables();
   plot.clearItems();
   plot.setAutoAddPlottableToLegend(false);
@@ -92,7 +82,7 @@ void render_figure(QCustomPlot& plot, const Figure& figure) {
     plot.plotLayout()->addElement(
         row++, 0, new QCPTextElement(&plot, QString::fromStdString(figure.title), title_font));
   }
-  for (const FigurePanel& panel : figure.panels) {
+  for (const figures::FigurePanel& panel : figure.panels) {
     if (!panel.title.empty()) {
       plot.plotLayout()->addElement(
           row++, 0, new QCPTextElement(&plot, QString::fromStdString(panel.title), font));
@@ -112,7 +102,7 @@ void render_figure(QCustomPlot& plot, const Figure& figure) {
     QCPLegend* legend = nullptr;
     if (panel.legend) {
       legend = new QCPLegend;
-      using Corner = FigurePanel::Corner;
+      using Corner = figures::FigurePanel::Corner;
       const Corner c = panel.legend_corner;
       const Qt::Alignment vertical =
           c == Corner::TopLeft || c == Corner::TopRight ? Qt::AlignTop : Qt::AlignBottom;
@@ -123,7 +113,7 @@ void render_figure(QCustomPlot& plot, const Figure& figure) {
       legend->setFont(font);
       legend->setBrush(QBrush(QColor(255, 255, 255, 220)));
     }
-    for (const FigureSeries& series : panel.series) add_series(rect, legend, series);
+    for (const figures::FigureSeries& series : panel.series) add_series(rect, legend, series);
     if (legend != nullptr && legend->itemCount() == 0) legend->setVisible(false);
     // Autoscale with a margin of 4 % so that curves do not sit on the frame.
     bool found = false;
@@ -150,17 +140,6 @@ void render_figure(QCustomPlot& plot, const Figure& figure) {
       y->setRange(values.lower - dv, values.upper + dv);
     }
   }
-}
-
-std::string render_figure_png(const Figure& figure, const std::string& path) {
-  if (QApplication::instance() == nullptr) return path + ": no QApplication to render with";
-  if (figure.panels.empty()) return path + ": figure has no panels";
-  QCustomPlot plot;
-  render_figure(plot, figure);
-  if (!plot.savePng(QString::fromStdString(path), figure.width_px, figure_height_px(figure), 1.0)) {
-    return path + ": cannot write PNG";
-  }
-  return {};
 }
 
 }  // namespace oscilab::ui

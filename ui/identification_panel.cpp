@@ -21,22 +21,20 @@
 #include <QSpinBox>
 #include <QTabWidget>
 #include <QTableWidget>
-#include <QTimer>
 #include <QVBoxLayout>
 
 #include <qcustomplot.h>
 
 #include "analysis/common/input_error.h"
+#include "analysis/figures/fit_figures.h"
 #include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/model/reference_models.h"
 #include "daq/recording/campaign_reader.h"
+#include "daq/recording/fit_json.h"
 #include "ui/background_job.h"
 #include "ui/diagnosis_view.h"
 #include "ui/figure_dialog.h"
-#include "ui/figure_renderer.h"
-#include "ui/fit_figures.h"
-#include "ui/fit_json.h"
 #include "ui/response_dialog.h"
 #include "ui/table_cells.h"
 
@@ -89,7 +87,7 @@ QString table3_label(const std::string& name) {
   return QString::fromStdString(name);
 }
 
-// Tab names of the fit's figures (ui/fit_figures.h stems).
+// Tab names of the fit's figures (analysis/figures/fit_figures.h stems).
 QString figure_tab_name(const std::string& stem) {
   if (stem == "edc_fit") return QObject::tr("EDC (Fig. 15)");
   if (stem == "convergence") return QObject::tr("Convergence (Fig. 14)");
@@ -578,8 +576,8 @@ void IdentificationPanel::with_figure_data(std::function<void()> then, const QSt
   after_figure_data_ = std::move(then);
   export_dir_ = export_dir;
   const std::shared_ptr<const Outcome> fitted = fitted_;
-  const std::shared_ptr<const FitFigureData> existing = figure_data_;
-  auto data = std::make_shared<FitFigureData>();
+  const std::shared_ptr<const figures::FitFigureData> existing = figure_data_;
+  auto data = std::make_shared<figures::FitFigureData>();
   auto error = std::make_shared<std::string>();
   figure_data_job_ = data;
   figure_data_error_ = error;
@@ -590,12 +588,12 @@ void IdentificationPanel::with_figure_data(std::function<void()> then, const QSt
                                   : tr("Computing the cost slices and sensitivity curves\u2026"));
   job_->start([fitted, existing, data, error, dir](const ProgressFn&, const CancelToken& cancel) {
     try {
-      *data =
-          existing ? *existing : fit_figure_data(*fitted->objective, fitted->fit.theta, 0, cancel);
+      *data = existing ? *existing
+                       : figures::fit_figure_data(*fitted->objective, fitted->fit.theta, 0, cancel);
       if (!dir.empty() && !cancel.cancelled()) {
-        write_fit_json(dir + "/fit.json", fitted->fit, *fitted->objective, fitted->records,
-                       fitted->notes);
-        write_fit_tables(dir, fitted->fit, *fitted->objective, data->slices, data->curves);
+        daq::write_fit_json(dir + "/fit.json", fitted->fit, *fitted->objective, fitted->records,
+                            fitted->notes);
+        figures::write_fit_figures(dir, fitted->fit, *fitted->objective, *data, true);
       }
     } catch (const std::exception& e) {  // InputError: a file that cannot be written
       *error = e.what();
@@ -629,18 +627,19 @@ void IdentificationPanel::on_figure_data_finished(bool cancelled) {
 
 void IdentificationPanel::show_figures() {
   with_figure_data([this] {
-    std::vector<std::pair<QString, Figure>> figures;
-    for (NamedFigure& f : fit_figures(fitted_->fit, *fitted_->objective, *figure_data_)) {
-      figures.emplace_back(figure_tab_name(f.stem), std::move(f.figure));
+    std::vector<std::pair<QString, figures::Figure>> tabs;
+    for (figures::NamedFigure& f :
+         figures::fit_figures(fitted_->fit, *fitted_->objective, *figure_data_)) {
+      tabs.emplace_back(figure_tab_name(f.stem), std::move(f.figure));
     }
     if (!figures_dialog_) {
       figures_dialog_ = new FigureDialog(this);
       figures_dialog_->setWindowTitle(tr("Figures of the fit"));
     }
-    figures_dialog_->set_figures(figures);
+    figures_dialog_->set_figures(tabs);
     figures_dialog_->show();
     figures_dialog_->raise();
-    status_label_->setText(tr("Figures of the fit: %1 (Figs. 13\u201316).").arg(figures.size()));
+    status_label_->setText(tr("Figures of the fit: %1 (Figs. 13\u201316).").arg(tabs.size()));
     Q_EMIT figures_shown();
   });
 }
@@ -656,40 +655,16 @@ void IdentificationPanel::export_results(const QString& dir) {
     Q_EMIT export_finished(message, false);
     return;
   }
+  // The worker writes fit.json, the tables and the figures (PNG, drawn without the GUI's plots).
   with_figure_data(
       [this, dir] {
-        auto figures = std::make_shared<const std::vector<NamedFigure>>(
-            fit_figures(fitted_->fit, *fitted_->objective, *figure_data_));
-        write_figure_pngs(dir, figures, 0);
+        const QString message = tr("Results written to %1: fit.json, the figures (PNG) and their "
+                                   "tables (CSV).")
+                                    .arg(dir);
+        status_label_->setText(message);
+        Q_EMIT export_finished(message, true);
       },
       dir);
-}
-
-// One PNG per turn of the event loop (each renders in tens of ms on the UI thread, where
-// QCustomPlot lives), so that the window stays responsive.
-void IdentificationPanel::write_figure_pngs(const QString& dir,
-                                            std::shared_ptr<const std::vector<NamedFigure>> figures,
-                                            std::size_t next) {
-  if (next == figures->size()) {
-    const QString message = tr("Results written to %1: fit.json, %2 figures (PNG) and their "
-                               "tables (CSV).")
-                                .arg(dir)
-                                .arg(figures->size());
-    status_label_->setText(message);
-    Q_EMIT export_finished(message, true);
-    return;
-  }
-  const NamedFigure& f = (*figures)[next];
-  const std::string error = render_figure_png(
-      f.figure, QDir(dir).filePath(QString::fromStdString(f.stem + ".png")).toStdString());
-  if (!error.empty()) {
-    const QString message = tr("Error: %1").arg(QString::fromStdString(error));
-    status_label_->setText(message);
-    Q_EMIT export_finished(message, false);
-    return;
-  }
-  QTimer::singleShot(0, this,
-                     [this, dir, figures, next] { write_figure_pngs(dir, figures, next + 1); });
 }
 
 ResponseDialog* IdentificationPanel::open_branch_dialog() { return open_response_dialog(false); }

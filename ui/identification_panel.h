@@ -22,13 +22,15 @@ class QSpinBox;
 class QTableWidget;
 class QTabWidget;
 
+namespace oscilab::figures {
+struct FitFigureData;
+}  // namespace oscilab::figures
+
 namespace oscilab::ui {
 
 class BackgroundJob;
 class FigureDialog;
 class ResponseDialog;
-struct FitFigureData;
-struct NamedFigure;
 
 /// The best model of a running fit so far, made on the fit's worker thread and handed to the UI
 /// thread by a queued signal: its EDC at every measured level (live progress).
@@ -131,11 +133,9 @@ class IdentificationPanel : public QWidget {
   void update_result_buttons();
   /// Runs `then` once the figure data of the last fit exists (at once, or after the worker
   /// computed it; not at all when that is cancelled). With `export_dir`, the worker also writes
-  /// the FIT JSON and the CSV tables there.
+  /// the FIT JSON, the CSV tables and the PNG figures there.
   void with_figure_data(std::function<void()> then, const QString& export_dir = {});
   void on_figure_data_finished(bool cancelled);
-  void write_figure_pngs(const QString& dir,
-                         std::shared_ptr<const std::vector<NamedFigure>> figures, std::size_t next);
   void show_preview(std::shared_ptr<const oscilab::ui::FitPreview> preview);
   ResponseDialog* open_response_dialog(bool map);
   /// A fit's best χ² so far (called on the UI thread, from the worker's queued reports).
@@ -149,9 +149,9 @@ class IdentificationPanel : public QWidget {
   JobKind job_kind_ = JobKind::Fit;
   std::shared_ptr<Outcome> outcome_;
   std::shared_ptr<const Outcome> fitted_;  // the last finished fit, for figures and dialogs
-  std::shared_ptr<const FitFigureData> figure_data_;  // of fitted_, once computed
-  std::shared_ptr<FitFigureData> figure_data_job_;    // written by the worker
-  std::shared_ptr<std::string> figure_data_error_;    // written by the worker
+  std::shared_ptr<const figures::FitFigureData> figure_data_;  // of fitted_, once computed
+  std::shared_ptr<figures::FitFigureData> figure_data_job_;    // written by the worker
+  std::shared_ptr<std::string> figure_data_error_;             // written by the worker
   std::function<void()> after_figure_data_;
   QString export_dir_;
   FigureDialog* figures_dialog_ = nullptr;

@@ -34,6 +34,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/hbm/level_response.h"
 #include "analysis/model/reference_models.h"
+#include "analysis/signal/amplitude_spectrum.h"
 #include "daq/live/net_source.h"
 #include "daq/live/replay_source.h"
 #include "ui/background_job.h"
@@ -1369,7 +1370,7 @@ void LiveMonitor::refresh_cycle() {
   }
 
   // The spectrum of z over the newest few seconds.
-  const ZSpectrum spectrum = z_spectrum(raw_.z_m, rate_hz, nu);
+  const analysis::ZSpectrum spectrum = analysis::z_spectrum(raw_.z_m, rate_hz, nu);
   if (!spectrum.freq_hz.empty()) {
     QVector<QCPGraphData> data;
     data.reserve(static_cast<qsizetype>(spectrum.freq_hz.size()));

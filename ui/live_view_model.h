@@ -258,23 +258,6 @@ struct CycleLoop {
 CycleLoop current_loop(const daq::TraceHistory& raw, double frequency_hz,
                        double well_boundary_m = 0.0);
 
-/// One-sided amplitude spectrum of z (docs/conventions.md: a sine of amplitude A reads A) with
-/// a Hann window, and the amplitudes at the excitation's harmonics h ν, h = 1 … H, each by a
-/// direct DFT at exactly h ν (so a harmonic between bins reads its amplitude, not a scalloped
-/// one), and at ν/2 (a period-doubling's first sign, Fig. 17).
-struct ZSpectrum {
-  std::vector<double> freq_hz;
-  std::vector<double> amplitude_m;
-  std::vector<double> harmonic_freq_hz;
-  std::vector<double> harmonic_amplitude_m;
-  double subharmonic_amplitude_m = 0.0;  // at ν/2
-  double duration_s = 0.0;               // of the stretch analysed
-};
-/// `z_m` sampled at `sample_rate_hz` (non-finite samples are skipped from the start: the
-/// newest finite stretch is used); empty when it holds fewer than 64 samples.
-ZSpectrum z_spectrum(const std::vector<double>& z_m, double sample_rate_hz, double frequency_hz,
-                     int harmonics = 8);
-
 /// The display unit of a live trace, kept while the values still read between 0.5 and 2000 in
 /// it (so an axis does not flicker between mm and µm at a boundary), chosen afresh otherwise.
 DisplayUnit sticky_display_unit(const std::optional<DisplayUnit>& current,

@@ -19,9 +19,9 @@
 #include <qcustomplot.h>
 
 #include "analysis/common/input_error.h"
+#include "analysis/figures/hbm_figures.h"
 #include "ui/background_job.h"
 #include "ui/figure_renderer.h"
-#include "ui/hbm_figures.h"
 #include "ui/plot_context_menu.h"
 
 namespace oscilab::ui {
@@ -308,11 +308,12 @@ std::string ResponseDialog::title() const {
 }
 
 void ResponseDialog::draw() {
-  std::vector<NamedBranch> named;
+  std::vector<figures::NamedBranch> named;
   for (const analysis::Branch& b : branches_) named.push_back({well_label(b.positive_well), &b});
   if (named.empty()) return;
   if (kind_ == Kind::Branch) {
-    render_figure(*plot_, branch_figure(title() + ": harmonic balance, continuation in f0", named));
+    render_figure(
+        *plot_, figures::branch_figure(title() + ": harmonic balance, continuation in f0", named));
   } else {
     const analysis::BifurcationMapOptions& o = map_.options;
     char text[120];
@@ -320,7 +321,7 @@ void ResponseDialog::draw() {
                   ": bifurcation map, time simulation stepped %g N, %d periods "
                   "per level",
                   o.step_n, o.hold_periods);
-    render_figure(*plot_, map_figure(title() + text, named, map_));
+    render_figure(*plot_, figures::map_figure(title() + text, named, map_));
   }
   plot_->replot();
 }
@@ -331,11 +332,11 @@ bool ResponseDialog::export_csv(const QString& path) {
       throw InputError(path.toStdString() + ": nothing computed yet to export");
     }
     if (kind_ == Kind::Branch) {
-      std::vector<CsvBranch> csv;
+      std::vector<figures::CsvBranch> csv;
       for (const analysis::Branch& b : branches_) {
         csv.push_back({&b, b.positive_well ? "positive" : "negative", 1});
       }
-      write_branches_csv(csv, csv.size() > 1, false, path.toStdString());
+      figures::write_branches_csv(csv, csv.size() > 1, false, path.toStdString());
     } else {
       analysis::write_bifurcation_map_csv(map_, path.toStdString());
     }

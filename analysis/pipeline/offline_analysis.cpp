@@ -1,9 +1,12 @@
 #include "analysis/pipeline/offline_analysis.h"
 
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <mutex>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/parallel_for.h"
 #include "analysis/signal/gap_fill.h"
 
 namespace oscilab::analysis {
@@ -135,13 +138,30 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
                                   const CancelToken& cancel) {
   CampaignAnalysis campaign;
   campaign.settings = settings;
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    if (cancel.cancelled()) {
-      campaign.status = JobStatus::Cancelled;
-      return campaign;
+  // The records are independent until the restoring-force slices, which pool them: one per
+  // thread, the results in the order given, the first error (in that order) rethrown.
+  campaign.records.resize(records.size());
+  std::vector<std::exception_ptr> errors(records.size());
+  std::mutex progress_mutex;
+  std::size_t done = 0;
+  parallel_for(records.size(), 0, [&](std::size_t i) {
+    if (cancel.cancelled()) return;
+    try {
+      campaign.records[i] = analyze_record(records[i], settings);
+    } catch (...) {
+      errors[i] = std::current_exception();
     }
-    campaign.records.push_back(analyze_record(records[i], settings));
-    if (progress) progress(static_cast<double>(i + 1) / static_cast<double>(records.size() + 1));
+    const std::lock_guard lock(progress_mutex);
+    ++done;
+    if (progress) progress(static_cast<double>(done) / static_cast<double>(records.size() + 1));
+  });
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  if (cancel.cancelled()) {
+    campaign.records.clear();
+    campaign.status = JobStatus::Cancelled;
+    return campaign;
   }
   std::vector<const MotionSignals*> signals;
   for (const RecordAnalysis& r : campaign.records) {

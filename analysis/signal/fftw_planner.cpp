@@ -29,7 +29,7 @@ fftw_plan cached_plan(int n, bool forward) {
   if (const auto it = plans.find(key); it != plans.end()) return it->second;
   double* real = fftw_alloc_real(static_cast<std::size_t>(n));
   fftw_complex* spectrum = fftw_alloc_complex(static_cast<std::size_t>(n / 2 + 1));
-  const unsigned flags = FFTW_ESTIMATE | FFTW_UNALIGNED;
+  const unsigned flags = FFTW_ESTIMATE;
   const fftw_plan plan = forward ? fftw_plan_dft_r2c_1d(n, real, spectrum, flags)
                                  : fftw_plan_dft_c2r_1d(n, spectrum, real, flags);
   fftw_free(real);

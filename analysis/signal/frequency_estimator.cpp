@@ -19,14 +19,14 @@ DominantTone dominant_tone(const Eigen::VectorXd& x, double sample_rate_hz, doub
   const double mean = x.mean();
   // Zero-padded to a fast FFT size: the Hann window already takes the record to zero at its ends.
   const auto n_fft = static_cast<Eigen::Index>(fast_fft_size(static_cast<std::size_t>(n)));
-  std::vector<double> buffer(static_cast<std::size_t>(n_fft), 0.0);
+  FftwVector<double> buffer(static_cast<std::size_t>(n_fft), 0.0);
   for (Eigen::Index i = 0; i < n; ++i) {
     const double hann = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(i) /
                                              static_cast<double>(n - 1));
     buffer[static_cast<std::size_t>(i)] = hann * (x[i] - mean);
   }
   const Eigen::Index bins = n_fft / 2 + 1;
-  std::vector<std::complex<double>> spectrum(static_cast<std::size_t>(bins));
+  FftwVector<std::complex<double>> spectrum(static_cast<std::size_t>(bins));
   fftw_execute_dft_r2c(cached_r2c_plan(static_cast<int>(n_fft)), buffer.data(),
                        reinterpret_cast<fftw_complex*>(spectrum.data()));
 

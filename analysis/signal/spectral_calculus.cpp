@@ -42,7 +42,7 @@ SpectralRecord::SpectralRecord(const Eigen::VectorXd& x, double sample_rate_hz)
   // the record's ends: the filters ring there, see PipelineSettings::edge_trim_s).
   size_ = static_cast<Eigen::Index>(fast_fft_size(static_cast<std::size_t>(2 * n_)));
   bins_ = size_ / 2 + 1;
-  thread_local std::vector<double> buffer;  // scratch, see inverse()
+  thread_local FftwVector<double> buffer;  // scratch, see inverse()
   buffer.assign(static_cast<std::size_t>(size_), x[0]);
   for (Eigen::Index i = 0; i < n_; ++i) {
     buffer[static_cast<std::size_t>(i)] = x[i];
@@ -76,7 +76,7 @@ Eigen::VectorXd SpectralRecord::inverse(Spectrum& spectrum) const {
   // The transform's full-length output is scratch kept per thread: a fresh multi-megabyte
   // buffer per call costs more in page faults than the transform itself (measured: 11 ms of
   // first-touch faults against 2 ms of FFT for 270000 points on the 2-core CI machine).
-  thread_local std::vector<double> buffer;
+  thread_local FftwVector<double> buffer;
   buffer.resize(static_cast<std::size_t>(size_));
   fftw_execute_dft_c2r(cached_c2r_plan(static_cast<int>(size_)),
                        reinterpret_cast<fftw_complex*>(spectrum.data()), buffer.data());

@@ -3,6 +3,8 @@
 #include <complex>
 #include <vector>
 
+#include "analysis/signal/fftw_planner.h"
+
 #include <Eigen/Core>
 
 namespace oscilab::analysis {
@@ -33,7 +35,7 @@ double spectral_window(double f_hz, const SpectralOptions& options, bool integra
 /// then a multiplication and one inverse transform each.
 class SpectralRecord {
  public:
-  using Spectrum = std::vector<std::complex<double>>;
+  using Spectrum = FftwVector<std::complex<double>>;  // aligned for the cached plans
 
   SpectralRecord(const Eigen::VectorXd& x, double sample_rate_hz);  // throws InputError
 

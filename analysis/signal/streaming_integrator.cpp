@@ -27,7 +27,7 @@ StreamingIntegrator::StreamingIntegrator(const Options& options)
   // filter (8×, so the periodic wrap-around of the sampled response is negligible), centred,
   // truncated to ±K and tapered.
   const int grid = 8 * taps;
-  std::vector<std::complex<double>> response(static_cast<std::size_t>(grid / 2 + 1));
+  FftwVector<std::complex<double>> response(static_cast<std::size_t>(grid / 2 + 1));
   SpectralOptions band;
   band.highpass_hz = options.highpass_hz;
   band.lowpass_hz = options.lowpass_hz;
@@ -43,7 +43,7 @@ StreamingIntegrator::StreamingIntegrator(const Options& options)
       value = options.order > 0 ? value * iw : value / iw;
     response[k] = value / static_cast<double>(grid);
   }
-  std::vector<double> impulse(static_cast<std::size_t>(grid));
+  FftwVector<double> impulse(static_cast<std::size_t>(grid));
   fftw_execute_dft_c2r(cached_c2r_plan(grid), reinterpret_cast<fftw_complex*>(response.data()),
                        impulse.data());
   taps_.resize(static_cast<std::size_t>(taps));

@@ -1,4 +1,5 @@
 // oscilab-cli analyze REC... --edc EDC.csv [--rfs RFS.csv] [--summary S.json] (contract §2)
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -22,6 +23,7 @@ struct AnalyzeOptions {
   double freq_hz = 0.0;
   std::string well;
   bool detect_levels = false;
+  bool timing = false;
   analysis::PipelineSettings settings;
 };
 
@@ -141,8 +143,10 @@ void run(const AnalyzeOptions& options) {
   if (options.freq_hz > 0) overrides.excitation_freq_hz = options.freq_hz;
   if (!options.well.empty()) overrides.well_positive = options.well == "positive";
   overrides.ignore_sidecar_levels = options.detect_levels;
+  InputTimes times;
   const analysis::CampaignAnalysis campaign =
-      analyze_recordings(options.recordings, overrides, options.settings);
+      analyze_recordings(options.recordings, overrides, options.settings, &times);
+  const auto output_start = std::chrono::steady_clock::now();
   print_report(campaign);
   if (!options.edc_path.empty()) write_edc(campaign, options.edc_path);
   if (!options.cycles_path.empty()) write_cycles(campaign, options.cycles_path);
@@ -152,6 +156,16 @@ void run(const AnalyzeOptions& options) {
     std::ofstream out(options.summary_path);
     out << analysis::campaign_summary(campaign).dump(2) << '\n';
     if (!out) throw InputError(options.summary_path + ": write failed");
+  }
+  if (options.timing) {
+    const double output_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - output_start).count();
+    const double total_s = times.read_s + times.analysis_s + output_s;
+    std::printf(
+        "timing: read %.2f ms, analysis %.2f ms, output %.2f ms; %.2f ms for %.1f s of signal "
+        "(%.0fx real time, start-up not included)\n",
+        1e3 * times.read_s, 1e3 * times.analysis_s, 1e3 * output_s, 1e3 * total_s, times.signal_s,
+        times.signal_s / total_s);
   }
 }
 
@@ -179,6 +193,8 @@ void add_analyze_command(CLI::App& app) {
                       "excitation frequency [Hz] (default: sidecar, else detected)");
   command->add_option("--well", o->well, "well of the records when the mass channel cannot tell")
       ->check(CLI::IsMember({"positive", "negative"}));
+  command->add_flag("--timing", o->timing,
+                    "print where the time went: reading, analysis, output (steady clock)");
   command->add_flag("--detect-levels", o->detect_levels,
                     "find levels from the force amplitude even when the sidecar lists them");
   command->add_option("--harmonics", o->settings.harmonics, "harmonics per cycle fit")

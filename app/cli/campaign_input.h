@@ -8,11 +8,19 @@
 
 namespace oscilab::cli {
 
+/// Where the input stage's time went (steady clock), and how much signal it read.
+struct InputTimes {
+  double read_s = 0.0;      // reading the files and their sidecars into channels
+  double analysis_s = 0.0;  // the offline analysis of all records together
+  double signal_s = 0.0;    // the records' total duration
+};
+
 /// Reads the recordings (each with its sidecar) and runs the offline analysis of all of them
 /// together, with a progress bar on a terminal: the input stage of analyze, fit and diagnose.
 /// Throws InputError naming the file for a recording that cannot be read.
 analysis::CampaignAnalysis analyze_recordings(const std::vector<std::string>& paths,
                                               const daq::MappingOverrides& overrides,
-                                              const analysis::PipelineSettings& settings);
+                                              const analysis::PipelineSettings& settings,
+                                              InputTimes* times = nullptr);
 
 }  // namespace oscilab::cli

@@ -8,6 +8,8 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/diagnosis/diagnosis.h"
+#include "analysis/figures/diagnosis_figures.h"
+#include "analysis/figures/figure_png.h"
 #include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/sigma_budget_report.h"
@@ -15,13 +17,10 @@
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/cost_options.h"
-#include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
 
 namespace oscilab::cli {
 namespace {
-
-using Style = ui::FigureSeries::Style;
 
 struct DiagnoseOptions {
   std::vector<std::string> recordings;
@@ -39,67 +38,6 @@ struct DiagnoseOptions {
   bool edc_only = false;
   bool no_png = false;
 };
-
-// EDC residual per level in units of σ, before and after, per well (the discrepancy map).
-ui::Figure residual_figure(const analysis::DiagnosisResult& r) {
-  ui::Figure figure;
-  figure.title = "EDC residual (S_mes - S_mod) / sigma per level: baseline and final model";
-  for (bool positive : {true, false}) {
-    ui::FigurePanel panel{positive ? "z+* well" : "z-* well",
-                          "forcing amplitude f0 [N]",
-                          "residual [sigma]",
-                          {},
-                          true,
-                          ui::FigurePanel::Corner::TopRight};
-    ui::FigureSeries before{
-        "baseline (" + std::string("paper form") + ")", Style::Markers, 1, {}, {}, 7.0};
-    ui::FigureSeries after{"final (" + r.verdict + ")", Style::Markers, 0, {}, {}, 7.0};
-    for (const auto& d : r.baseline_maps.levels) {
-      if (d.positive_well != positive) continue;
-      before.x.push_back(d.f0_n);
-      before.y.push_back(d.residual_sigma);
-    }
-    for (const auto& d : r.final_maps.levels) {
-      if (d.positive_well != positive) continue;
-      after.x.push_back(d.f0_n);
-      after.y.push_back(d.residual_sigma);
-    }
-    ui::FigureSeries band{"±3 sigma", Style::DashedLine, 5, {}, {}, 1.0};
-    if (!before.x.empty()) {
-      const double lo = before.x.front(), hi = before.x.back();
-      band.x = {lo, hi, std::nan(""), lo, hi};
-      band.y = {3.0, 3.0, std::nan(""), -3.0, -3.0};
-    }
-    panel.series = {before, after, band};
-    if (!before.x.empty()) figure.panels.push_back(panel);
-  }
-  return figure;
-}
-
-// The energy the model misses against the response amplitude, log–log (its slope names the law).
-ui::Figure missing_energy_figure(const analysis::DiagnosisResult& r) {
-  ui::Figure figure;
-  figure.title = "Energy the baseline misses against the response amplitude (log10-log10)";
-  ui::FigurePanel panel{"slope ~1 Coulomb, ~2 viscous, ~3 quadratic damping / presliding, ~4 cubic",
-                        "log10 amplitude |Z1| [m]",
-                        "log10 |S_mes - S_mod| [J]",
-                        {},
-                        true,
-                        ui::FigurePanel::Corner::TopLeft};
-  ui::FigureSeries missing{"S_mes > S_mod", Style::Markers, 1, {}, {}, 7.0};
-  ui::FigureSeries excess{"S_mes < S_mod", Style::Markers, 2, {}, {}, 7.0};
-  for (const auto& d : r.baseline_maps.levels) {
-    const double difference = d.edc_mes_j - d.edc_mod_j;
-    if (!(d.amplitude_m > 0.0) || difference == 0.0) continue;
-    auto& s = difference > 0.0 ? missing : excess;
-    s.x.push_back(std::log10(d.amplitude_m));
-    s.y.push_back(std::log10(std::abs(difference)));
-  }
-  panel.series = {missing, excess};
-  figure.panels = {panel};
-  figure.panel_height_px = 460;
-  return figure;
-}
 
 void write_levels_csv(const analysis::DiagnosisResult& r, const std::string& path) {
   std::ofstream out(path);
@@ -222,9 +160,9 @@ void run(const DiagnoseOptions& o) {
                          o.out_dir + "/final_model.json");
   }
   if (!o.no_png) {
-    FigureWriter writer;
-    writer.write(residual_figure(result), o.out_dir + "/residuals.png");
-    writer.write(missing_energy_figure(result), o.out_dir + "/missing_energy.png");
+    figures::write_figure_png(figures::residual_figure(result), o.out_dir + "/residuals.png");
+    figures::write_figure_png(figures::missing_energy_figure(result),
+                              o.out_dir + "/missing_energy.png");
   }
   std::printf("report, tables and figures written to %s/\n", o.out_dir.c_str());
 }

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "analysis/common/input_error.h"
+#include "analysis/figures/fit_figures.h"
 #include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/edc_fit.h"
@@ -17,10 +18,8 @@
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/cost_options.h"
-#include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
-#include "ui/fit_figures.h"
-#include "ui/fit_json.h"
+#include "daq/recording/fit_json.h"
 
 namespace oscilab::cli {
 namespace {
@@ -151,18 +150,12 @@ void run(const FitCommandOptions& o) {
   }
   print_table(fit, objective);
 
-  ui::write_fit_json(o.out_path, fit, objective, o.recordings, notes);
+  daq::write_fit_json(o.out_path, fit, objective, o.recordings, notes);
   std::printf("fit written to %s\n", o.out_path.c_str());
 
   if (o.figures_dir.empty()) return;
-  const ui::FitFigureData figure_data = ui::fit_figure_data(objective, fit.theta, o.threads);
-  ui::write_fit_tables(o.figures_dir, fit, objective, figure_data.slices, figure_data.curves);
-  if (!o.no_png) {
-    FigureWriter writer;
-    for (const ui::NamedFigure& figure : ui::fit_figures(fit, objective, figure_data)) {
-      writer.write(figure.figure, o.figures_dir + "/" + figure.stem + ".png");
-    }
-  }
+  figures::write_fit_figures(o.figures_dir, fit, objective,
+                             figures::fit_figure_data(objective, fit.theta, o.threads), !o.no_png);
   std::printf("figures and tables written to %s/\n", o.figures_dir.c_str());
 }
 

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/figures/figure_png.h"
+#include "analysis/figures/hbm_figures.h"
 #include "analysis/hbm/branch_switching.h"
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model_json.h"
@@ -14,9 +16,7 @@
 #include "analysis/simulation/bifurcation_map.h"
 #include "app/cli/commands.h"
 #include "app/cli/option_parsing.h"
-#include "app/cli/png_output.h"
 #include "app/cli/progress_bar.h"
-#include "ui/hbm_figures.h"
 
 namespace oscilab::cli {
 namespace {
@@ -43,8 +43,8 @@ struct HbmCommandOptions {
   bool follow_period_doubling = false;
 };
 
-using ui::CsvBranch;
-using ui::NamedBranch;
+using figures::CsvBranch;
+using figures::NamedBranch;
 
 // Switches onto the period-doubled branch at the first period doubling of `branch` (ansatz ν)
 // and, once more, at the first one of the new branch (period 4T at most), appending them to `out`.
@@ -100,8 +100,6 @@ void run(const HbmCommandOptions& o) {
   const analysis::Model model = analysis::model_from_spec(o.model);
   const auto colon = o.f0.find(':');
   if (colon == std::string::npos) throw InputError("--f0: \"" + o.f0 + "\" is not A:B");
-  std::unique_ptr<FigureWriter> figures;  // before the work: without the GUI, fail early
-  if (!o.png.empty()) figures = std::make_unique<FigureWriter>();
   analysis::ContinuationOptions options;
   options.start = parse_number(o.f0.substr(0, colon), "--f0");
   options.end = parse_number(o.f0.substr(colon + 1), "--f0");
@@ -157,7 +155,7 @@ void run(const HbmCommandOptions& o) {
       follow_period_doublings(model, branches[i], options, wells[i], doubled, csv);
     }
   }
-  ui::write_branches_csv(csv, wells.size() > 1, o.follow_period_doubling, o.out);
+  figures::write_branches_csv(csv, wells.size() > 1, o.follow_period_doubling, o.out);
   std::printf("wrote %s\n", o.out.c_str());
   for (const analysis::Branch& branch : branches) {
     if (branch.status != JobStatus::Ok) {
@@ -176,7 +174,7 @@ void run(const HbmCommandOptions& o) {
                 o.harmonics,
                 o.subharmonic > 1 ? (", nu = " + std::to_string(o.subharmonic)).c_str() : "");
   if (!o.png.empty()) {
-    figures->write(ui::branch_figure(title, named), o.png + "-branch.png");
+    figures::write_figure_png(figures::branch_figure(title, named), o.png + "-branch.png");
     std::printf("wrote %s-branch.png\n", o.png.c_str());
   }
 
@@ -205,7 +203,8 @@ void run(const HbmCommandOptions& o) {
       std::snprintf(sweep_title, sizeof sweep_title,
                     "%s, time integration: f0 swept 0 -> %g -> 0 N at %.3g N/s", title,
                     sweep_options.f0_max_n, sweep_options.f0_max_n / o.sweep_time);
-      figures->write(ui::sweep_figure(sweep_title, branches[0], sweep), o.png + "-sweep.png");
+      figures::write_figure_png(figures::sweep_figure(sweep_title, branches[0], sweep),
+                                o.png + "-sweep.png");
       std::printf("wrote %s-sweep.png\n", o.png.c_str());
     }
   }
@@ -245,7 +244,7 @@ void run(const HbmCommandOptions& o) {
       std::snprintf(map_title, sizeof map_title,
                     "%s: bifurcation map, time simulation stepped %g N, %d periods per level",
                     title, o.map_step, o.map_hold);
-      figures->write(ui::map_figure(map_title, named, map), o.png + "-map.png");
+      figures::write_figure_png(figures::map_figure(map_title, named, map), o.png + "-map.png");
       std::printf("wrote %s-map.png\n", o.png.c_str());
     }
   }

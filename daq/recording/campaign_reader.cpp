@@ -1,18 +1,37 @@
 #include "daq/recording/campaign_reader.h"
 
+#include <exception>
+
+#include "analysis/common/parallel_for.h"
+
 #include "daq/recording/recording.h"
 
 namespace oscilab::daq {
+
+std::vector<analysis::MeasurementChannels> read_campaign(const std::vector<std::string>& paths,
+                                                         const MappingOverrides& overrides) {
+  // One file per thread (decoding dominates); the first error in the order given is rethrown.
+  std::vector<analysis::MeasurementChannels> records(paths.size());
+  std::vector<std::exception_ptr> errors(paths.size());
+  parallel_for(paths.size(), 0, [&](std::size_t i) {
+    try {
+      records[i] = measurement_channels(read_recording(paths[i]), overrides);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  return records;
+}
 
 analysis::CampaignAnalysis analyze_recordings(const std::vector<std::string>& paths,
                                               const MappingOverrides& overrides,
                                               const analysis::PipelineSettings& settings,
                                               const ProgressFn& progress,
                                               const CancelToken& cancel) {
-  std::vector<analysis::MeasurementChannels> records;
-  for (const auto& path : paths)
-    records.push_back(measurement_channels(read_recording(path), overrides));
-  return analysis::analyze_campaign(records, settings, progress, cancel);
+  return analysis::analyze_campaign(read_campaign(paths, overrides), settings, progress, cancel);
 }
 
 }  // namespace oscilab::daq

@@ -9,7 +9,12 @@
 
 namespace oscilab::daq {
 
-/// Reads recordings (each with its sidecar) and runs the offline analysis of all of them
+/// Reads recordings (each with its sidecar) into the analysis' channels, in the order given.
+/// Throws InputError naming the file for a recording that cannot be read.
+std::vector<analysis::MeasurementChannels> read_campaign(const std::vector<std::string>& paths,
+                                                         const MappingOverrides& overrides);
+
+/// Reads recordings (read_campaign) and runs the offline analysis of all of them
 /// together: the input stage of analyze, fit and diagnose, in the CLI and the app. Throws
 /// InputError naming the file for a recording that cannot be read.
 analysis::CampaignAnalysis analyze_recordings(const std::vector<std::string>& paths,

@@ -229,7 +229,10 @@ class IdentificationPanelTest : public QObject {
     QVERIFY2(done.takeFirst().at(0).toString().startsWith("Diagnosis: none"),
              qPrintable(panel.status_label()->text()));
     QVERIFY(panel.verdict_label()->text().contains("Verdict: none"));
-    QCOMPARE(panel.residual_plot()->graphCount(), 4);  // baseline and final, both wells
+    // figures::residual_figure, one axis rect per well: the baseline's and the final model's
+    // residuals and the ±3σ band (two curves: it breaks at NaN between +3σ and −3σ).
+    QCOMPARE(panel.residual_plot()->axisRectCount(), 2);
+    QCOMPARE(panel.residual_plot()->plottableCount(), 2 * (1 + 1 + 2));
     QCOMPARE(panel.tabs()->tabText(panel.tabs()->currentIndex()), QString("Diagnosis"));
   }
 

@@ -1,6 +1,6 @@
 // The live monitor's Qt-free logic: settings, schedule, time window and scroll-back,
 // fault counting and colouring, status and event texts, EDC points, the restoring-force slices,
-// the cycle loop and the spectrum of z, each against an independent expectation.
+// and the cycle loop, each against an independent expectation.
 #include "ui/live_view_model.h"
 
 #include <cmath>
@@ -357,35 +357,6 @@ TEST(CurrentLoop, EnclosesTheEnergyOfEq13) {
   // The trapezoid on 64 samples per period: relative error (ωΔt)²/12 ≈ 8e-4.
   EXPECT_NEAR(area / (kPi * f0 * zz * std::sin(theta)), 1.0, 2e-3);
   EXPECT_TRUE(current_loop(h, 0.1).z_m.empty());  // a 10 s cycle: not in 1 s of samples
-}
-
-TEST(ZSpectrum, ReadsTheHarmonicsAmplitudesAndTheSubharmonic) {
-  // 4 s at 512 Hz of z̄ + A1 sin(2π 9 t) + A3 sin(2π 27 t + 0.3): an integer number of periods,
-  // so the Hann-windowed DFT at h ν is exact (its leakage vanishes at whole bins).
-  const double rate = 512, nu = 9.0, a1 = 2e-3, a3 = 5e-5;
-  std::vector<double> z;
-  for (int i = 0; i < 2048; ++i) {
-    const double t = i / rate;
-    z.push_back(0.0028 + a1 * std::sin(2 * kPi * nu * t) +
-                a3 * std::sin(2 * kPi * 3 * nu * t + 0.3));
-  }
-  z.push_back(std::nan(""));  // the derived tail not computed yet
-  const ZSpectrum s = z_spectrum(z, rate, nu, 8);
-  EXPECT_DOUBLE_EQ(s.duration_s, 4.0);
-  ASSERT_EQ(s.harmonic_amplitude_m.size(), 8u);
-  EXPECT_NEAR(s.harmonic_amplitude_m[0], a1, 1e-9 * a1);
-  EXPECT_NEAR(s.harmonic_amplitude_m[1], 0.0, 1e-9 * a1);
-  EXPECT_NEAR(s.harmonic_amplitude_m[2], a3, 1e-9 * a1);
-  EXPECT_EQ(s.harmonic_freq_hz[2], 27.0);
-  EXPECT_LT(s.subharmonic_amplitude_m, 1e-3 * a1);  // ν/2 is 18 bins from any component
-  // The full spectrum: the bin at 9 Hz (bin 36 of 0.25 Hz) reads A1 (conventions.md scaling).
-  EXPECT_DOUBLE_EQ(s.freq_hz[36], 9.0);
-  EXPECT_NEAR(s.amplitude_m[36], a1, 1e-9 * a1);
-
-  // A period doubling: a component at ν/2 reads its amplitude.
-  for (int i = 0; i < 2048; ++i) z[std::size_t(i)] += 1e-4 * std::sin(kPi * nu * i / rate);
-  EXPECT_NEAR(z_spectrum(z, rate, nu, 8).subharmonic_amplitude_m, 1e-4, 1e-9);
-  EXPECT_TRUE(z_spectrum(std::vector<double>(40, 0.0), rate, nu).freq_hz.empty());
 }
 
 TEST(StickyDisplayUnit, KeepsTheUnitNearAPrefixBoundary) {

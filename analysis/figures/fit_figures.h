@@ -4,11 +4,11 @@
 #include <vector>
 
 #include "analysis/common/job.h"
+#include "analysis/figures/figure.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/edc_sensitivity.h"
-#include "ui/figure.h"
 
-namespace oscilab::ui {
+namespace oscilab::figures {
 
 /// The figures of a fit (Figs. 13–16) as data, and their tables: Qt-free, shared by
 /// `oscilab-cli fit --figures` and the fit panel of the desktop app (rendered by figure_renderer).
@@ -68,4 +68,11 @@ void write_fit_tables(const std::string& dir, const analysis::FitResult& fit,
                       const analysis::EdcObjective& objective, const std::vector<CostSlice>& slices,
                       const std::vector<analysis::SensitivityCurve>& curves);
 
-}  // namespace oscilab::ui
+/// What `fit --figures DIR` and the app's "Export results" write besides fit.json: the tables
+/// (write_fit_tables) and, unless `png` is false, every figure of fit_figures as STEM.png
+/// (write_figure_png). Returns how many figures were written. Throws InputError naming the file
+/// that cannot be written.
+int write_fit_figures(const std::string& dir, const analysis::FitResult& fit,
+                      const analysis::EdcObjective& objective, const FitFigureData& data, bool png);
+
+}  // namespace oscilab::figures

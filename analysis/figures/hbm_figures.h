@@ -3,12 +3,12 @@
 #include <string>
 #include <vector>
 
+#include "analysis/figures/figure.h"
 #include "analysis/hbm/branch.h"
 #include "analysis/simulation/amplitude_sweep.h"
 #include "analysis/simulation/bifurcation_map.h"
-#include "ui/figure.h"
 
-namespace oscilab::ui {
+namespace oscilab::figures {
 
 /// A branch with the name it has in a figure's legend.
 struct NamedBranch {
@@ -44,4 +44,4 @@ Figure sweep_figure(const std::string& title, const analysis::Branch& branch,
 Figure map_figure(const std::string& title, const std::vector<NamedBranch>& branches,
                   const analysis::BifurcationMap& map);
 
-}  // namespace oscilab::ui
+}  // namespace oscilab::figures

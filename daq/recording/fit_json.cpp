@@ -1,4 +1,4 @@
-#include "ui/fit_json.h"
+#include "daq/recording/fit_json.h"
 
 #include <fstream>
 
@@ -6,7 +6,7 @@
 #include "analysis/identification/fit_report.h"
 #include "daq/recording/temporary_file.h"
 
-namespace oscilab::ui {
+namespace oscilab::daq {
 
 nlohmann::json fit_json(const analysis::FitResult& fit, const analysis::EdcObjective& objective,
                         const std::vector<std::string>& records,
@@ -30,4 +30,4 @@ void write_fit_json(const std::string& path, const analysis::FitResult& fit,
   file.commit();
 }
 
-}  // namespace oscilab::ui
+}  // namespace oscilab::daq

@@ -1,9 +1,30 @@
 #pragma once
 
+#include <array>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
-namespace oscilab::ui {
+namespace oscilab::figures {
+
+/// A colour of the figures' palette, 8 bits per channel.
+struct Rgb {
+  int red, green, blue;
+};
+
+/// Okabe & Ito (2008), the colour-blind-safe palette, black first; `index` wraps around. Both
+/// renderers (the PNG writer and the app's interactive plots) draw with it.
+inline Rgb palette_color(int index) {
+  static constexpr std::array<Rgb, 8> colors = {{{0, 0, 0},
+                                                 {0, 114, 178},
+                                                 {213, 94, 0},
+                                                 {0, 158, 115},
+                                                 {204, 121, 167},
+                                                 {230, 159, 0},
+                                                 {86, 180, 233},
+                                                 {240, 228, 66}}};
+  return colors[static_cast<std::size_t>(std::abs(index)) % colors.size()];
+}
 
 /// A static figure as data (Qt-free, so the CLI and tests build it without widgets): panels
 /// stacked vertically, each with labelled axes and series. Values are in the units the axis
@@ -34,4 +55,4 @@ struct Figure {
   int panel_height_px = 380;
 };
 
-}  // namespace oscilab::ui
+}  // namespace oscilab::figures

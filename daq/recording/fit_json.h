@@ -7,7 +7,7 @@
 
 #include "analysis/identification/edc_fit.h"
 
-namespace oscilab::ui {
+namespace oscilab::daq {
 
 /// The FIT JSON that `oscilab-cli fit --out` writes and the fit panel exports
 /// (docs/contracts.md §3): analysis::fit_report_json of the fit, plus `notes`, how the base model
@@ -22,4 +22,4 @@ void write_fit_json(const std::string& path, const analysis::FitResult& fit,
                     const analysis::EdcObjective& objective,
                     const std::vector<std::string>& records, const std::vector<std::string>& notes);
 
-}  // namespace oscilab::ui
+}  // namespace oscilab::daq

@@ -1,4 +1,4 @@
-#include "ui/hbm_figures.h"
+#include "analysis/figures/hbm_figures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "analysis/common/input_error.h"
 
-namespace oscilab::ui {
+namespace oscilab::figures {
 namespace {
 
 using analysis::Branch;
@@ -236,4 +236,4 @@ Figure map_figure(const std::string& title, const std::vector<NamedBranch>& bran
   return figure;
 }
 
-}  // namespace oscilab::ui
+}  // namespace oscilab::figures

@@ -1,4 +1,4 @@
-#include "ui/fit_figures.h"
+#include "analysis/figures/fit_figures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,10 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/common/parallel_for.h"
+#include "analysis/figures/figure_png.h"
 #include "analysis/model/position_dependent_friction.h"
 
-namespace oscilab::ui {
+namespace oscilab::figures {
 namespace {
 
 using Style = FigureSeries::Style;
@@ -307,4 +308,17 @@ void write_fit_tables(const std::string& dir, const analysis::FitResult& fit,
   }
 }
 
-}  // namespace oscilab::ui
+int write_fit_figures(const std::string& dir, const analysis::FitResult& fit,
+                      const analysis::EdcObjective& objective, const FitFigureData& data,
+                      bool png) {
+  write_fit_tables(dir, fit, objective, data.slices, data.curves);
+  if (!png) return 0;
+  int written = 0;
+  for (const NamedFigure& figure : fit_figures(fit, objective, data)) {
+    write_figure_png(figure.figure, dir + "/" + figure.stem + ".png");
+    ++written;
+  }
+  return written;
+}
+
+}  // namespace oscilab::figures
