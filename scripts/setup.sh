@@ -17,7 +17,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libfftw3-dev libsndfile1-dev libboost-dev
   nlohmann-json3-dev libcli11-dev
-  libpagmo-dev libnlopt-cxx-dev libmatio-dev parallel
+  libpagmo-dev libnlopt-cxx-dev libmatio-dev libcairo2-dev parallel
   libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev qt6-svg-dev libqcustomplot-dev libqcustomplot2.1-qt6
   xvfb xauth clang-format clang-tidy

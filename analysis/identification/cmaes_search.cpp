@@ -1,3 +1,6 @@
+// The CMA-ES search on pagmo2, built as its own shared module (liboscilab_cmaes.so) and loaded
+// by cmaes_search (cmaes_module_loader.cpp) on first use: libpagmo's static initialisers take
+// about 8 ms and 36 MB at every process start, which every command that does not fit would pay.
 #include "analysis/identification/cmaes_search.h"
 
 #include <algorithm>
@@ -46,8 +49,8 @@ double spread(const pagmo::population& pop) {
 
 }  // namespace
 
-SearchResult cmaes_search(int dimension, const UnitCost& cost, const CmaesOptions& options,
-                          const SearchProgressFn& progress, const CancelToken& cancel) {
+SearchResult run_cmaes(int dimension, const UnitCost& cost, const CmaesOptions& options,
+                       const SearchProgressFn& progress, const CancelToken& cancel) {
   if (dimension < 1) throw InputError("CMA-ES: nothing to search (no free parameter)");
   if (options.max_evaluations < 10) throw InputError("CMA-ES: the budget must be ≥ 10 evaluations");
   if (!(options.sigma0 > 0.0 && options.sigma0 <= 1.0)) {
@@ -152,3 +155,13 @@ SearchResult cmaes_search(int dimension, const UnitCost& cost, const CmaesOption
 }
 
 }  // namespace oscilab::analysis
+
+// The module's one entry point (C linkage, so that dlsym finds it by this name). Exceptions cross
+// it as C++ exceptions: the module and its loader are built by the same compiler in one build.
+extern "C" __attribute__((visibility("default"))) void oscilab_cmaes_search_v1(
+    int dimension, const oscilab::analysis::UnitCost* cost,
+    const oscilab::analysis::CmaesOptions* options,
+    const oscilab::analysis::SearchProgressFn* progress, const oscilab::CancelToken* cancel,
+    oscilab::analysis::SearchResult* result) {
+  *result = oscilab::analysis::run_cmaes(dimension, *cost, *options, *progress, *cancel);
+}
