@@ -67,9 +67,12 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
     values(r, 0) = base[first + r] - base_offset;
     values(r, 1) = mass[first + r] - mass_offset;
   }
-  const Eigen::MatrixXd gram = window.transpose() * window;
+  // AᵀA as a symmetric rank update (its lower triangle, which is all LLT reads): half the
+  // products of a general AᵀA, without the general product's blocking overhead at these sizes.
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(columns, columns);
+  gram.selfadjointView<Eigen::Lower>().rankUpdate(window.transpose());
   const Eigen::MatrixXd projections = window.transpose() * values;
-  const Eigen::LLT<Eigen::MatrixXd> cholesky(gram);
+  const Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> cholesky(gram);
   if (cholesky.info() != Eigen::Success) return false;
   Eigen::MatrixXd coefficients = cholesky.solve(projections);
   const Eigen::MatrixXd residual = window * coefficients - values;
