@@ -83,18 +83,19 @@ DiagnosisView::DiagnosisView(QWidget* parent) : QWidget(parent) {
   budget_label_ = new QLabel;
   budget_label_->setWordWrap(true);
 
-  residual_plot_ = new QCustomPlot;  // one panel per well (figures::residual_figure)
-  residual_plot_->setMinimumHeight(360);
+  // A page of its own (residual_page()): one panel per well (figures::residual_figure).
+  residual_plot_ = new QCustomPlot(this);
 
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(verdict_label_);
-  layout->addWidget(step_table_, 3);
-  layout->addWidget(residual_plot_, 2);
+  layout->addWidget(step_table_, 1);
   budget_page_ = new QWidget(this);
   auto* budget_layout = new QVBoxLayout(budget_page_);
   budget_layout->addWidget(budget_label_);
   budget_layout->addWidget(budget_table_, 1);
 }
+
+QWidget* DiagnosisView::residual_page() const { return residual_plot_; }
 
 void DiagnosisView::show_result(const analysis::DiagnosisResult& r, double bic_threshold) {
   verdict_label_->setText(

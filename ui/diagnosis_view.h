@@ -13,9 +13,9 @@ namespace oscilab::ui {
 /// What a model-gap diagnosis found, for the fit panel: the verdict with the evidence that
 /// supported it and the response fingerprints before and after; every candidate of every step
 /// with its ΔBIC (EDC alone and joint), how each piece of evidence moved (Δχ²) and why it was
-/// accepted or not; the EDC residuals in σ before and after; and, on a page of its own
-/// (budget_page()), the final model's σ budget per level. It displays; the numbers come from
-/// analysis::diagnose.
+/// accepted or not; and, each on a page of its own, the EDC residuals in σ before and after
+/// (residual_page()) and the final model's σ budget per level (budget_page()). It displays; the
+/// numbers come from analysis::diagnose.
 class DiagnosisView : public QWidget {
  public:
   explicit DiagnosisView(QWidget* parent = nullptr);
@@ -23,6 +23,7 @@ class DiagnosisView : public QWidget {
   void show_result(const analysis::DiagnosisResult& result, double bic_threshold);
 
   QWidget* budget_page() const { return budget_page_; }
+  QWidget* residual_page() const;
   QLabel* verdict_label() const { return verdict_label_; }
   QTableWidget* step_table() const { return step_table_; }
   QCustomPlot* residual_plot() const { return residual_plot_; }

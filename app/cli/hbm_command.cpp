@@ -313,7 +313,7 @@ void add_hbm_command(CLI::App& app) {
   command->add_option("--png", o->png,
                       "also write figures PREFIX-branch.png (amplitude, EDC, harmonics; "
                       "unstable parts dashed), PREFIX-sweep.png with --sweep and PREFIX-map.png "
-                      "with --map (needs the GUI build; renders offscreen)");
+                      "with --map");
   command->callback([o] { run(*o); });
 }
 
