@@ -8,6 +8,7 @@
 #include "analysis/pipeline/offline_analysis.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
+#include "app/cli/option_parsing.h"
 #include "daq/recording/measurement_mapping.h"
 
 namespace oscilab::cli {
@@ -189,8 +190,10 @@ void add_analyze_command(CLI::App& app) {
   command->add_option("--cycles", o->cycles_path, "every fitted cycle (CSV)");
   command->add_option("--summary", o->summary_path,
                       "summary (JSON): settings, detections, stiffness_fit with standard errors");
-  command->add_option("--freq", o->freq_hz,
-                      "excitation frequency [Hz] (default: sidecar, else detected)");
+  command
+      ->add_option("--freq", o->freq_hz,
+                   "excitation frequency [Hz] (default: sidecar, else detected)")
+      ->check(positive_number());
   command->add_option("--well", o->well, "well of the records when the mass channel cannot tell")
       ->check(CLI::IsMember({"positive", "negative"}));
   command->add_flag("--timing", o->timing,

@@ -12,6 +12,7 @@
 #include "analysis/common/input_error.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
+#include "app/cli/option_parsing.h"
 #include "daq/export/mat_export.h"
 #include "daq/export/uff58_export.h"
 #include "daq/recording/recording.h"
@@ -155,8 +156,10 @@ void add_export_command(CLI::App& app) {
   command->add_option("--edc-mat", o->edc_mat_path,
                       "EDC table of all recordings (MATLAB v5): well, f0_n, edc_mean_j, "
                       "edc_std_j, cycles, ... one row per level");
-  command->add_option("--freq", o->freq_hz,
-                      "--edc-mat: excitation frequency [Hz] (default: sidecar, else detected)");
+  command
+      ->add_option("--freq", o->freq_hz,
+                   "--edc-mat: excitation frequency [Hz] (default: sidecar, else detected)")
+      ->check(positive_number());
   command->add_option("--well", o->well,
                       "--edc-mat: well when the mass channel cannot tell: positive or negative");
   command

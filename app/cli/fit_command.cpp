@@ -18,6 +18,7 @@
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/cost_options.h"
+#include "app/cli/option_parsing.h"
 #include "app/cli/progress_bar.h"
 #include "daq/recording/fit_json.h"
 
@@ -194,8 +195,10 @@ void add_fit_command(CLI::App& app) {
   command->add_option("--stiffness", o->stiffness, "K(z) from the model or from the records' RFS")
       ->check(CLI::IsMember({"model", "rfs"}))
       ->capture_default_str();
-  command->add_option("--freq", o->freq_hz,
-                      "excitation frequency [Hz] (default: sidecar, else detected)");
+  command
+      ->add_option("--freq", o->freq_hz,
+                   "excitation frequency [Hz] (default: sidecar, else detected)")
+      ->check(positive_number());
   command->add_option("--figures", o->figures_dir,
                       "directory for Figs. 13-16 as PNG and their data as CSV");
   command->add_flag("--no-png", o->no_png, "with --figures: the CSV tables only");

@@ -21,6 +21,19 @@ double parse_number(const std::string& text, const std::string& option) {
   return value;
 }
 
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](const std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || !(value > 0.0)) {
+          return text + " is not a positive number";
+        }
+        return {};
+      },
+      "POSITIVE");
+}
+
 std::vector<std::string> split(const std::string& text, char separator) {
   std::vector<std::string> parts;
   std::stringstream stream(text);

@@ -3,10 +3,16 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 namespace oscilab::cli {
 
 /// A finite number from option text; throws InputError naming the option otherwise.
 double parse_number(const std::string& text, const std::string& option);
+
+/// A CLI11 check for a positive finite number: its message names the value ("-3 is not a positive
+/// number"), where CLI::PositiveNumber prints the whole double range.
+CLI::Validator positive_number();
 
 /// Splits at every separator (empty parts kept).
 std::vector<std::string> split(const std::string& text, char separator);

@@ -1,6 +1,9 @@
 #include "daq/recording/measurement_mapping.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "analysis/common/input_error.h"
 
@@ -20,6 +23,31 @@ analysis::MotionQuantity motion_quantity(const ChannelInfo& channel, const std::
   }
   throw InputError(file + ": channel \"" + channel.name + "\" (role " + to_string(channel.role) +
                    ") measures a force; a motion quantity is needed there");
+}
+
+// A stepped-sine analysis fits whole cycles: the frequency must be below Nyquist and the record
+// must hold at least two of its cycles (a lower frequency would ask for cycles longer than the
+// record, and buffers to match).
+void check_excitation_frequency(double frequency_hz, double sample_rate_hz, Eigen::Index samples,
+                                const std::string& where) {
+  const auto number = [](double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", value);
+    return std::string(buffer);
+  };
+  if (!(frequency_hz > 0.0) || !std::isfinite(frequency_hz)) {
+    throw InputError(where + ": " + number(frequency_hz) + " Hz is not a positive frequency");
+  }
+  if (frequency_hz >= 0.5 * sample_rate_hz) {
+    throw InputError(where + ": " + number(frequency_hz) +
+                     " Hz is not below the Nyquist frequency, " + number(0.5 * sample_rate_hz) +
+                     " Hz at " + number(sample_rate_hz) + " Hz sampling");
+  }
+  const double duration_s = static_cast<double>(samples) / sample_rate_hz;
+  if (frequency_hz * duration_s < 2.0) {
+    throw InputError(where + ": " + number(frequency_hz) + " Hz: the record's " +
+                     number(duration_s) + " s hold fewer than two of its cycles");
+  }
 }
 
 }  // namespace
@@ -60,6 +88,13 @@ analysis::MeasurementChannels measurement_channels(const Recording& recording,
     channels.excluded.push_back({interval.start_s, interval.end_s});
   }
   if (overrides.excitation_freq_hz) channels.excitation_freq_hz = overrides.excitation_freq_hz;
+  if (channels.excitation_freq_hz) {
+    const std::string where = overrides.excitation_freq_hz
+                                  ? file + ": the excitation frequency given (--freq)"
+                                  : sidecar_path_for(file) + ": excitation.frequency_hz";
+    check_excitation_frequency(*channels.excitation_freq_hz, sidecar.sample_rate_hz,
+                               recording.samples_si.rows(), where);
+  }
   channels.well_hint_positive = overrides.well_positive;
   return channels;
 }

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +29,21 @@ constexpr std::uintmax_t kMaxSidecarBytes = 64u << 20;  // bytes
 // Largest CSV column index a sidecar may name; far beyond any instrument, small enough for int.
 constexpr std::int64_t kMaxColumn = 1'000'000;
 constexpr std::int64_t kMaxSkipLines = 1'000'000;
+
+// What a vibration test's sidecar can sensibly hold; outside, the value is a unit mistake or a
+// corrupt file, and taken at its word it runs the analysis into overflow or unbounded work (a
+// mass of 1e308 kg overflows every force; a rate of 1e300 Hz makes a cycle 1e300 samples long).
+constexpr double kMinSampleRateHz = 1e-3;  // one sample in 1000 s: slower is no vibration record
+constexpr double kMaxSampleRateHz = 1e8;   // 100 MHz: beyond any vibration acquisition system
+constexpr double kMinMassKg = 1e-9;        // 1 µg: a MEMS proof mass
+constexpr double kMaxMassKg = 1e6;         // 1000 t: beyond any shaking table's payload
+
+// A number for a message: %g, so 1e+09 and 0.26 read as written.
+std::string format_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
 
 // A JSON value as it appears in a message, shortened so that a huge value cannot flood it.
 std::string show(const json& value) {
@@ -85,6 +101,18 @@ double finite_number(const json& value, const Field& field) {
 double positive_number(const json& value, const Field& field) {
   const double x = finite_number(value, field);
   if (!(x > 0.0)) field.fail("expected a positive number, got " + show(value));
+  return x;
+}
+
+// A positive number within [lo, hi] of `unit`: values outside are unit mistakes or corrupt files,
+// which would otherwise run the analysis into overflow or unbounded work.
+double bounded_number(const json& value, double lo, double hi, const char* unit,
+                      const Field& field) {
+  const double x = positive_number(value, field);
+  if (x < lo || x > hi) {
+    field.fail(show(value) + " " + unit + " is outside the range this field can have (" +
+               format_number(lo) + " to " + format_number(hi) + " " + unit + ")");
+  }
   return x;
 }
 
@@ -482,10 +510,11 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
   }
 
   sidecar.sample_rate_hz =
-      positive_number(require(json_value, "sample_rate_hz", root), root / "sample_rate_hz");
+      bounded_number(require(json_value, "sample_rate_hz", root), kMinSampleRateHz,
+                     kMaxSampleRateHz, "Hz", root / "sample_rate_hz");
 
   if (const json* mass = find(json_value, "mass_kg"); mass && !mass->is_null()) {
-    sidecar.mass_kg = positive_number(*mass, root / "mass_kg");
+    sidecar.mass_kg = bounded_number(*mass, kMinMassKg, kMaxMassKg, "kg", root / "mass_kg");
   }
 
   const json& channels = require(json_value, "channels", root);
@@ -528,6 +557,13 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
   if (const json* excitation = find(json_value, "excitation");
       excitation && !excitation->is_null()) {
     sidecar.excitation = parse_excitation(*excitation, root / "excitation");
+    const std::optional<double>& frequency = sidecar.excitation->frequency_hz;
+    if (frequency && *frequency >= 0.5 * sidecar.sample_rate_hz) {
+      (root / "excitation" / "frequency_hz")
+          .fail(format_number(*frequency) + " Hz is not below the Nyquist frequency, " +
+                format_number(0.5 * sidecar.sample_rate_hz) + " Hz at sample_rate_hz " +
+                format_number(sidecar.sample_rate_hz));
+    }
   }
 
   if (const json* notes = find(json_value, "notes")) {

@@ -53,6 +53,29 @@ expect_error "missing recording" 'nope.flac' "$cli" fit "$work/nope.flac" --out 
 expect_error "unknown model form" 'model-form' "$cli" fit "$pos" --model-form cubic --out "$work/x.json"
 expect_error "mutation out of range" 'mutation' "$cli" fit "$pos" --mutation 1.5 --out "$work/x.json"
 [ ! -e "$work/x.json" ] && pass "no FIT JSON after an error" || fail "a FIT JSON was written after an error"
+# Sidecar values of the right form but no sense, and an excitation frequency that leaves no whole
+# cycles: one line naming the field and why, never a hang or an internal error.
+cp "$pos" "$work/nyquist.flac"
+sed 's/"frequency_hz": 9.0/"frequency_hz": 300.0/' "$src/samples/stepped_positive.json" > "$work/nyquist.json"
+expect_error "sidecar frequency above Nyquist" \
+  'nyquist.json: excitation.frequency_hz: 300 Hz is not below the Nyquist frequency' \
+  "$cli" analyze "$work/nyquist.flac" --edc "$work/x.csv"
+cp "$pos" "$work/heavy.flac"
+sed 's/"mass_kg": 0.26/"mass_kg": 1e308/' "$src/samples/stepped_positive.json" > "$work/heavy.json"
+expect_error "absurd mass" 'heavy.json: mass_kg: 1e+308 kg is outside the range' \
+  "$cli" analyze "$work/heavy.flac" --edc "$work/x.csv"
+expect_error "--freq above Nyquist" '(--freq): 1e+09 Hz is not below the Nyquist' \
+  "$cli" analyze "$pos" --edc "$work/x.csv" --freq 1e9
+expect_error "--freq without two cycles" '(--freq): 1e-09 Hz: the record.s 262.502 s hold fewer' \
+  "$cli" fit "$pos" --freq 1e-9 --out "$work/x.json"
+message=$("$cli" analyze "$pos" --edc "$work/x.csv" --freq -3 2>&1 >/dev/null)
+status=$?
+if [ $status -ne 0 ] && grep -q -- '--freq: -3 is not a positive number' <<< "$message"; then
+  pass "negative --freq refused: $(head -1 <<< "$message")"
+else
+  fail "negative --freq: status $status, message: $message"
+fi
+[ ! -e "$work/x.csv" ] && pass "no EDC table after an error" || fail "an EDC table was written after an error"
 echo '{"cost_j": 1}' > "$work/not_a_fit.json"
 expect_error "merge of a non-FIT JSON" 'not_a_fit.json: parameters' "$cli" merge "$work/not_a_fit.json" --out "$work/m.csv"
 echo 'not json' > "$work/garbage.json"

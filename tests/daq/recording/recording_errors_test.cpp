@@ -8,6 +8,7 @@
 #include <string>
 
 #include "analysis/common/input_error.h"
+#include "daq/recording/measurement_mapping.h"
 #include "daq/recording/recording.h"
 #include "tests/daq/recording/recording_test_util.h"
 
@@ -252,6 +253,42 @@ TEST(CsvReader, ThrowsInputErrorWhenAMappedColumnIsBeyondTheRow) {
   EXPECT_EQ(csv_error(dir, "0,1,2\n", sidecar),
             dir.file("rec.csv") +
                 ": line 1: channel \"y\" reads column 4 (0-based), but there are only 3");
+}
+
+// The excitation frequency the analysis is given (sidecar or override) must leave whole cycles to
+// fit: below Nyquist, and at least two cycles in the record. 10 s at 512 Hz in memory.
+TEST(MeasurementMapping, RefusesAnExcitationFrequencyWithoutTwoCyclesBelowNyquist) {
+  Recording recording;
+  recording.source_path = "dir/run1.flac";
+  recording.sidecar.sample_rate_hz = 512.0;
+  recording.sidecar.channels = two_channels();
+  recording.sidecar.excitation = Excitation{};
+  recording.samples_si = Eigen::MatrixXd::Zero(5120, 2);
+  const auto error_for = [&](double sidecar_hz, std::optional<double> override_hz) {
+    recording.sidecar.excitation->frequency_hz = sidecar_hz;
+    MappingOverrides overrides;
+    overrides.excitation_freq_hz = override_hz;
+    return input_error_of([&] { measurement_channels(recording, overrides); });
+  };
+  // A sidecar frequency is named by its field (the sidecar parser refuses Nyquist too; this is
+  // the check the analysis relies on for recordings made in memory or read otherwise).
+  EXPECT_EQ(error_for(0.1, std::nullopt),
+            "dir/run1.json: excitation.frequency_hz: 0.1 Hz: the record's 10 s hold fewer than "
+            "two of its cycles");
+  EXPECT_EQ(error_for(1e-9, std::nullopt),
+            "dir/run1.json: excitation.frequency_hz: 1e-09 Hz: the record's 10 s hold fewer "
+            "than two of its cycles");
+  EXPECT_EQ(error_for(300.0, std::nullopt),
+            "dir/run1.json: excitation.frequency_hz: 300 Hz is not below the Nyquist frequency, "
+            "256 Hz at 512 Hz sampling");
+  // An override names itself, and is checked instead of the sidecar's value.
+  EXPECT_EQ(error_for(9.0, 1e9),
+            "dir/run1.flac: the excitation frequency given (--freq): 1e+09 Hz is not below the "
+            "Nyquist frequency, 256 Hz at 512 Hz sampling");
+  EXPECT_EQ(error_for(1e9, 9.0), "");  // the sidecar's value is replaced, not used
+  // At the limits: two cycles exactly, and just below Nyquist, are accepted.
+  EXPECT_EQ(error_for(0.2, std::nullopt), "");
+  EXPECT_EQ(error_for(255.9, std::nullopt), "");
 }
 
 }  // namespace

@@ -136,6 +136,22 @@ TEST(SidecarReader, ThrowsInputErrorNamingTheFieldForEachInvalidValue) {
        "run1.json: sample_rate_hz: expected a finite number"},
       {[](json& v) { v["mass_kg"] = 0.0; },
        "run1.json: mass_kg: expected a positive number, got 0.0"},
+      // Values of the right form but no sense: checked against what a vibration test can have.
+      {[](json& v) { v["mass_kg"] = 1e308; },
+       "run1.json: mass_kg: 1e+308 kg is outside the range this field can have (1e-09 to "
+       "1e+06 kg)"},
+      {[](json& v) { v["mass_kg"] = 1e-12; }, "run1.json: mass_kg: 1e-12 kg is outside the range"},
+      {[](json& v) { v["sample_rate_hz"] = 1e300; },
+       "run1.json: sample_rate_hz: 1e+300 Hz is outside the range this field can have"},
+      {[](json& v) { v["sample_rate_hz"] = 1e-9; },
+       "run1.json: sample_rate_hz: 1e-09 Hz is outside the range"},
+      {[](json& v) { v["excitation"]["frequency_hz"] = 300.0; },
+       "run1.json: excitation.frequency_hz: 300 Hz is not below the Nyquist frequency, 256 Hz "
+       "at sample_rate_hz 512"},
+      {[](json& v) { v["excitation"]["frequency_hz"] = 1e9; },
+       "run1.json: excitation.frequency_hz: 1e+09 Hz is not below the Nyquist frequency"},
+      {[](json& v) { v["excitation"]["frequency_hz"] = 256.0; },  // exactly Nyquist
+       "run1.json: excitation.frequency_hz: 256 Hz is not below the Nyquist frequency"},
       {[](json& v) { v["channels"] = json::array(); },
        "run1.json: channels: must list at least one channel"},
       {[](json& v) { v["channels"] = "y"; }, "run1.json: channels: expected an array, got \"y\""},
