@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Oscilab set-up for a fresh Debian 12 machine (as root, or a user with sudo).
 #
-#   bash scripts/setup.sh run    install, build, start the desktop app on the bundled sample
+#   bash scripts/setup.sh run    install, build the app and the CLI, start the app on the bundled sample
 #                                (headless: print the analysis of the same sample instead)
 #   bash scripts/setup.sh test   install, build and run every test: clang-format check, release
 #                                build with -Werror (unit, integration, GUI offscreen, benchmarks
@@ -43,15 +43,16 @@ deps() {
   as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
 }
 
-build() {  # build DIR [cmake options...]
+build() {  # build DIR [cmake options...]: everything, tests included
   local dir=$1
   shift
   cmake -S . -B "$dir" -G Ninja "$@"
   cmake --build "$dir" -j "$JOBS"
 }
 
-run_main() {
-  build build
+run_main() {  # only what the main job needs: the app, the CLI and the optimiser module
+  cmake -S . -B build -G Ninja
+  cmake --build build -j "$JOBS" --target oscilab oscilab-cli oscilab_cmaes
   if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
     echo "setup: starting the Oscilab desktop app on $DEFAULT_SAMPLE"
     exec ./build/app/oscilab "$DEFAULT_SAMPLE"
