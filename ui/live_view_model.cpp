@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "analysis/common/input_error.h"
+#include "analysis/simulation/stepped_levels.h"
 
 namespace oscilab::ui {
 namespace {
@@ -183,19 +184,9 @@ LiveSettings LiveSettings::from_json(const nlohmann::json& json) {
 std::vector<daq::ExcitationStep> stepped_schedule(double from_n, double to_n, double step_n,
                                                   double hold_s, double lead_in_s,
                                                   double frequency_hz) {
-  if (!(from_n > 0) || !(to_n >= from_n) || !(step_n > 0) || !(hold_s > 0) || !(lead_in_s >= 0) ||
-      !(frequency_hz > 0)) {
-    throw InputError(
-        "stepped sine: needs 0 < from <= to, step > 0, hold > 0, lead-in >= 0, "
-        "frequency > 0");
-  }
-  const auto levels = static_cast<int>(std::floor((to_n - from_n) / step_n + 1e-9)) + 1;
-  std::vector<daq::ExcitationStep> steps;
-  for (int i = 0; i < levels; ++i) {
-    steps.push_back({lead_in_s + i * hold_s, from_n + i * step_n, frequency_hz});
-  }
-  steps.push_back({lead_in_s + levels * hold_s, 0.0, frequency_hz});  // at rest after the last
-  return steps;
+  if (!(from_n > 0)) throw InputError("stepped sine: needs a first level above 0 N");
+  return daq::rig_schedule(analysis::stepped_levels(from_n, step_n, to_n, "stepped sine"), hold_s,
+                           lead_in_s, frequency_hz);
 }
 
 // --- time window -----------------------------------------------------------------------------

@@ -50,9 +50,10 @@ struct LiveSettings {
   static LiveSettings from_json(const nlohmann::json& json);
 };
 
-/// An unattended stepped sine for the rig (§3.2): f0 from `from_n` to `to_n` (inclusive, within
-/// 1e-9 N) in steps of `step_n`, each held `hold_s`, after `lead_in_s` at rest, then rest again.
-/// Throws InputError unless 0 < from ≤ to, step > 0, hold > 0, lead-in ≥ 0, frequency > 0.
+/// An unattended stepped sine for the rig (§3.2): the levels of analysis::stepped_levels from
+/// `from_n` to `to_n` by `step_n` (the rule the CLI's --levels A:STEP:B follows too), in
+/// daq::rig_schedule. Throws InputError unless 0 < from ≤ to, step > 0, hold > 0, lead-in ≥ 0,
+/// frequency > 0.
 std::vector<daq::ExcitationStep> stepped_schedule(double from_n, double to_n, double step_n,
                                                   double hold_s, double lead_in_s,
                                                   double frequency_hz);

@@ -48,13 +48,7 @@ std::unique_ptr<daq::SampleSource> make_live_source(const std::string& spec,
       if (!(o.hold_s > 0) || !(o.lead_in_s >= 0)) {
         throw InputError("--hold must be positive and --lead-in >= 0");
       }
-      for (std::size_t i = 0; i < levels.size(); ++i) {
-        rig.schedule.push_back(
-            {o.lead_in_s + static_cast<double>(i) * o.hold_s, levels[i], o.freq_hz});
-      }
-      // Rest after the last level.
-      rig.schedule.push_back(
-          {o.lead_in_s + static_cast<double>(levels.size()) * o.hold_s, 0.0, o.freq_hz});
+      rig.schedule = daq::rig_schedule(levels, o.hold_s, o.lead_in_s, o.freq_hz);
     }
     return std::make_unique<daq::RigSource>(analysis::model_from_spec(o.model), rig);
   }

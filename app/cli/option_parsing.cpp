@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "analysis/common/input_error.h"
+#include "analysis/simulation/stepped_levels.h"
 
 namespace oscilab::cli {
 
@@ -48,12 +49,7 @@ std::vector<double> parse_levels(const std::string& text, const std::string& opt
   if (range.size() == 3) {
     const double a = parse_number(range[0], option), step = parse_number(range[1], option),
                  b = parse_number(range[2], option);
-    if (!(step > 0) || b < a) {
-      throw InputError(option + ": \"" + text + "\" needs A <= B and STEP > 0");
-    }
-    const long count = std::lround((b - a) / step) + 1;
-    if (count > 10000) throw InputError(option + ": \"" + text + "\" gives too many levels");
-    for (long i = 0; i < count; ++i) levels.push_back(a + step * static_cast<double>(i));
+    levels = analysis::stepped_levels(a, step, b, option + ": \"" + text + "\"");
   } else if (range.size() == 1) {
     for (const auto& part : split(text, ',')) levels.push_back(parse_number(part, option));
   } else {

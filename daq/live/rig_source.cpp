@@ -12,6 +12,21 @@
 #include "daq/rig/sensor_models.h"
 
 namespace oscilab::daq {
+
+std::vector<ExcitationStep> rig_schedule(const std::vector<double>& levels_n, double hold_s,
+                                         double lead_in_s, double frequency_hz) {
+  if (!(hold_s > 0) || !(lead_in_s >= 0) || !(frequency_hz > 0)) {
+    throw InputError("stepped sine: needs hold > 0, lead-in >= 0 and frequency > 0");
+  }
+  std::vector<ExcitationStep> steps;
+  steps.reserve(levels_n.size() + 1);
+  for (std::size_t i = 0; i < levels_n.size(); ++i) {
+    steps.push_back({lead_in_s + static_cast<double>(i) * hold_s, levels_n[i], frequency_hz});
+  }
+  // At rest after the last level.
+  steps.push_back({lead_in_s + static_cast<double>(levels_n.size()) * hold_s, 0.0, frequency_hz});
+  return steps;
+}
 namespace {
 
 // The integration's largest step, as TimeSimulator chooses it: one sample or 2 ms.

@@ -18,6 +18,12 @@ struct ExcitationStep {
   double frequency_hz = 9.0;
 };
 
+/// The schedule of an unattended stepped sine: at rest for `lead_in_s`, then each of `levels_n`
+/// held `hold_s` at `frequency_hz`, then at rest again. Throws InputError unless hold_s > 0,
+/// lead_in_s ≥ 0 and frequency_hz > 0.
+std::vector<ExcitationStep> rig_schedule(const std::vector<double>& levels_n, double hold_s,
+                                         double lead_in_s, double frequency_hz);
+
 /// The virtual rig as a live source: the model on the shaking table integrated block by block in
 /// real time (or faster), the accelerometer and vibrometer read at every sample (SensorChain),
 /// stored as ADC counts. The operator sets and steps the forcing amplitude and frequency while it
