@@ -353,6 +353,7 @@ void IdentificationPanel::start(bool diagnosis) {
     try {
       const analysis::CampaignAnalysis campaign =
           daq::analyze_recordings(paths, {}, {}, {}, cancel);
+      if (campaign.status == JobStatus::Cancelled) return;  // reported as cancelled, no error
       std::vector<std::string>& notes = outcome->notes;
       const analysis::Model base = analysis::campaign_model(
           analysis::paper_model(), campaign, analysis::StiffnessSource::Model, notes);

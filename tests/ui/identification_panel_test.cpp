@@ -1,22 +1,20 @@
 // GUI test of the fit and diagnosis panel, driving the real widgets under the
 // offscreen platform on the bundled samples: a fit fills the parameter table and the EDC plot, a
-// running fit draws the best model's EDC as it goes and cancels within 200 ms, the event loop
-// stays responsive during a real fit, a diagnosis of the paper's own model says none, a bad
-// recording is reported, and File ▸ Open feeds the panel.
-#include <algorithm>
+// running fit draws the best model's EDC as it goes and a cancelled one says so (while the
+// recordings are analysed and during the search), a diagnosis of the paper's own model says none,
+// a bad recording is reported, and File ▸ Open feeds the panel. How fast a cancel comes back and
+// how smooth the event loop stays during a fit are measured by tests/bench/fit_panel_benchmark.
 #include <chrono>
 #include <cstdio>
 #include <mutex>
 #include <vector>
 
 #include <QComboBox>
-#include <QElapsedTimer>
 #include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTableWidget>
 #include <QTest>
-#include <QTimer>
 
 #include <qcustomplot.h>
 
@@ -33,37 +31,8 @@ namespace {
 
 const std::string kSamples = std::string(OSCILAB_SOURCE_DIR) + "/samples/";
 
-// A cancelled fit reports back within this (the searches poll the token before every
-// model evaluation, ~3 ms each, so what remains is one evaluation per thread and the queued
-// finished signal).
-constexpr qint64 kCancelLatencyMs = 200;
-// The largest gap between ticks of a 5 ms timer while a fit runs; above ~50 ms a user
-// sees the window stutter (three frames at 60 Hz).
-constexpr qint64 kEventLoopGapMs = 50;
-
 void set_samples(IdentificationPanel& panel) {
   panel.set_recordings({kSamples + "stepped_positive.flac", kSamples + "stepped_negative.flac"});
-}
-
-// Starts a long fit, cancels it after `delay_ms` and returns the milliseconds from the click on
-// Cancel to job_finished (-1 when it did not end in 20 s).
-qint64 cancel_latency_ms(int delay_ms) {
-  IdentificationPanel panel;
-  set_samples(panel);
-  panel.set_fit_settings("cmaes", 100000, 100, 20);
-  QElapsedTimer clock;
-  qint64 latency = -1;
-  QObject::connect(&panel, &IdentificationPanel::job_finished, &panel,
-                   [&] { latency = clock.elapsed(); });
-  panel.start_fit();
-  QTest::qWait(delay_ms);
-  if (!panel.busy()) return -2;
-  clock.start();
-  QTest::mouseClick(panel.cancel_button(), Qt::LeftButton);
-  QElapsedTimer waited;
-  waited.start();
-  while (latency < 0 && waited.elapsed() < 20000) QTest::qWait(1);
-  return latency;
 }
 
 }  // namespace
@@ -169,54 +138,22 @@ class IdentificationPanelTest : public QObject {
                 emitted.size());
   }
 
-  void cancelReturnsWithin200Ms() {
-    // Once in the search (1.5 s: the recordings are analysed in ~0.5 s), once while the
-    // recordings are still being analysed (100 ms).
-    const qint64 in_search = cancel_latency_ms(1500);
-    const qint64 in_analysis = cancel_latency_ms(100);
-    std::printf(
-        "cancel latency: %lld ms during the search, %lld ms during the analysis of the "
-        "recordings (limit %lld ms)\n",
-        static_cast<long long>(in_search), static_cast<long long>(in_analysis),
-        static_cast<long long>(kCancelLatencyMs));
-    QVERIFY2(in_search >= 0, "the fit had ended before the cancel");
-    QVERIFY(in_search <= kCancelLatencyMs);
-    QVERIFY2(in_analysis >= 0, "the fit had ended before the cancel");
-    QVERIFY(in_analysis <= kCancelLatencyMs);
-  }
-
-  void eventLoopStaysResponsiveDuringAFit() {
+  // A click on Cancel before the search has started (the recordings are still being analysed)
+  // ends the job as cancelled, with the buttons back; no fit result is kept.
+  void cancelWhileTheRecordingsAreAnalysed() {
     IdentificationPanel panel;
-    panel.resize(560, 900);
-    panel.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&panel));
     set_samples(panel);
-    panel.set_fit_settings("cmaes", 1000, 100, 20);  // a real fit: search, polish, uncertainty
-    std::vector<qint64> gaps;
-    QElapsedTimer clock;
-    QTimer ticker;
-    ticker.setTimerType(Qt::PreciseTimer);
-    ticker.setInterval(5);
-    connect(&ticker, &QTimer::timeout, &panel, [&] { gaps.push_back(clock.restart()); });
+    panel.set_fit_settings("cmaes", 100000, 100, 20);
     QSignalSpy done(&panel, &IdentificationPanel::job_finished);
-    clock.start();
-    ticker.start();
     panel.start_fit();
-    QVERIFY(done.wait(120000));
-    ticker.stop();
-    QVERIFY2(done.takeFirst().at(0).toString().startsWith("Fit: "),
-             qPrintable(panel.status_label()->text()));
-    QVERIFY(gaps.size() > 100);
-    std::vector<qint64> sorted = gaps;
-    std::sort(sorted.begin(), sorted.end());
-    const qint64 median = sorted[sorted.size() / 2];
-    const qint64 largest = sorted.back();
-    std::printf(
-        "event loop during a fit: %zu ticks of a 5 ms timer, gap median %lld ms, max "
-        "%lld ms (limit %lld ms)\n",
-        gaps.size(), static_cast<long long>(median), static_cast<long long>(largest),
-        static_cast<long long>(kEventLoopGapMs));
-    QVERIFY(largest <= kEventLoopGapMs);
+    QVERIFY(panel.busy());
+    QVERIFY(panel.convergence_plot()->graph(0)->data()->isEmpty());  // no search point yet
+    QTest::mouseClick(panel.cancel_button(), Qt::LeftButton);
+    QVERIFY(done.wait(20000));
+    QCOMPARE(done.takeFirst().at(0).toString(), QString("Cancelled."));
+    QVERIFY(!panel.busy());
+    QVERIFY(panel.fit_button()->isEnabled());
+    QCOMPARE(panel.parameter_table()->rowCount(), 0);
   }
 
   void diagnosisOfThePapersOwnModelSaysNone() {
