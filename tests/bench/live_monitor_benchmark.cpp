@@ -5,6 +5,9 @@
 // loop are counted (QCustomPlot replots; the monitor's frame timer asks for at most 62.5 a
 // second). Arg: the window of the traces in s (600: all the history kept; 10: the default).
 // Runs offscreen unless QT_QPA_PLATFORM says otherwise; the figures are counters of one run.
+#include <algorithm>
+#include <vector>
+
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QEventLoop>
@@ -89,6 +92,52 @@ BENCHMARK(BM_LiveMonitorFramesPerSecondAt1x)
     ->Arg(600)
     ->Arg(10)
     ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
+
+// The gaps between ticks of a 5 ms timer in the UI thread while the monitor draws a 100× replay
+// of the sample (51 200 samples/s): what a user's click waits for. Above ~50 ms a user sees the
+// window stutter (three frames at 60 Hz). One run: the whole replay.
+void BM_LiveMonitorEventLoopGapDuringA100xReplay(benchmark::State& state) {
+  for (auto _ : state) {
+    LiveMonitor monitor;
+    monitor.resize(1600, 950);
+    monitor.show();
+    oscilab::ui::LiveSettings settings;
+    settings.source = oscilab::ui::LiveSourceKind::Replay;
+    settings.replay_path = kSample;
+    settings.speed = 100.0;
+    monitor.set_settings(settings);
+    std::vector<double> gaps_ms;
+    QElapsedTimer clock;
+    QTimer probe;
+    probe.setTimerType(Qt::PreciseTimer);
+    probe.setInterval(5);
+    qint64 last = -1;
+    QObject::connect(&probe, &QTimer::timeout, [&] {
+      const qint64 now = clock.nsecsElapsed();
+      if (last >= 0) gaps_ms.push_back(1e-6 * static_cast<double>(now - last));
+      last = now;
+    });
+    if (!monitor.start()) {
+      state.SkipWithError(monitor.message().toStdString().c_str());
+      return;
+    }
+    clock.start();
+    probe.start();
+    run_event_loop_until([&] { return monitor.acquisition()->finished(); }, 60000);
+    probe.stop();
+    state.SetIterationTime(1e-9 * static_cast<double>(clock.nsecsElapsed()));
+    std::sort(gaps_ms.begin(), gaps_ms.end());
+    state.counters["ticks"] = static_cast<double>(gaps_ms.size());
+    state.counters["gap_median_ms"] = gaps_ms.empty() ? -1.0 : gaps_ms[gaps_ms.size() / 2];
+    state.counters["gap_max_ms"] = gaps_ms.empty() ? -1.0 : gaps_ms.back();
+    state.counters["frames"] = static_cast<double>(monitor.frames_drawn());
+  }
+}
+BENCHMARK(BM_LiveMonitorEventLoopGapDuringA100xReplay)
+    ->Iterations(1)
+    ->Repetitions(1)
     ->UseManualTime()
     ->Unit(benchmark::kSecond);
 
