@@ -7,6 +7,7 @@
 
 #include <QComboBox>
 #include <QDir>
+#include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -14,6 +15,7 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QLineEdit>
 #include <QListWidget>
 #include <QPointer>
 #include <QProgressBar>
@@ -27,8 +29,9 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/figures/fit_figures.h"
-#include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
+#include "analysis/identification/fit_setup.h"
+#include "analysis/model/model_json.h"
 #include "analysis/model/reference_models.h"
 #include "daq/recording/campaign_reader.h"
 #include "daq/recording/fit_json.h"
@@ -144,11 +147,52 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   generations_box_ = new QSpinBox;
   generations_box_->setRange(0, 10000);
   generations_box_->setValue(20);
+  // What `oscilab-cli fit` offers besides the search: the base model, the stiffness source and
+  // how the levels are weighed (analysis::FitSetup).
+  model_edit_ = new QLineEdit(QStringLiteral("paper"));
+  model_edit_->setObjectName("base_model");
+  model_edit_->setToolTip(
+      tr("Mass, stiffness and starting friction: \"paper\" (Tables 1 and "
+         "3), \"illustrative\" (Table 2) or a model JSON file"));
+  auto* model_browse = new QPushButton(tr("\u2026"));
+  model_browse->setToolTip(tr("Choose a model JSON file"));
+  connect(model_browse, &QPushButton::clicked, this, [this] {
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Base model"), QString(), tr("Model (*.json)"));
+    if (!path.isEmpty()) model_edit_->setText(path);
+  });
+  auto* model_row = new QHBoxLayout;
+  model_row->addWidget(model_edit_, 1);
+  model_row->addWidget(model_browse);
+  stiffness_box_ = new QComboBox;
+  stiffness_box_->setObjectName("stiffness");
+  stiffness_box_->addItem(tr("the model's K(z)"), "model");
+  stiffness_box_->addItem(tr("cubic fit of the restoring-force slice"), "rfs");
+  harmonics_box_ = new QSpinBox;
+  harmonics_box_->setObjectName("harmonics");
+  harmonics_box_->setRange(1, 63);
+  harmonics_box_->setValue(analysis::EdcCostSettings{}.hbm.harmonics);
+  harmonics_box_->setToolTip(tr("Harmonics H of the model's harmonic balance in every evaluation"));
+  model_error_box_ = new QDoubleSpinBox;
+  model_error_box_->setObjectName("model_error");
+  model_error_box_->setRange(-0.1, 50.0);
+  model_error_box_->setDecimals(1);
+  model_error_box_->setSingleStep(0.1);
+  model_error_box_->setSuffix(tr(" %"));
+  model_error_box_->setSpecialValueText(tr("\u03c3 budget"));
+  model_error_box_->setValue(model_error_box_->minimum());
+  model_error_box_->setToolTip(
+      tr("Each level's \u03c3: the \u03c3 budget (cycles, estimator bias, the model's truncation "
+         "error, H corrected to a converged reference), or a fixed relative model-error floor"));
   auto* form = new QFormLayout(settings);
+  form->addRow(tr("Base model"), model_row);
+  form->addRow(tr("Stiffness"), stiffness_box_);
   form->addRow(tr("Method"), method_box_);
   form->addRow(tr("Evaluations (CMA-ES)"), evaluations_box_);
   form->addRow(tr("Population (GA)"), population_box_);
   form->addRow(tr("Generations (GA)"), generations_box_);
+  form->addRow(tr("Harmonics (H)"), harmonics_box_);
+  form->addRow(tr("Model error"), model_error_box_);
 
   fit_button_ = new QPushButton(tr("Fit"));
   fit_button_->setToolTip(tr("Identify the friction parameters from the EDCs (§4, §5)"));
@@ -319,6 +363,21 @@ void IdentificationPanel::add_convergence_point(long evaluations, double best_we
   convergence_plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 
+analysis::FitSetup IdentificationPanel::fit_setup() const {
+  analysis::FitSetup setup;
+  setup.base_model = analysis::model_from_spec(model_edit_->text().trimmed().toStdString());
+  setup.stiffness = stiffness_box_->currentData().toString() == "rfs"
+                        ? analysis::StiffnessSource::Rfs
+                        : analysis::StiffnessSource::Model;
+  setup.cost.hbm.harmonics = harmonics_box_->value();
+  setup.cost.max_harmonics = std::max(setup.cost.max_harmonics, setup.cost.hbm.harmonics);
+  // The spin box's minimum reads "σ budget" (a negative floor, as --model-error takes it).
+  setup.cost.model_error_rel = model_error_box_->value() <= model_error_box_->minimum()
+                                   ? -1.0
+                                   : 0.01 * model_error_box_->value();
+  return setup;
+}
+
 void IdentificationPanel::start(bool diagnosis) {
   if (job_->running()) return;
   const std::vector<std::string> paths = recordings();
@@ -334,8 +393,7 @@ void IdentificationPanel::start(bool diagnosis) {
   fit_options.max_evaluations = evaluations_box_->value();
   fit_options.genetic.population = population_box_->value();
   fit_options.genetic.generations = generations_box_->value();
-  fit_options.genetic.elite =
-      std::max(1, static_cast<int>(std::lround(0.05 * population_box_->value())));
+  fit_options.genetic.elite = analysis::default_elite(population_box_->value());
   analysis::DiagnosisOptions diagnosis_options;
   diagnosis_options.baseline_evaluations = baseline_evaluations_;
   diagnosis_options.candidate_evaluations = candidate_evaluations_;
@@ -348,17 +406,21 @@ void IdentificationPanel::start(bool diagnosis) {
   QPointer<IdentificationPanel> self(this);
   IdentificationPanel* panel = this;  // outlives the worker (see the destructor)
   status_label_->setText(diagnosis ? tr("Diagnosing\u2026") : tr("Fitting\u2026"));
-  job_->start([outcome, paths, fit_options, diagnosis_options, self, panel](
+  analysis::FitSetup setup;
+  try {
+    setup = fit_setup();
+  } catch (const InputError& error) {  // a model file that cannot be read
+    status_label_->setText(tr("Error: %1").arg(QString::fromStdString(error.what())));
+    return;
+  }
+  job_->start([outcome, paths, fit_options, diagnosis_options, setup, self, panel](
                   const ProgressFn& progress, const CancelToken& cancel) {
     try {
       const analysis::CampaignAnalysis campaign =
           daq::analyze_recordings(paths, {}, {}, {}, cancel);
       if (campaign.status == JobStatus::Cancelled) return;  // reported as cancelled, no error
-      std::vector<std::string>& notes = outcome->notes;
-      const analysis::Model base = analysis::campaign_model(
-          analysis::paper_model(), campaign, analysis::StiffnessSource::Model, notes);
-      const analysis::ModelForm form = analysis::ModelForm::paper(base);
       if (outcome->diagnosis) {
+        const analysis::ModelForm form = analysis::fit_form(campaign, setup, outcome->notes);
         outcome->diagnosis_result =
             analysis::diagnose(campaign, form, diagnosis_options, progress, cancel);
         const auto& r = outcome->diagnosis_result;
@@ -367,15 +429,13 @@ void IdentificationPanel::start(bool diagnosis) {
               *r.final_form, analysis::edc_dataset(campaign), r.final_cost);
         }
       } else {
-        analysis::EdcCostSettings cost;
-        cost.cancel = cancel;  // the σ budget's calibration stops with the job
-        const auto objective = std::make_shared<const analysis::EdcObjective>(
-            form, analysis::edc_dataset(campaign), cost);
+        analysis::FitSetup fit_setup = setup;
+        fit_setup.cost.cancel = cancel;  // the σ budget's calibration stops with the job
+        analysis::PreparedFit prepared = analysis::prepare_fit(campaign, fit_setup);
+        const std::shared_ptr<const analysis::EdcObjective> objective = prepared.objective;
         outcome->objective = objective;
-        const long budget = fit_options.method == analysis::FitMethod::Genetic
-                                ? static_cast<long>(fit_options.genetic.population) *
-                                      (fit_options.genetic.generations + 1)
-                                : fit_options.max_evaluations;
+        outcome->notes = std::move(prepared.notes);
+        const auto budget = static_cast<double>(analysis::evaluation_budget(fit_options));
         // The convergence curve gets a point at most every 50 ms (20 redraws a second), the
         // live EDC curve of the best θ every 200 ms. The searches call this one at a time.
         const auto long_ago = std::chrono::steady_clock::now() - std::chrono::seconds(1);
@@ -453,15 +513,9 @@ void IdentificationPanel::on_finished(bool cancelled) {
                   .arg(1e3 * outcome->fit.evaluation.cost_j, 0, 'g', 4)
                   .arg(outcome->fit.evaluation.mean_deviation_pct_positive, 0, 'f', 2)
                   .arg(outcome->fit.evaluation.mean_deviation_pct_negative, 0, 'f', 2);
-    const double floor = outcome->objective ? outcome->objective->settings().model_error_rel : 0.0;
-    if (floor > 0.0 && outcome->fit.check_harmonics > 0 &&
-        outcome->fit.truncation_change_rel > 0.5 * floor) {
-      message += tr(". Harmonic balance truncation: S_mod changes by %1 % at H = %2, comparable "
-                    "to the %3 % model-error floor: parameters may absorb it.")
-                     .arg(100.0 * outcome->fit.truncation_change_rel, 0, 'f', 2)
-                     .arg(outcome->fit.check_harmonics)
-                     .arg(100.0 * floor, 0, 'g', 2);
-    }
+    const std::string warning =
+        outcome->objective ? analysis::truncation_warning(outcome->fit, *outcome->objective) : "";
+    if (!warning.empty()) message += ". Warning: " + QString::fromStdString(warning) + ".";
   }
   status_label_->setText(message);
   Q_EMIT job_finished(message);

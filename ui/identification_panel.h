@@ -10,6 +10,7 @@
 
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/identification/edc_fit.h"
+#include "analysis/identification/fit_setup.h"
 #include "ui/diagnosis_view.h"
 
 class QComboBox;
@@ -19,6 +20,8 @@ class QListWidget;
 class QProgressBar;
 class QPushButton;
 class QSpinBox;
+class QLineEdit;
+class QDoubleSpinBox;
 class QTableWidget;
 class QTabWidget;
 
@@ -128,6 +131,9 @@ class IdentificationPanel : public QWidget {
   struct Outcome;
   enum class JobKind { Fit, Diagnosis, FigureData };
   void start(bool diagnosis);
+  /// The base model, stiffness source and cost settings the widgets say (throws InputError for
+  /// a model file that cannot be read).
+  analysis::FitSetup fit_setup() const;
   void on_finished(bool cancelled);
   void set_busy(bool busy);
   void update_result_buttons();
@@ -160,6 +166,10 @@ class IdentificationPanel : public QWidget {
   double bic_threshold_ = analysis::DiagnosisOptions{}.bic_threshold;
 
   QListWidget* record_list_ = nullptr;
+  QLineEdit* model_edit_ = nullptr;
+  QComboBox* stiffness_box_ = nullptr;
+  QSpinBox* harmonics_box_ = nullptr;
+  QDoubleSpinBox* model_error_box_ = nullptr;
   QComboBox* method_box_ = nullptr;
   QSpinBox* evaluations_box_ = nullptr;
   QSpinBox* population_box_ = nullptr;

@@ -10,8 +10,8 @@
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/figures/diagnosis_figures.h"
 #include "analysis/figures/figure_png.h"
-#include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
+#include "analysis/identification/fit_setup.h"
 #include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/model_json.h"
 #include "app/cli/campaign_input.h"
@@ -126,11 +126,13 @@ void run(const DiagnoseOptions& o) {
   if (error) throw InputError(o.out_dir + ": cannot create: " + error.message());
 
   const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, {}, {});
+  analysis::FitSetup setup;
+  setup.base_model = analysis::model_from_spec(o.model);
+  setup.cost = cost_settings(o.cost);
   std::vector<std::string> notes;
-  const analysis::Model base = analysis::campaign_model(
-      analysis::model_from_spec(o.model), campaign, analysis::StiffnessSource::Model, notes);
+  const analysis::ModelForm form = analysis::fit_form(campaign, setup, notes);
   analysis::DiagnosisOptions options;
-  options.cost = cost_settings(o.cost);
+  options.cost = setup.cost;
   options.max_seconds = o.max_seconds;
   options.use_fingerprints = !o.edc_only;
   options.bic_threshold = o.bic_threshold;
@@ -142,8 +144,7 @@ void run(const DiagnoseOptions& o) {
   analysis::DiagnosisResult result;
   {
     ProgressBar bar("diagnose");
-    result =
-        analysis::diagnose(campaign, analysis::ModelForm::paper(base), options, bar.callback());
+    result = analysis::diagnose(campaign, form, options, bar.callback());
   }
 
   print_result(result, analysis::edc_dataset(campaign), o.bic_threshold);

@@ -9,9 +9,9 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/figures/fit_figures.h"
-#include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/edc_fit.h"
+#include "analysis/identification/fit_setup.h"
 #include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/model_json.h"
 #include "analysis/pipeline/offline_analysis.h"
@@ -69,14 +69,9 @@ void print_table(const analysis::FitResult& fit, const analysis::EdcObjective& o
     std::printf("  harmonic balance: S_mod changes by at most %.2g %% from H = %d to H = %d",
                 100.0 * fit.truncation_change_rel, objective.settings().hbm.harmonics,
                 fit.check_harmonics);
-    if (objective.settings().model_error_rel >= 0.0 &&
-        fit.truncation_change_rel > 0.5 * objective.settings().model_error_rel) {
-      std::printf(
-          " -- comparable to the %.2g %% model-error floor: parameters may absorb the "
-          "truncation; raise --harmonics",
-          100.0 * objective.settings().model_error_rel);
-    }
     std::printf("\n");
+    const std::string warning = analysis::truncation_warning(fit, objective);
+    if (!warning.empty()) std::printf("  warning: %s (--harmonics)\n", warning.c_str());
   }
   if (fit.status != JobStatus::Ok) std::printf("  status: %s\n", fit.message.c_str());
 }
@@ -108,12 +103,14 @@ void run(const FitCommandOptions& o) {
   daq::MappingOverrides overrides;
   if (o.freq_hz > 0) overrides.excitation_freq_hz = o.freq_hz;
   const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, overrides, {});
-  std::vector<std::string> notes;
-  const analysis::Model base =
-      analysis::campaign_model(analysis::model_from_spec(o.model), campaign, stiffness, notes);
-  const analysis::EdcDataset data = analysis::edc_dataset(campaign);
-  const analysis::EdcCostSettings cost = cost_settings(o.cost);
-  const analysis::EdcObjective objective(analysis::ModelForm::paper(base), data, cost);
+  analysis::FitSetup setup;
+  setup.base_model = analysis::model_from_spec(o.model);
+  setup.stiffness = stiffness;
+  setup.cost = cost_settings(o.cost);
+  const analysis::PreparedFit prepared = analysis::prepare_fit(campaign, setup);
+  const analysis::EdcObjective& objective = *prepared.objective;
+  const analysis::EdcDataset& data = objective.data();
+  const std::vector<std::string>& notes = prepared.notes;
 
   std::printf("fit: %d levels (", objective.level_count());
   for (std::size_t g = 0; g < data.groups.size(); ++g) {
@@ -133,16 +130,14 @@ void run(const FitCommandOptions& o) {
   options.genetic.population = o.population;
   options.genetic.generations = o.generations;
   options.genetic.mutation_rate = o.mutation;
-  options.genetic.elite = std::max(1, static_cast<int>(std::lround(0.05 * o.population)));
+  options.genetic.elite = analysis::default_elite(o.population);
   options.polish_after_genetic = o.polish_ga;
   options.uncertainty.bootstrap_replicates = o.bootstrap;
   analysis::FitResult fit;
   {
     ProgressBar bar("fit");
     const ProgressFn draw = bar.callback();
-    const long budget = method == analysis::FitMethod::Genetic
-                            ? static_cast<long>(o.population) * (o.generations + 1)
-                            : o.evaluations;
+    const long budget = analysis::evaluation_budget(options);
     fit = analysis::fit_edc(objective, options, [&](const analysis::FitProgress& p) {
       if (draw && p.stage != "uncertainty") {
         draw(std::min(1.0, static_cast<double>(p.evaluations) / static_cast<double>(budget)));

@@ -10,15 +10,20 @@
 #include <vector>
 
 #include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
+#include <QSpinBox>
 #include <QTableWidget>
 #include <QTest>
 
 #include <qcustomplot.h>
 
 #include "analysis/identification/edc_objective.h"
+#include "analysis/identification/fit_setup.h"
+#include "analysis/model/reference_models.h"
+#include "daq/recording/campaign_reader.h"
 
 #include "ui/identification_panel.h"
 #include "ui/main_window.h"
@@ -200,6 +205,48 @@ class IdentificationPanelTest : public QObject {
     }
     QCOMPARE(accepted, 1);
     QCOMPARE(panel.budget_table()->rowCount(), 52);  // every level of both wells
+  }
+
+  // The panel offers what `oscilab-cli fit` offers (base model, stiffness source, harmonics, a
+  // fixed model-error floor) and fits through the same sequence (analysis::prepare_fit): the
+  // objective it fitted is the one prepare_fit makes headless from the same choices, and its χ²
+  // at the fitted θ is the same number.
+  void fitUsesTheChosenSetupThroughTheSharedSequence() {
+    IdentificationPanel panel;
+    set_samples(panel);
+    panel.set_fit_settings("ga", 2000, 6, 1);
+    auto* stiffness = panel.findChild<QComboBox*>("stiffness");
+    auto* harmonics = panel.findChild<QSpinBox*>("harmonics");
+    auto* model_error = panel.findChild<QDoubleSpinBox*>("model_error");
+    QVERIFY(stiffness && harmonics && model_error);
+    stiffness->setCurrentIndex(stiffness->findData("rfs"));
+    harmonics->setValue(5);
+    model_error->setValue(2.0);  // a fixed 2 % floor instead of the σ budget
+    QSignalSpy done(&panel, &IdentificationPanel::job_finished);
+    panel.start_fit();
+    QVERIFY(done.wait(120000));
+    QVERIFY2(done.takeFirst().at(0).toString().startsWith("Fit: "),
+             qPrintable(panel.status_label()->text()));
+    const auto objective = panel.fit_objective();
+    QVERIFY(objective != nullptr);
+    QCOMPARE(objective->settings().hbm.harmonics, 5);
+    QCOMPARE(objective->settings().model_error_rel, 0.02);
+
+    oscilab::analysis::FitSetup setup;
+    setup.stiffness = oscilab::analysis::StiffnessSource::Rfs;
+    setup.cost.hbm.harmonics = 5;
+    setup.cost.model_error_rel = 0.02;
+    const auto campaign = oscilab::daq::analyze_recordings(
+        {kSamples + "stepped_positive.flac", kSamples + "stepped_negative.flac"}, {}, {});
+    const oscilab::analysis::PreparedFit headless = oscilab::analysis::prepare_fit(campaign, setup);
+    const Eigen::VectorXd& theta = panel.fit_result()->theta;
+    QCOMPARE(headless.objective->evaluate(theta).weighted_cost,
+             objective->evaluate(theta).weighted_cost);
+    // The same base model: the recordings' mass and the RFS cubic in place of Table 1's K(z).
+    QCOMPARE(QString::fromStdString(objective->form().base().to_json().dump()),
+             QString::fromStdString(headless.objective->form().base().to_json().dump()));
+    QVERIFY(QString::fromStdString(oscilab::analysis::paper_model().to_json().dump()) !=
+            QString::fromStdString(objective->form().base().to_json().dump()));
   }
 
   void badRecordingIsReportedNotFatal() {

@@ -1,0 +1,49 @@
+#include "analysis/identification/fit_setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "analysis/identification/edc_dataset.h"
+
+namespace oscilab::analysis {
+
+ModelForm fit_form(const CampaignAnalysis& campaign, const FitSetup& setup,
+                   std::vector<std::string>& notes) {
+  return ModelForm::paper(campaign_model(setup.base_model, campaign, setup.stiffness, notes));
+}
+
+PreparedFit prepare_fit(const CampaignAnalysis& campaign, const FitSetup& setup) {
+  PreparedFit prepared;
+  const ModelForm form = fit_form(campaign, setup, prepared.notes);
+  prepared.objective =
+      std::make_shared<const EdcObjective>(form, edc_dataset(campaign), setup.cost);
+  return prepared;
+}
+
+int default_elite(int population) {
+  return std::max(1, static_cast<int>(std::lround(0.05 * population)));
+}
+
+long evaluation_budget(const FitOptions& options) {
+  return options.method == FitMethod::Genetic
+             ? static_cast<long>(options.genetic.population) * (options.genetic.generations + 1)
+             : options.max_evaluations;
+}
+
+std::string truncation_warning(const FitResult& fit, const EdcObjective& objective) {
+  const double floor = objective.settings().model_error_rel;
+  if (!(floor > 0.0) || fit.check_harmonics <= 0 || !(fit.truncation_change_rel > 0.5 * floor)) {
+    return {};
+  }
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "harmonic balance truncation: S_mod changes by %.2g %% from H = %d to H = %d, "
+                "comparable to the %.2g %% model-error floor: the parameters may absorb it; "
+                "raise the harmonics",
+                100.0 * fit.truncation_change_rel, objective.settings().hbm.harmonics,
+                fit.check_harmonics, 100.0 * floor);
+  return text;
+}
+
+}  // namespace oscilab::analysis

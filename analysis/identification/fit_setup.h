@@ -1,0 +1,59 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/identification/campaign_model.h"
+#include "analysis/identification/edc_fit.h"
+#include "analysis/identification/edc_objective.h"
+#include "analysis/identification/model_form.h"
+#include "analysis/model/model.h"
+#include "analysis/model/reference_models.h"
+#include "analysis/pipeline/offline_analysis.h"
+
+namespace oscilab::analysis {
+
+/// What a user chooses for a friction fit besides the search itself: the base model (mass,
+/// stiffness and starting friction; the paper's, Tables 1 and 3, unless told), where the
+/// stiffness comes from, and how the levels are weighed (the σ budget by default). `fit`,
+/// `diagnose`, the app's Fit and Diagnose and the bindings all start from one.
+struct FitSetup {
+  Model base_model = paper_model();
+  StiffnessSource stiffness = StiffnessSource::Model;
+  EdcCostSettings cost;
+};
+
+/// A fit's problem, ready to search: the objective over the campaign's levels and what was
+/// changed on the way (campaign_model's notes: the recordings' mass, the RFS stiffness).
+struct PreparedFit {
+  std::shared_ptr<const EdcObjective> objective;
+  std::vector<std::string> notes;
+};
+
+/// The paper's form (eq. (7), θ of eq. (9)) of the base model with the recordings' mass and the
+/// chosen stiffness (campaign_model, whose notes are appended): what a fit or a diagnosis
+/// searches over. Throws InputError as campaign_model does.
+ModelForm fit_form(const CampaignAnalysis& campaign, const FitSetup& setup,
+                   std::vector<std::string>& notes);
+
+/// The one sequence from a campaign to a fit's objective: the base model with the recordings'
+/// mass and the chosen stiffness (campaign_model), the paper's form of it (eq. (7), θ of
+/// eq. (9)), the campaign's EDC levels (edc_dataset) and the objective (eq. (8) with the σ
+/// budget). Throws InputError as those do (no mass, no usable level, bad cost settings).
+PreparedFit prepare_fit(const CampaignAnalysis& campaign, const FitSetup& setup);
+
+/// The GA's elite for a population: 5 % of it, at least one (2000 evaluations for the paper's
+/// population of 100 over 20 generations, genetic_algorithm.h).
+int default_elite(int population);
+
+/// How many evaluations a fit runs against, for a progress bar: population × (generations + 1)
+/// for the GA (an upper bound: the elite is not re-evaluated), max_evaluations otherwise.
+long evaluation_budget(const FitOptions& options);
+
+/// One sentence when the fitted model's harmonic-balance truncation (fit.truncation_change_rel)
+/// is more than half a fixed model-error floor, so that the parameters may absorb it; empty
+/// otherwise, and always with the σ budget (its defect correction accounts for truncation).
+std::string truncation_warning(const FitResult& fit, const EdcObjective& objective);
+
+}  // namespace oscilab::analysis
