@@ -518,6 +518,13 @@ void IdentificationPanel::on_finished(bool cancelled) {
     if (!warning.empty()) message += ". Warning: " + QString::fromStdString(warning) + ".";
   }
   status_label_->setText(message);
+  if (fitted_ == outcome && outcome->objective && outcome->fit.theta.size() > 0) {
+    try {
+      Q_EMIT model_fitted(std::make_shared<const analysis::Model>(
+          outcome->objective->form().build(outcome->fit.theta)));
+    } catch (const std::exception&) {  // a form that cannot build θ̄: nothing to hand on
+    }
+  }
   Q_EMIT job_finished(message);
 }
 

@@ -119,6 +119,9 @@ class IdentificationPanel : public QWidget {
  Q_SIGNALS:
   /// A fit or a diagnosis ended (finished, cancelled or failed); `message` says which.
   void job_finished(const QString& message);
+  /// A fit finished (not cancelled, no error): the fitted model (the form built at θ̄), for the
+  /// rest of the app (the live monitor draws its EDC). Emitted before job_finished.
+  void model_fitted(std::shared_ptr<const oscilab::analysis::Model> model);
   /// The best model so far of a running fit. Emitted on the worker thread at most 5 times a
   /// second; the panel draws it through a queued connection.
   void fit_preview(std::shared_ptr<const oscilab::ui::FitPreview> preview);

@@ -75,13 +75,13 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   central_tabs_->setDocumentMode(true);
   central_tabs_->addTab(review_view_, tr("Review"));
   // The live monitor; the session keeps its settings ("live").
-  auto* live_monitor = new LiveMonitor;
-  live_monitor->setObjectName("live_monitor");
-  central_tabs_->addTab(live_monitor, tr("Live"));
-  live_settings_ = live_monitor->settings().to_json();
-  connect(live_monitor, &LiveMonitor::settings_changed, this,
+  live_monitor_ = new LiveMonitor;
+  live_monitor_->setObjectName("live_monitor");
+  central_tabs_->addTab(live_monitor_, tr("Live"));
+  live_settings_ = live_monitor_->settings().to_json();
+  connect(live_monitor_, &LiveMonitor::settings_changed, this,
           [this](const nlohmann::json& settings) { set_live_settings(settings); });
-  connect(this, &MainWindow::live_settings_restored, live_monitor, &LiveMonitor::apply_settings);
+  connect(this, &MainWindow::live_settings_restored, live_monitor_, &LiveMonitor::apply_settings);
   setCentralWidget(central_tabs_);
   identification_panel_ = new IdentificationPanel(this);
   auto* dock = new QDockWidget(tr("Fit and diagnosis"), this);
@@ -91,21 +91,13 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   addDockWidget(Qt::RightDockWidgetArea, dock);
   // From the rig to a fitted model: a finished live recording opens for review and fitting, and
   // each fitted model's EDC is drawn over the live measurement.
-  connect(live_monitor, &LiveMonitor::recording_finished, this, [this](const QString& path) {
+  connect(live_monitor_, &LiveMonitor::recording_finished, this, [this](const QString& path) {
     if (open_recording(path))
       statusBar()->showMessage(tr("Recorded %1: opened for review").arg(path));
   });
-  connect(identification_panel_, &IdentificationPanel::job_finished, live_monitor,
-          [this, live_monitor] {
-            const analysis::FitResult* result = identification_panel_->fit_result();
-            const auto objective = identification_panel_->fit_objective();
-            if (result == nullptr || !objective || result->theta.size() == 0) return;
-            try {
-              live_monitor->set_prediction_model(
-                  std::make_shared<const analysis::Model>(objective->form().build(result->theta)),
-                  tr("fitted model"));
-            } catch (const std::exception&) {  // a form that cannot build θ̄ keeps the model drawn
-            }
+  connect(identification_panel_, &IdentificationPanel::model_fitted, live_monitor_,
+          [this](std::shared_ptr<const analysis::Model> model) {
+            live_monitor_->set_prediction_model(std::move(model), tr("fitted model"));
           });
 
   analysis_job_ = new BackgroundJob(this);

@@ -26,6 +26,7 @@ namespace oscilab::ui {
 class BackgroundJob;
 class ExportMenu;
 class IdentificationPanel;
+class LiveMonitor;
 class RecordView;
 class ReviewView;
 struct ReviewAnalysis;
@@ -97,6 +98,8 @@ class MainWindow : public QMainWindow {
   ReviewView* review_view() const { return review_view_; }
   RecordView* record_view() const;
   IdentificationPanel* identification_panel() const { return identification_panel_; }
+  /// The Live tab's monitor (owned by the window, like the review and the fit panel).
+  LiveMonitor* live_monitor() const { return live_monitor_; }
   /// File ▸ Export: plots, the level table, the recording shown, the EDC table.
   ExportMenu* export_menu() const { return export_menu_; }
   QAction* open_action() const { return open_action_; }
@@ -148,6 +151,7 @@ class MainWindow : public QMainWindow {
   std::vector<Session::LevelRef> pending_levels_;    // a session's, until its analysis is shown
 
   QTabWidget* central_tabs_ = nullptr;
+  LiveMonitor* live_monitor_ = nullptr;
   ReviewView* review_view_ = nullptr;
   IdentificationPanel* identification_panel_ = nullptr;
   QLabel* analysis_label_ = nullptr;

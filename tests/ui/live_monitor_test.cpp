@@ -406,7 +406,7 @@ class LiveMonitorTest : public QObject {
     oscilab::ui::MainWindow window;
     window.set_interactive_errors(false);
     QVERIFY(window.open_session(session));
-    auto* monitor = window.findChild<LiveMonitor*>("live_monitor");
+    auto* monitor = window.live_monitor();
     QVERIFY(monitor != nullptr);
     const LiveSettings restored = monitor->settings();
     QCOMPARE(restored.rig_f0_n, 1.7);
@@ -425,7 +425,7 @@ class LiveMonitorTest : public QObject {
     const fs::path dir = temp_dir("rig_to_fit");
     oscilab::ui::MainWindow window;
     window.set_interactive_errors(false);
-    auto* monitor = window.findChild<LiveMonitor*>("live_monitor");
+    auto* monitor = window.live_monitor();
     QVERIFY(monitor != nullptr);
     QSignalSpy opened(&window, &oscilab::ui::MainWindow::recording_opened);
     for (const bool positive : {true, false}) {

@@ -1,0 +1,144 @@
+#include "app/gui/window_script.h"
+
+#include <cstdio>
+
+#include <QApplication>
+#include <QTimer>
+
+#include <qcustomplot.h>
+
+#include "ui/figure_dialog.h"
+#include "ui/identification_panel.h"
+#include "ui/live_monitor.h"
+#include "ui/main_window.h"
+#include "ui/record_view.h"
+#include "ui/response_dialog.h"
+
+namespace oscilab::gui {
+namespace {
+
+// Time the event loop gets to lay out and paint the window before a picture, in ms.
+constexpr int kSettleMs = 500;
+// How long the live source runs before its picture, in ms: at 20× the rig's 6 s levels reach the
+// 23rd.
+constexpr int kLiveMs = 7000;
+
+}  // namespace
+
+void WindowScript::add_options(QCommandLineParser& parser) {
+  parser.addOptions({
+      {"screenshot", "Save a PNG of the window to <png> and exit (no dialogs).", "png"},
+      {"size", "Window size for --screenshot (default 1280x800).", "WxH", "1280x800"},
+      {"run",
+       "With --screenshot: run a fit or a diagnosis of the recordings first: fit | diagnose.",
+       "job"},
+      {"dialog",
+       "With --run fit and --screenshot: open a dialog of the fit panel once the fit ended and "
+       "save its picture instead: hbm (the HBM branches) | map (the bifurcation map) | figures.",
+       "dialog"},
+      {"live",
+       "With --screenshot: show the Live tab running <source>: rig (the virtual rig stepping "
+       "0.2 to 2.7 N at 20x) or a recording to replay at 10x; the picture is taken after 7 s.",
+       "source"},
+  });
+}
+
+WindowScript::WindowScript(const QCommandLineParser& parser)
+    : screenshot_path_(parser.value("screenshot")),
+      size_(parser.value("size").split('x')),
+      size_given_(parser.isSet("size")),
+      job_(parser.value("run")),
+      dialog_(parser.value("dialog")),
+      live_source_(parser.value("live")) {}
+
+void WindowScript::size_window(QWidget& window) const {
+  if (size_.size() == 2) window.resize(size_[0].toInt(), size_[1].toInt());
+}
+
+int WindowScript::run(ui::MainWindow& window, bool analysing,
+                      const std::function<void()>& apply_view) {
+  int status = 0;
+  const auto save = [&](QWidget* shown) {
+    QTimer::singleShot(kSettleMs, &window, [&, shown] {
+      if (shown == &window) window.record_view()->plot()->replot();
+      if (shown == nullptr || !shown->grab().save(screenshot_path_)) {
+        std::fprintf(stderr, "oscilab: cannot write %s\n", qPrintable(screenshot_path_));
+        status = 1;
+      }
+      QApplication::quit();
+    });
+  };
+  // The picture waits for the analysis, the job and the live source, whichever ends last.
+  const bool run_job = job_ == "fit" || job_ == "diagnose";
+  int waiting = (analysing ? 1 : 0) + (run_job ? 1 : 0);
+  const auto done = [&] {
+    if (--waiting == 0) save(&window);
+  };
+  bool analysed = false;
+  if (analysing) {
+    QObject::connect(&window, &ui::MainWindow::analysis_finished, &window, [&] {
+      if (analysed) return;  // the picture shows the first analysis
+      analysed = true;
+      apply_view();
+      done();
+    });
+  }
+  // --dialog: once the fit ended, the dialog is opened and computed, and its picture taken.
+  const auto save_dialog = [&](QWidget* shown) {
+    if (shown != nullptr && size_given_) size_window(*shown);  // --size is the dialog's
+    save(shown);
+  };
+  auto* panel = window.identification_panel();
+  const auto open_dialog = [&] {
+    if (dialog_ == "figures") {
+      QObject::connect(panel, &ui::IdentificationPanel::figures_shown, &window,
+                       [&] { save_dialog(panel->figures_dialog()); });
+      panel->show_figures();
+      return;
+    }
+    ui::ResponseDialog* shown =
+        dialog_ == "map" ? panel->open_map_dialog() : panel->open_branch_dialog();
+    if (shown == nullptr) {
+      save_dialog(nullptr);
+      return;
+    }
+    QObject::connect(shown, &ui::ResponseDialog::computed, &window,
+                     [&, shown] { save_dialog(shown); });
+  };
+  if (run_job) {
+    QObject::connect(panel, &ui::IdentificationPanel::job_finished, &window, [&] {
+      if (dialog_.isEmpty() || job_ != "fit") {
+        done();
+      } else {
+        open_dialog();
+      }
+    });
+    if (job_ == "fit") {
+      panel->start_fit();
+    } else {
+      panel->start_diagnosis();
+    }
+  }
+  if (!live_source_.isEmpty()) {
+    ui::LiveMonitor* live = window.live_monitor();
+    window.central_tabs()->setCurrentWidget(live);
+    ui::LiveSettings settings = live->settings();
+    const bool rig = live_source_ == "rig";
+    settings.source = rig ? ui::LiveSourceKind::Rig : ui::LiveSourceKind::Replay;
+    settings.replay_path = live_source_.toStdString();
+    settings.speed = rig ? 20.0 : 10.0;
+    live->set_settings(settings);
+    if (rig) live->set_rig_schedule(ui::stepped_schedule(0.2, 2.7, 0.1, 6, 1, 9));  // §3.2
+    if (!live->start()) {
+      std::fprintf(stderr, "oscilab: %s\n", qPrintable(live->message()));
+      return 1;
+    }
+    ++waiting;
+    QTimer::singleShot(kLiveMs, &window, done);
+  }
+  if (waiting == 0) save(&window);
+  QApplication::exec();
+  return status;
+}
+
+}  // namespace oscilab::gui
