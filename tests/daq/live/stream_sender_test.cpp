@@ -31,8 +31,8 @@ using stream_protocol::FrameType;
 
 constexpr double kRateHz = 512.0;
 constexpr int kChannels = 2;
-// A run that has not ended by then is hung: cancelled, and the test fails. Generous, because
-// the machine is shared; the tests take well under a second each.
+// A run that has not ended by then is hung: cancelled, and the test fails. Generous, for a
+// loaded machine or a sanitizer build; the tests take well under a second each.
 constexpr std::chrono::seconds kWatchdog{30};
 
 Sidecar two_channels() {
