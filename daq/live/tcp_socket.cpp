@@ -123,6 +123,17 @@ bool TcpSocket::send_all(const std::uint8_t* bytes, std::size_t size) const {
   return true;
 }
 
+long TcpSocket::send_for(const std::uint8_t* bytes, std::size_t size, int timeout_ms) const {
+  pollfd waiting{fd_, POLLOUT, 0};
+  const int ready = ::poll(&waiting, 1, timeout_ms);
+  if (ready == 0) return -1;
+  if (ready < 0) return errno == EINTR ? -1 : -2;
+  const ssize_t sent = ::send(fd_, bytes, size, MSG_NOSIGNAL | MSG_DONTWAIT);
+  if (sent > 0) return static_cast<long>(sent);
+  if (sent == 0 || errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK) return -1;
+  return -2;
+}
+
 std::uint16_t TcpSocket::local_port() const {
   sockaddr_in address{};
   socklen_t length = sizeof address;

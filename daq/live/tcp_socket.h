@@ -32,6 +32,10 @@ class TcpSocket {
   long receive_for(std::uint8_t* buffer, std::size_t size, int timeout_ms) const;
   /// Sends all bytes; false when the connection is gone.
   bool send_all(const std::uint8_t* bytes, std::size_t size) const;
+  /// Waits up to timeout_ms until the socket takes bytes, then sends what it takes without
+  /// blocking: bytes sent (> 0), −1 on a timeout (a receiver not reading), −2 when the connection
+  /// is gone. A sender loops on it to notice it is asked to stop.
+  long send_for(const std::uint8_t* bytes, std::size_t size, int timeout_ms) const;
 
   bool valid() const { return fd_ >= 0; }
   std::uint16_t local_port() const;
