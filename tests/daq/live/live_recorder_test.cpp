@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -58,6 +59,15 @@ RawBlock block(std::uint64_t sequence, std::uint64_t first_sample, int rows, std
 }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The process's open file descriptors.
+std::size_t open_descriptors() {
+  std::size_t n = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator("/proc/self/fd")) {
+    ++n;
+  }
+  return n;
+}
 
 // Written in blocks of uneven sizes, closed and read back with the project's reader: every stored
 // value is the one written, bit for bit (float64 containers are lossless), the SI samples are the
@@ -333,11 +343,14 @@ TEST(LiveRecorder, ThrowsInputErrorNamingAnUnusablePath) {
   message = input_error_of([&] { LiveRecorder(dir.file("slow.wav"), zero_rate, 0); });
   EXPECT_NE(message.find("cannot record"), std::string::npos) << message;
 
-  // A layout the sidecar format refuses (a zero scale): named by its field.
+  // A layout the sidecar format refuses (a zero scale): named by its field. The sound file is
+  // open by then; the failed constructor closes it again (no descriptor left behind).
   Sidecar zero_scale = layout();
   zero_scale.channels[1].scale = 0.0;
+  const std::size_t open_before = open_descriptors();
   message = input_error_of([&] { LiveRecorder(dir.file("bad.wav"), zero_scale, 0); });
-  EXPECT_NE(message.find("scale"), std::string::npos) << message;
+  EXPECT_NE(message.find("channels[1].scale"), std::string::npos) << message;
+  EXPECT_EQ(open_descriptors(), open_before);
 }
 
 }  // namespace
