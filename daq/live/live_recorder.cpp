@@ -62,21 +62,24 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
   file_ = sf_open(path.c_str(), SFM_WRITE, &info);
   if (file_ == nullptr) throw InputError(path + ": cannot write: " + sf_strerror(nullptr));
   sf_command(file_, SFC_SET_UPDATE_HEADER_AUTO, nullptr, SF_TRUE);
-  write_sidecar_now();  // validates it too (InputError on a bad layout)
-  events_fd_ =
-      ::open(events_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
-  if (events_fd_ < 0) {
-    sf_close(file_);
-    file_ = nullptr;
-    throw InputError(events_path_ + ": cannot write: " + std::strerror(errno));
-  }
-  // Levels the stream's sidecar gave up front (stream time) move to recording time.
-  if (layout.excitation) {
-    const double freq = layout.excitation->frequency_hz.value_or(0.0);
-    for (const ExcitationLevel& level : layout.excitation->levels) {
-      add_level(level.f0_n, freq, level.start_s, level.start_s, level.end_s);
+  // No destructor runs when a constructor throws: what is open is closed before rethrowing.
+  try {
+    write_sidecar_now();  // validates it too (InputError on a bad layout)
+    events_fd_ =
+        ::open(events_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
+    if (events_fd_ < 0) throw InputError(events_path_ + ": cannot write: " + std::strerror(errno));
+    // Levels the stream's sidecar gave up front (stream time) move to recording time.
+    if (layout.excitation) {
+      const double freq = layout.excitation->frequency_hz.value_or(0.0);
+      for (const ExcitationLevel& level : layout.excitation->levels) {
+        add_level(level.f0_n, freq, level.start_s, level.start_s, level.end_s);
+      }
+      if (sidecar_dirty_) write_sidecar_now();
     }
-    if (sidecar_dirty_) write_sidecar_now();
+  } catch (...) {
+    if (events_fd_ >= 0) ::close(events_fd_);
+    sf_close(file_);
+    throw;
   }
   nan_rows_.assign(kGapChunkRows * static_cast<std::size_t>(channels_),
                    std::numeric_limits<double>::quiet_NaN());
