@@ -128,6 +128,7 @@ bool LiveRecorder::write_gap(std::uint64_t samples) {
 
 void LiveRecorder::mark_invalid(std::uint64_t from_sample, std::uint64_t to_sample,
                                 const std::string& reason) {
+  if (to_sample < from_sample) std::swap(from_sample, to_sample);  // an interval either way round
   if (to_sample < first_sample_) return;
   from_sample = std::max(from_sample, first_sample_);
   InvalidInterval interval{recording_time_s(from_sample), recording_time_s(to_sample), reason};

@@ -43,7 +43,7 @@ class LiveRecorder {
   bool write(const RawBlock& block);
   /// Appends `samples` NaN rows for samples that never arrived, declared invalid ("gap").
   bool write_gap(std::uint64_t samples);
-  /// Declares [from, to] (stream samples, inclusive) invalid for `reason`.
+  /// Declares [from, to] (stream samples, inclusive; given either way round) invalid for `reason`.
   void mark_invalid(std::uint64_t from_sample, std::uint64_t to_sample, const std::string& reason);
   /// A level of the excitation as operated, in stream time: the excitation changed at change_s
   /// (which ends a previous level still open), and the level is steady over [steady_from_s,

@@ -197,9 +197,9 @@ TEST(LiveRecorder, InvalidIntervalsAreInRecordingTime) {
   {
     LiveRecorder recorder(path, layout(), first);
     ASSERT_TRUE(recorder.write(b));
-    recorder.mark_invalid(0, 1000, "saturated");  // before the recording: dropped
-    recorder.mark_invalid(first + 300, first + 310, "saturated");
-    recorder.mark_invalid(1000, first + 9, "discontinuity");  // clipped to the first sample
+    recorder.mark_invalid(0, 1000, "saturated");                   // before the recording: dropped
+    recorder.mark_invalid(first + 310, first + 300, "saturated");  // ends either way round
+    recorder.mark_invalid(1000, first + 9, "discontinuity");       // clipped to the first sample
     recorder.mark_invalid(first + 200, first + 200, "non-finite");
     recorder.close();
   }
