@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/quantile.h"
 #include "analysis/simulation/stepped_levels.h"
 
 namespace oscilab::ui {
@@ -42,16 +43,6 @@ std::uint64_t data_count(const daq::StreamEvent& event, const char* name, std::u
   if (it == event.data.end() || !it->is_number()) return fallback;
   const double v = it->get<double>();
   return v > 0 ? static_cast<std::uint64_t>(v) : 0;
-}
-
-// The q-quantile (0 ≤ q ≤ 1) of `values` (a copy is partially sorted).
-double quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  const auto k = static_cast<std::ptrdiff_t>(
-      std::min<double>(static_cast<double>(values.size() - 1),
-                       std::floor(q * static_cast<double>(values.size() - 1) + 0.5)));
-  std::nth_element(values.begin(), values.begin() + k, values.end());
-  return values[static_cast<std::size_t>(k)];
 }
 
 template <typename T>

@@ -75,32 +75,13 @@ ReviewAnalysis analyze_review(const std::vector<std::shared_ptr<const daq::Recor
       out.campaign.status = JobStatus::Cancelled;
       return out;
     }
-    out.force_n.push_back(excitation_force(channels[i], settings));
+    out.force_n.push_back(analysis::excitation_force(channels[i], settings));
     if (progress) {
       progress(kCampaignShare + (1.0 - kCampaignShare) * double(i + 1) / double(channels.size()));
     }
   }
   if (progress) progress(1.0);
   return out;
-}
-
-Eigen::VectorXd excitation_force(const analysis::MeasurementChannels& channels,
-                                 const analysis::PipelineSettings& settings) {
-  const double rate_hz = channels.sample_rate_hz;
-  const double mass_kg = channels.mass_kg.value_or(1.0);
-  const int measured = analysis::derivative_order(channels.base_quantity);
-  // motion_signals' band for a second derivative: low-pass inside Nyquist (its taper ends at
-  // 1.25× the cut-off); b̈ is never an integral of the base channel, so no high-pass.
-  analysis::SpectralOptions options;
-  options.lowpass_hz = std::min(settings.derivative_lowpass_hz, 0.35 * rate_hz);
-  // Samples of invalid intervals may be non-finite; a zero keeps the transform finite. The
-  // analysis leaves the restoring force out around them (non-finite R), and so do the loops.
-  Eigen::VectorXd base = channels.base;
-  for (Eigen::Index i = 0; i < base.size(); ++i) {
-    if (!std::isfinite(base[i])) base[i] = 0.0;
-  }
-  // Eq. (1): f = −m b̈.
-  return -mass_kg * analysis::spectral_derivative(base, rate_hz, 2 - measured, options);
 }
 
 std::vector<LevelRow> level_rows(int record, const std::string& record_name,

@@ -34,12 +34,6 @@ ReviewAnalysis analyze_review(const std::vector<std::shared_ptr<const daq::Recor
                               const analysis::PipelineSettings& settings,
                               const ProgressFn& progress = {}, const CancelToken& cancel = {});
 
-/// The excitation force f = −m b̈ of eq. (1) at every sample (N, or N/kg without mass_kg),
-/// through the zero-phase band of analysis::motion_signals (low-pass at derivative_lowpass_hz,
-/// high-pass only where b is integrated), so that it lines up in phase with z = y − b.
-Eigen::VectorXd excitation_force(const analysis::MeasurementChannels& channels,
-                                 const analysis::PipelineSettings& settings);
-
 /// A level of the review: record index into ReviewAnalysis::campaign.records and level index
 /// into that record's levels.
 struct LevelKey {

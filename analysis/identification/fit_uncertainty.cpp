@@ -10,6 +10,7 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include "analysis/common/parallel_for.h"
+#include "analysis/common/quantile.h"
 #include "analysis/identification/local_polish.h"
 
 namespace oscilab::analysis {
@@ -21,14 +22,6 @@ constexpr double kStrongCorrelation = 0.95;
 // computed to ~1e-8 (Newton tolerance 1e-11 N over σ ≈ 1e-3 S), so J is known to ~1e-5
 // relative after central differences with step 1e-3.
 constexpr double kRankTolerance = 1e-7;
-
-double percentile(std::vector<double> values, double q) {
-  std::sort(values.begin(), values.end());
-  const double position = q * static_cast<double>(values.size() - 1);
-  const auto below = static_cast<std::size_t>(std::floor(position));
-  const std::size_t above = std::min(below + 1, values.size() - 1);
-  return values[below] + (position - static_cast<double>(below)) * (values[above] - values[below]);
-}
 
 }  // namespace
 
@@ -169,8 +162,8 @@ FitUncertainty fit_uncertainty(const EdcObjective& objective, const Eigen::Vecto
         for (double v : values) var += (v - mean) * (v - mean);
         out.parameters[i].bootstrap_std =
             values.size() > 1 ? std::sqrt(var / (values.size() - 1)) : 0.0;
-        out.parameters[i].bootstrap_lower_95 = percentile(values, 0.025);
-        out.parameters[i].bootstrap_upper_95 = percentile(values, 0.975);
+        out.parameters[i].bootstrap_lower_95 = quantile(values, 0.025);
+        out.parameters[i].bootstrap_upper_95 = quantile(values, 0.975);
       }
     }
   }

@@ -1,6 +1,7 @@
 #include "analysis/rfs/motion_signals.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "analysis/signal/spectral_calculus.h"
 
@@ -45,6 +46,25 @@ MotionSignals motion_signals(const MeasurementChannels& channels, const Pipeline
   s.restoring_force_n = mass.inverse(spectrum);
   s.z_absolute = mass_order == 0;
   return s;
+}
+
+Eigen::VectorXd excitation_force(const MeasurementChannels& channels,
+                                 const PipelineSettings& settings) {
+  const double rate_hz = channels.sample_rate_hz;
+  const double mass_kg = channels.mass_kg.value_or(1.0);
+  const int measured = derivative_order(channels.base_quantity);
+  // motion_signals' band for a second derivative: low-pass inside Nyquist (its taper ends at
+  // 1.25× the cut-off); b̈ is never an integral of the base channel, so no high-pass.
+  SpectralOptions options;
+  options.lowpass_hz = std::min(settings.derivative_lowpass_hz, 0.35 * rate_hz);
+  // Samples of invalid intervals may be non-finite; a zero keeps the transform finite. The
+  // analysis leaves the restoring force out around them (non-finite R), and so do the loops.
+  Eigen::VectorXd base = channels.base;
+  for (Eigen::Index i = 0; i < base.size(); ++i) {
+    if (!std::isfinite(base[i])) base[i] = 0.0;
+  }
+  // Eq. (1): f = −m b̈.
+  return -mass_kg * spectral_derivative(base, rate_hz, 2 - measured, options);
 }
 
 }  // namespace oscilab::analysis

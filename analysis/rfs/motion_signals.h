@@ -21,4 +21,10 @@ struct MotionSignals {
 MotionSignals motion_signals(const MeasurementChannels& channels, const PipelineSettings& settings,
                              double mass_kg);
 
+/// The excitation force f = −m b̈ of eq. (1) at every sample (N, or N/kg without mass_kg),
+/// through the zero-phase band of motion_signals (low-pass at derivative_lowpass_hz,
+/// high-pass only where b is integrated), so that it lines up in phase with z = y − b.
+Eigen::VectorXd excitation_force(const MeasurementChannels& channels,
+                                 const PipelineSettings& settings);
+
 }  // namespace oscilab::analysis

@@ -4,16 +4,10 @@
 #include <cmath>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/quantile.h"
 
 namespace oscilab::analysis {
 namespace {
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 std::vector<SliceBin> bin_samples(const std::vector<double>& x, const std::vector<double>& y,
                                   double lo, double hi, int bins) {

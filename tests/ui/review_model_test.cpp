@@ -2,6 +2,8 @@
 // excitation force, the samples behind the restoring-force slices and the K(z) text.
 #include "ui/review_model.h"
 
+#include "analysis/rfs/motion_signals.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -134,10 +136,10 @@ TEST(ExcitationForce, IsMinusMassTimesTableAccelerationWhateverTheBaseQuantity) 
   channels.base = (omega * t).sin() * kAcc;
   channels.base_quantity = analysis::MotionQuantity::Acceleration;
   const analysis::PipelineSettings settings;
-  const Eigen::VectorXd from_acc = excitation_force(channels, settings);
+  const Eigen::VectorXd from_acc = analysis::excitation_force(channels, settings);
   channels.base = (omega * t).sin() * (-kAcc / (omega * omega));  // b with b̈ = 2.5 sin ωt
   channels.base_quantity = analysis::MotionQuantity::Displacement;
-  const Eigen::VectorXd from_disp = excitation_force(channels, settings);
+  const Eigen::VectorXd from_disp = analysis::excitation_force(channels, settings);
   double worst_acc = 0.0, worst_disp = 0.0;
   for (Eigen::Index i = Eigen::Index(kRateHz); i < n - Eigen::Index(kRateHz); ++i) {
     const double expected_n = -kMassKg * kAcc * std::sin(omega * t[i]);
@@ -150,7 +152,8 @@ TEST(ExcitationForce, IsMinusMassTimesTableAccelerationWhateverTheBaseQuantity) 
   EXPECT_LT(worst_disp, 0.65e-4);
   // Without mass_kg: per unit mass.
   channels.mass_kg.reset();
-  EXPECT_NEAR(excitation_force(channels, settings)[n / 2], from_disp[n / 2] / kMassKg, 1e-12);
+  EXPECT_NEAR(analysis::excitation_force(channels, settings)[n / 2], from_disp[n / 2] / kMassKg,
+              1e-12);
 }
 
 // A Duffing-like record: R = k1 z + k3 z³ + c ż over a slow amplitude sweep.

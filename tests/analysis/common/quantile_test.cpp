@@ -1,0 +1,48 @@
+// The one quantile helper (analysis/common/quantile.h) against its definition: linear
+// interpolation between the order statistics of the sorted values (Hyndman & Fan's type 7).
+#include "analysis/common/quantile.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+namespace oscilab {
+namespace {
+
+TEST(Quantile, InterpolatesBetweenOrderStatistics) {
+  const std::vector<double> v = {5.0, 1.0, 4.0, 2.0, 3.0};  // unsorted on purpose
+  EXPECT_DOUBLE_EQ(quantile(v, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(quantile(v, 0.5), 3.0);
+  EXPECT_DOUBLE_EQ(quantile(v, 1.0), 5.0);
+  EXPECT_DOUBLE_EQ(quantile(v, 0.25), 2.0);
+  EXPECT_DOUBLE_EQ(quantile(v, 0.1), 1.4);  // position 0.4 between 1 and 2
+  EXPECT_DOUBLE_EQ(quantile({2.0, 1.0}, 0.5), 1.5);
+  EXPECT_DOUBLE_EQ(quantile({7.0}, 0.3), 7.0);
+  EXPECT_DOUBLE_EQ(quantile({}, 0.5), 0.0);
+  EXPECT_DOUBLE_EQ(quantile(v, -1.0), 1.0);  // clamped to [0, 1]
+  EXPECT_DOUBLE_EQ(quantile(v, 2.0), 5.0);
+}
+
+TEST(Quantile, EqualsTheSortedDefinitionOnRandomData) {
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal;
+  for (int n : {2, 3, 10, 101, 1000}) {
+    std::vector<double> v(static_cast<std::size_t>(n));
+    for (double& x : v) x = normal(rng);
+    std::vector<double> sorted = v;
+    std::sort(sorted.begin(), sorted.end());
+    for (double q : {0.0, 0.01, 0.025, 0.3, 0.5, 0.975, 0.99, 1.0}) {
+      const double position = q * (n - 1);
+      const auto k = static_cast<std::size_t>(position);
+      const double expected = k + 1 < sorted.size()
+                                  ? sorted[k] + (position - k) * (sorted[k + 1] - sorted[k])
+                                  : sorted[k];
+      EXPECT_NEAR(quantile(v, q), expected, 1e-15) << "n " << n << " q " << q;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace oscilab
