@@ -11,9 +11,13 @@
 #include <gtest/gtest.h>
 
 #include "analysis/common/input_error.h"
+#include "tests/analysis/identification/search_test_costs.h"
 
 namespace oscilab::analysis {
 namespace {
+
+using testing::input_error_of;
+using testing::rosenbrock_unit;
 
 // A shifted, anisotropic quadratic with its minimum 0 at u = c_i = 0.2 + 0.6 i/(p − 1) and axis
 // weights 1 … 100 (condition number 100).
@@ -34,31 +38,12 @@ Eigen::VectorXd quadratic_minimum(int p) {
   return c;
 }
 
-// Rosenbrock on x = 4u − 2 ∈ [−2, 2]^p: minimum 0 at x = 1, u = 0.75.
-double rosenbrock_unit(const Eigen::VectorXd& u) {
-  double f = 0.0;
-  for (Eigen::Index i = 0; i + 1 < u.size(); ++i) {
-    const double x = 4.0 * u(i) - 2.0, y = 4.0 * u(i + 1) - 2.0;
-    f += 100.0 * (y - x * x) * (y - x * x) + (1.0 - x) * (1.0 - x);
-  }
-  return f;
-}
-
 CmaesOptions options_with(long budget, std::uint64_t seed = 1, int streams = 2) {
   CmaesOptions o;
   o.max_evaluations = budget;
   o.streams = streams;
   o.seed = seed;
   return o;
-}
-
-std::string input_error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
 }
 
 // A quadratic's minimum is found to the accuracy CMA-ES reaches before its restart tests stop a

@@ -11,23 +11,17 @@
 #include <gtest/gtest.h>
 
 #include "analysis/common/input_error.h"
+#include "tests/analysis/identification/search_test_costs.h"
 
 namespace oscilab::analysis {
 namespace {
 
+using testing::input_error_of;
+using testing::rosenbrock_unit;
+
 // A shifted sphere with its minimum 0 at `centre`, inside the unit cube.
 UnitCost sphere(const Eigen::VectorXd& centre) {
   return [centre](const Eigen::VectorXd& u) { return (u - centre).squaredNorm(); };
-}
-
-// Rosenbrock on x = 4u − 2 ∈ [−2, 2]²: minimum 0 at x = (1, 1), u = (0.75, 0.75).
-double rosenbrock_unit(const Eigen::VectorXd& u) {
-  double f = 0.0;
-  for (Eigen::Index i = 0; i + 1 < u.size(); ++i) {
-    const double x = 4.0 * u(i) - 2.0, y = 4.0 * u(i + 1) - 2.0;
-    f += 100.0 * (y - x * x) * (y - x * x) + (1.0 - x) * (1.0 - x);
-  }
-  return f;
 }
 
 GeneticOptions paper_options(std::uint64_t seed) {
@@ -35,16 +29,6 @@ GeneticOptions paper_options(std::uint64_t seed) {
   o.seed = seed;
   o.threads = 1;  // the result does not depend on it (checked below), and threads cost start-up
   return o;
-}
-
-// The message of the InputError that `action` throws, or "" when it throws none.
-std::string input_error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
 }
 
 // The paper's budget (2000 evaluations) on a 3-D sphere: every one of ten seeds ends within 0.01,
