@@ -5,22 +5,17 @@
 #include <cmath>
 #include <exception>
 
-#include <QComboBox>
 #include <QDir>
-#include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
-#include <QLineEdit>
 #include <QListWidget>
 #include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QSpinBox>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -31,13 +26,13 @@
 #include "analysis/figures/fit_figures.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/fit_setup.h"
-#include "analysis/model/model_json.h"
 #include "analysis/model/reference_models.h"
 #include "daq/recording/campaign_reader.h"
 #include "daq/recording/fit_json.h"
 #include "ui/background_job.h"
 #include "ui/diagnosis_view.h"
 #include "ui/figure_dialog.h"
+#include "ui/fit_settings_form.h"
 #include "ui/response_dialog.h"
 #include "ui/table_cells.h"
 
@@ -134,66 +129,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   record_layout->addWidget(record_list_);
   record_layout->addLayout(record_buttons);
 
-  auto* settings = new QGroupBox(tr("Fit of \u03b8 = [f_d(z-*), f_d(z+*), f_d(0), v_t, k_s, c]"));
-  method_box_ = new QComboBox;
-  method_box_->addItem(tr("CMA-ES + BOBYQA polish"), "cmaes");
-  method_box_->addItem(tr("genetic algorithm (paper)"), "ga");
-  evaluations_box_ = new QSpinBox;
-  evaluations_box_->setRange(10, 100000);
-  evaluations_box_->setValue(2000);
-  population_box_ = new QSpinBox;
-  population_box_->setRange(2, 10000);
-  population_box_->setValue(100);
-  generations_box_ = new QSpinBox;
-  generations_box_->setRange(0, 10000);
-  generations_box_->setValue(20);
-  // What `oscilab-cli fit` offers besides the search: the base model, the stiffness source and
-  // how the levels are weighed (analysis::FitSetup).
-  model_edit_ = new QLineEdit(QStringLiteral("paper"));
-  model_edit_->setObjectName("base_model");
-  model_edit_->setToolTip(
-      tr("Mass, stiffness and starting friction: \"paper\" (Tables 1 and "
-         "3), \"illustrative\" (Table 2) or a model JSON file"));
-  auto* model_browse = new QPushButton(tr("\u2026"));
-  model_browse->setToolTip(tr("Choose a model JSON file"));
-  connect(model_browse, &QPushButton::clicked, this, [this] {
-    const QString path =
-        QFileDialog::getOpenFileName(this, tr("Base model"), QString(), tr("Model (*.json)"));
-    if (!path.isEmpty()) model_edit_->setText(path);
-  });
-  auto* model_row = new QHBoxLayout;
-  model_row->addWidget(model_edit_, 1);
-  model_row->addWidget(model_browse);
-  stiffness_box_ = new QComboBox;
-  stiffness_box_->setObjectName("stiffness");
-  stiffness_box_->addItem(tr("the model's K(z)"), "model");
-  stiffness_box_->addItem(tr("cubic fit of the restoring-force slice"), "rfs");
-  harmonics_box_ = new QSpinBox;
-  harmonics_box_->setObjectName("harmonics");
-  harmonics_box_->setRange(1, 63);
-  harmonics_box_->setValue(analysis::EdcCostSettings{}.hbm.harmonics);
-  harmonics_box_->setToolTip(tr("Harmonics H of the model's harmonic balance in every evaluation"));
-  model_error_box_ = new QDoubleSpinBox;
-  model_error_box_->setObjectName("model_error");
-  model_error_box_->setRange(-0.1, 50.0);
-  model_error_box_->setDecimals(1);
-  model_error_box_->setSingleStep(0.1);
-  model_error_box_->setSuffix(tr(" %"));
-  model_error_box_->setSpecialValueText(tr("\u03c3 budget"));
-  model_error_box_->setValue(model_error_box_->minimum());
-  model_error_box_->setToolTip(
-      tr("Each level's \u03c3: the \u03c3 budget (cycles, estimator bias, the model's truncation "
-         "error, H corrected to a converged reference), or a fixed relative model-error floor"));
-  auto* form = new QFormLayout(settings);
-  form->addRow(tr("Base model"), model_row);
-  form->addRow(tr("Stiffness"), stiffness_box_);
-  form->addRow(tr("Method"), method_box_);
-  form->addRow(tr("Evaluations (CMA-ES)"), evaluations_box_);
-  form->addRow(tr("Population (GA)"), population_box_);
-  form->addRow(tr("Generations (GA)"), generations_box_);
-  form->addRow(tr("Harmonics (H)"), harmonics_box_);
-  form->addRow(tr("Model error"), model_error_box_);
-
+  settings_form_ = new FitSettingsForm;
   fit_button_ = new QPushButton(tr("Fit"));
   fit_button_->setToolTip(tr("Identify the friction parameters from the EDCs (§4, §5)"));
   diagnose_button_ = new QPushButton(tr("Diagnose"));
@@ -270,7 +206,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
 
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(records);
-  layout->addWidget(settings);
+  layout->addWidget(settings_form_);
   layout->addLayout(buttons);
   layout->addLayout(result_buttons);
   layout->addWidget(progress_);
@@ -309,10 +245,7 @@ std::vector<std::string> IdentificationPanel::recordings() const {
 
 void IdentificationPanel::set_fit_settings(const std::string& method, int evaluations,
                                            int population, int generations) {
-  method_box_->setCurrentIndex(std::max(0, method_box_->findData(QString::fromStdString(method))));
-  evaluations_box_->setValue(evaluations);
-  population_box_->setValue(population);
-  generations_box_->setValue(generations);
+  settings_form_->set_search(method, evaluations, population, generations);
 }
 
 void IdentificationPanel::set_diagnosis_budget(long baseline_evaluations,
@@ -363,21 +296,6 @@ void IdentificationPanel::add_convergence_point(long evaluations, double best_we
   convergence_plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 
-analysis::FitSetup IdentificationPanel::fit_setup() const {
-  analysis::FitSetup setup;
-  setup.base_model = analysis::model_from_spec(model_edit_->text().trimmed().toStdString());
-  setup.stiffness = stiffness_box_->currentData().toString() == "rfs"
-                        ? analysis::StiffnessSource::Rfs
-                        : analysis::StiffnessSource::Model;
-  setup.cost.hbm.harmonics = harmonics_box_->value();
-  setup.cost.max_harmonics = std::max(setup.cost.max_harmonics, setup.cost.hbm.harmonics);
-  // The spin box's minimum reads "σ budget" (a negative floor, as --model-error takes it).
-  setup.cost.model_error_rel = model_error_box_->value() <= model_error_box_->minimum()
-                                   ? -1.0
-                                   : 0.01 * model_error_box_->value();
-  return setup;
-}
-
 void IdentificationPanel::start(bool diagnosis) {
   if (job_->running()) return;
   const std::vector<std::string> paths = recordings();
@@ -387,13 +305,7 @@ void IdentificationPanel::start(bool diagnosis) {
   }
   auto outcome = std::make_shared<Outcome>();
   outcome->diagnosis = diagnosis;
-  analysis::FitOptions fit_options;
-  fit_options.method = method_box_->currentData().toString() == "ga" ? analysis::FitMethod::Genetic
-                                                                     : analysis::FitMethod::Cmaes;
-  fit_options.max_evaluations = evaluations_box_->value();
-  fit_options.genetic.population = population_box_->value();
-  fit_options.genetic.generations = generations_box_->value();
-  fit_options.genetic.elite = analysis::default_elite(population_box_->value());
+  const analysis::FitOptions fit_options = settings_form_->fit_options();
   analysis::DiagnosisOptions diagnosis_options;
   diagnosis_options.baseline_evaluations = baseline_evaluations_;
   diagnosis_options.candidate_evaluations = candidate_evaluations_;
@@ -408,7 +320,7 @@ void IdentificationPanel::start(bool diagnosis) {
   status_label_->setText(diagnosis ? tr("Diagnosing\u2026") : tr("Fitting\u2026"));
   analysis::FitSetup setup;
   try {
-    setup = fit_setup();
+    setup = settings_form_->fit_setup();
   } catch (const InputError& error) {  // a model file that cannot be read
     status_label_->setText(tr("Error: %1").arg(QString::fromStdString(error.what())));
     return;

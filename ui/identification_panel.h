@@ -20,8 +20,7 @@ class QListWidget;
 class QProgressBar;
 class QPushButton;
 class QSpinBox;
-class QLineEdit;
-class QDoubleSpinBox;
+
 class QTableWidget;
 class QTabWidget;
 
@@ -33,6 +32,7 @@ namespace oscilab::ui {
 
 class BackgroundJob;
 class FigureDialog;
+class FitSettingsForm;
 class ResponseDialog;
 
 /// The best model of a running fit so far, made on the fit's worker thread and handed to the UI
@@ -134,9 +134,6 @@ class IdentificationPanel : public QWidget {
   struct Outcome;
   enum class JobKind { Fit, Diagnosis, FigureData };
   void start(bool diagnosis);
-  /// The base model, stiffness source and cost settings the widgets say (throws InputError for
-  /// a model file that cannot be read).
-  analysis::FitSetup fit_setup() const;
   void on_finished(bool cancelled);
   void set_busy(bool busy);
   void update_result_buttons();
@@ -169,14 +166,7 @@ class IdentificationPanel : public QWidget {
   double bic_threshold_ = analysis::DiagnosisOptions{}.bic_threshold;
 
   QListWidget* record_list_ = nullptr;
-  QLineEdit* model_edit_ = nullptr;
-  QComboBox* stiffness_box_ = nullptr;
-  QSpinBox* harmonics_box_ = nullptr;
-  QDoubleSpinBox* model_error_box_ = nullptr;
-  QComboBox* method_box_ = nullptr;
-  QSpinBox* evaluations_box_ = nullptr;
-  QSpinBox* population_box_ = nullptr;
-  QSpinBox* generations_box_ = nullptr;
+  FitSettingsForm* settings_form_ = nullptr;
   QPushButton* add_button_ = nullptr;
   QPushButton* fit_button_ = nullptr;
   QPushButton* diagnose_button_ = nullptr;
