@@ -116,31 +116,6 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   }
   out.edc_j = edc;
 
-  // The EDC's noise. With z = y_d − b_d (or y_d) each term of Parseval's sum above is
-  // K_h Im(b_d conj y_d), K_h = m (hω)³ T/2 (Im |b_d|² = 0), bilinear in the two channels'
-  // coefficients b = B_r + i B_i, y = Y_r + i Y_i: with b_d = b u, y_d = y v and w = u conj v,
-  // K_h Im(b conj(y) w) = K_h [w_r (B_i Y_r − B_r Y_i) + w_i (B_r Y_r + B_i Y_i)]. Its gradient
-  // g per channel then gives var(S) = Σ_channel σ² gᵀ (AᵀA)⁻¹ g, σ the residual rms.
-  Eigen::VectorXd base_gradient = Eigen::VectorXd::Zero(columns);
-  Eigen::VectorXd mass_gradient = Eigen::VectorXd::Zero(columns);
-  for (int h = 1; h <= harmonics; ++h) {
-    const double hw = h * omega;
-    const double k = input.mass_kg * hw * hw * hw * 0.5 * period;
-    const std::complex<double> w =
-        to_displacement(1.0, hw, base_order) * std::conj(to_displacement(1.0, hw, mass_order));
-    const double br = coefficients(2 * h, 0), bi = coefficients(2 * h + 1, 0);
-    const double yr = coefficients(2 * h, 1), yi = coefficients(2 * h + 1, 1);
-    base_gradient(2 * h) = k * (-w.real() * yi + w.imag() * yr);
-    base_gradient(2 * h + 1) = k * (w.real() * yr + w.imag() * yi);
-    mass_gradient(2 * h) = k * (w.real() * bi + w.imag() * br);
-    mass_gradient(2 * h + 1) = k * (-w.real() * br + w.imag() * bi);
-  }
-  const double edc_variance = out.base_residual_rms * out.base_residual_rms *
-                                  base_gradient.dot(cholesky.solve(base_gradient)) +
-                              out.mass_residual_rms * out.mass_residual_rms *
-                                  mass_gradient.dot(cholesky.solve(mass_gradient));
-  out.edc_noise_std_j = std::sqrt(std::max(0.0, edc_variance));
-
   // Eq. (13) with the lag θ1 of z behind f: S₁ = (T/2) ω Im(F1 conj Z1) = π |F1| |Z1| sin θ1.
   const std::complex<double> f1 = f_h[0], z1 = out.z_h[0];
   out.f0_n = std::abs(f1);

@@ -35,11 +35,6 @@ struct CycleFit {
   double edc_trapz_j = 0.0;  // trapezoidal ∮ f dz on the samples (f measured, z = y − b_fit)
   double base_residual_rms = 0.0;  // fit residuals, in the channel's own SI unit
   double mass_residual_rms = 0.0;
-  /// Standard deviation of edc_j from white noise of the residuals' rms on each channel, through
-  /// the least-squares fit's own covariance σ² (AᵀA)⁻¹ and the first-order change of edc_j with
-  /// each channel's coefficients (base noise moves both f and z; the drift column correlates with
-  /// the sines, so the coefficients' noise depends on where the window falls in the motion).
-  double edc_noise_std_j = 0.0;
   int samples = 0;
 };
 

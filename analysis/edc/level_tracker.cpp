@@ -136,19 +136,24 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   level.start_s = steady.front().start_s;
   level.end_s = steady.back().end_s;
 
-  // Noise floor of the mean EDC from the sensor noise: each cycle's EDC noise through its own
-  // fit's covariance (CycleFit::edc_noise_std_j, from the residual rms; at high levels this also
-  // holds harmonics above H, so the floor errs on the high side there), their rms over the
-  // steady cycles, and the mean of n independent cycles divides by √n.
+  // Noise floor of the mean EDC from the sensor noise (the fits' residual rms; at high levels
+  // this also holds harmonics above H, so the floor errs on the high side there). Over a cycle of
+  // N samples a least-squares sine/cosine coefficient of white noise σ has σ·√(2/N). Eq. (13),
+  // S = π f0 |Z1| sin θ1, then moves by π f0 σ_z through the quadrature part of Z1 (σ_z the
+  // displacement noise of y − b) and by S σ_F / f0 through the force amplitude (σ_F the noise
+  // of F1 = m·B̈1). The mean of n independent cycles divides by √n.
   const double omega = 2.0 * std::numbers::pi * options.freq_hz;
   const double n_per_cycle = median(samples);
+  const double coefficient_noise = std::sqrt(2.0 / n_per_cycle);
   const double mass_noise =
       median(mass_residuals) / std::pow(omega, derivative_order(options.mass_quantity));
   const double base_noise_disp =
       median(base_residuals) / std::pow(omega, derivative_order(options.base_quantity));
-  double noise_variance = 0.0;
-  for (const CycleFit& c : steady) noise_variance += c.edc_noise_std_j * c.edc_noise_std_j;
-  const double sigma_cycle = std::sqrt(noise_variance / n);
+  const double sigma_z = std::hypot(mass_noise, base_noise_disp) * coefficient_noise;
+  const double sigma_f = options.mass_kg * base_noise_disp * omega * omega * coefficient_noise;
+  const double sigma_cycle =
+      std::hypot(std::numbers::pi * level.f0_n * sigma_z,
+                 level.f0_n > 0 ? level.edc_mean_j * sigma_f / level.f0_n : 0.0);
   level.edc_noise_floor_j = sigma_cycle / std::sqrt(n);
 
   // Period 1: the harmonics repeat from cycle to cycle within their noise (the relative change
