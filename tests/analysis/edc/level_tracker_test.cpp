@@ -446,7 +446,11 @@ TEST(LevelTracker, NoiseFloorPredictsTheScatterOfMassNoise) {
 // the sines, a variance inflation near 10 for the first); (2) base noise enters F1 = mω²B1 and
 // Z1 = Y1 − B1 together, δS = π mω² Im(δB1 conj Y1), not as the independent force and
 // displacement terms the floor adds. Observed/predicted measured: mass noise at phase π/4 2.4,
-// π/2 3.3; base noise at phase 0 3.5.
+// π/2 3.3; base noise at phase 0 3.5. Propagating each cycle's noise through its own fit's
+// covariance, var(S) = Σ σ² gᵀ (AᵀA)⁻¹ g, makes this test pass and matches the observed standard
+// error of the bundled samples' levels (ratio 0.72–1.17); it is not in yet because the slightly
+// larger σ it gives some levels sends the default CMA-ES fit (seed 1, 2000 evaluations) of the
+// samples into a local minimum (χ² 482 against 6.2): the fit's robustness comes first.
 TEST(LevelTracker, DISABLED_NoiseFloorPredictsTheScatterAtAnyPhaseAndForBaseNoise) {
   for (const auto& [mass_noise, base_noise, phase] :
        {std::tuple{2e-6, 0.0, kPi / 4}, std::tuple{2e-6, 0.0, kPi / 2}, std::tuple{0.0, 0.05, 0.0},
