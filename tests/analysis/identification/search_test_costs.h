@@ -1,11 +1,8 @@
 #pragma once
 // Test costs and helpers shared by the unit-cube search tests (GA, CMA-ES).
-#include <functional>
-#include <string>
-
 #include <Eigen/Core>
 
-#include "analysis/common/input_error.h"
+#include "tests/input_error_of.h"
 
 namespace oscilab::analysis::testing {
 
@@ -19,14 +16,6 @@ inline double rosenbrock_unit(const Eigen::VectorXd& u) {
   return f;
 }
 
-// The message of the InputError that `action` throws, or "" when it throws none.
-inline std::string input_error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
+using oscilab::testing::input_error_of;
 
 }  // namespace oscilab::analysis::testing

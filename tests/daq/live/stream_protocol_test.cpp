@@ -1,5 +1,7 @@
 #include "daq/live/stream_protocol.h"
 
+#include "tests/daq/live/stream_test_layout.h"
+
 #include <cstring>
 #include <random>
 
@@ -10,22 +12,7 @@ namespace {
 
 using namespace stream_protocol;
 
-Sidecar two_channels() {
-  Sidecar s;
-  s.sample_rate_hz = 512;
-  s.mass_kg = 0.26;
-  ChannelInfo acc;
-  acc.name = "base_acc";
-  acc.scale = 3e-5;
-  ChannelInfo y;
-  y.name = "y";
-  y.role = ChannelRole::Mass;
-  y.quantity = Quantity::Displacement;
-  y.unit = "m";
-  y.scale = 1e-7;
-  s.channels = {acc, y};
-  return s;
-}
+Sidecar two_channels() { return testing::two_channel_layout(); }
 
 std::vector<std::uint8_t> sample_stream() {
   std::vector<std::uint8_t> bytes;

@@ -23,6 +23,7 @@
 #include "daq/live/net_source.h"
 #include "daq/live/stream_protocol.h"
 #include "daq/live/tcp_socket.h"
+#include "tests/daq/live/stream_test_layout.h"
 
 namespace oscilab::daq {
 namespace {
@@ -35,22 +36,7 @@ constexpr int kChannels = 2;
 // loaded machine or a sanitizer build; the tests take well under a second each.
 constexpr std::chrono::seconds kWatchdog{30};
 
-Sidecar two_channels() {
-  Sidecar s;
-  s.sample_rate_hz = kRateHz;
-  s.mass_kg = 0.26;
-  ChannelInfo acc;
-  acc.name = "base_acc";
-  acc.scale = 3e-5;
-  ChannelInfo y;
-  y.name = "y";
-  y.role = ChannelRole::Mass;
-  y.quantity = Quantity::Displacement;
-  y.unit = "m";
-  y.scale = 1e-7;
-  s.channels = {acc, y};
-  return s;
-}
+Sidecar two_channels() { return testing::two_channel_layout(); }
 
 // Rows of block i: 1 … max_rows, varying, so that first_sample is not a multiple of anything.
 int rows_of(std::uint64_t block, int max_rows) {

@@ -19,6 +19,7 @@
 
 #include "analysis/common/input_error.h"
 #include "daq/recording/recording.h"
+#include "tests/input_error_of.h"
 
 namespace oscilab::daq::testing {
 
@@ -60,15 +61,7 @@ inline std::string read_file(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-/// The message of the InputError `action` throws, or "" when it throws none.
-inline std::string input_error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
+using oscilab::testing::input_error_of;
 
 inline ChannelInfo channel(const std::string& name, ChannelRole role, Quantity quantity,
                            const std::string& unit, double scale = 1.0, double offset = 0.0) {
