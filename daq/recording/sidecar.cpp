@@ -195,6 +195,10 @@ ChannelInfo parse_channel(const json& value, const Field& field) {
   if (const json* sensor = find(object, "sensor")) {
     channel.sensor = string_value(*sensor, field / "sensor");
   }
+  if (const json* source = find(object, "source")) {
+    channel.source = string_value(*source, field / "source");
+    if (channel.source.empty()) (field / "source").fail("must not be empty");
+  }
   if (const json* column = find(object, "column")) {
     channel.column = bounded_int(*column, kMaxColumn, field / "column");
   }
@@ -210,7 +214,8 @@ ChannelInfo parse_channel(const json& value, const Field& field) {
   }
   for (const auto& [key, item] : object.items()) {
     if (key != "name" && key != "role" && key != "quantity" && key != "unit" && key != "scale" &&
-        key != "offset" && key != "sensor" && key != "column" && key != "range") {
+        key != "offset" && key != "sensor" && key != "source" && key != "column" &&
+        key != "range") {
       channel.extra[key] = item;
     }
   }
@@ -242,6 +247,21 @@ CsvLayout parse_csv(const json& value, const Field& field) {
     }
   }
   return layout;
+}
+
+SignalTime parse_time(const json& value, const Field& field) {
+  const json& object = object_value(value, field);
+  SignalTime time;
+  time.source = string_value(require(object, "source", field), field / "source");
+  if (time.source.empty()) (field / "source").fail("must not be empty");
+  for (const auto& [key, item] : object.items()) {
+    if (key == "column") {
+      time.column = bounded_int(item, kMaxColumn, field / key);
+    } else if (key != "source") {
+      (field / key).fail("unknown key (expected source or column)");
+    }
+  }
+  return time;
 }
 
 ExcitationLevel parse_level(const json& value, const Field& field) {
@@ -359,6 +379,7 @@ ordered_json channel_to_json(const ChannelInfo& channel) {
   out["scale"] = channel.scale;
   out["offset"] = channel.offset;
   if (!channel.sensor.empty()) out["sensor"] = channel.sensor;
+  if (!channel.source.empty()) out["source"] = channel.source;
   if (channel.column >= 0) out["column"] = channel.column;
   if (channel.range) out["range"] = {channel.range->first, channel.range->second};
   if (channel.extra.is_object()) {
@@ -413,6 +434,12 @@ ordered_json to_ordered_json(const Sidecar& sidecar) {
     if (sidecar.csv->skip_lines != 0) csv["skip_lines"] = sidecar.csv->skip_lines;
     if (sidecar.csv->time_column >= 0) csv["time_column"] = sidecar.csv->time_column;
     out["csv"] = std::move(csv);
+  }
+  if (sidecar.time) {
+    ordered_json time;
+    time["source"] = sidecar.time->source;
+    if (sidecar.time->column >= 0) time["column"] = sidecar.time->column;
+    out["time"] = std::move(time);
   }
   if (sidecar.excitation) out["excitation"] = excitation_to_json(*sidecar.excitation);
   if (!sidecar.notes.empty()) out["notes"] = sidecar.notes;
@@ -554,6 +581,11 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
     }
   }
 
+  if (const json* time = find(json_value, "time"); time && !time->is_null()) {
+    if (sidecar.csv) (root / "time").fail("a CSV file names its time column in csv.time_column");
+    sidecar.time = parse_time(*time, root / "time");
+  }
+
   if (const json* excitation = find(json_value, "excitation");
       excitation && !excitation->is_null()) {
     sidecar.excitation = parse_excitation(*excitation, root / "excitation");
@@ -576,7 +608,8 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
 
   for (const auto& [key, item] : json_value.items()) {
     if (key != "format" && key != "sample_rate_hz" && key != "mass_kg" && key != "channels" &&
-        key != "csv" && key != "excitation" && key != "notes" && key != "invalid_intervals") {
+        key != "csv" && key != "time" && key != "excitation" && key != "notes" &&
+        key != "invalid_intervals") {
       sidecar.extra[key] = item;
     }
   }

@@ -34,7 +34,13 @@ struct ChannelInfo {
   double scale = 1.0;
   double offset = 0.0;
   std::string sensor;
-  int column = -1;  // CSV only: 0-based column in the file; -1: matched by name in the header
+  /// Files that hold named signals (TDMS, MATLAB, HDF5, UFF 58): the signal this channel reads,
+  /// as `oscilab-cli info` lists it ("group/channel", a variable, a dataset path, ...); empty:
+  /// the signal named like the channel.
+  std::string source;
+  /// 0-based column: of a CSV file (-1: matched by name in the header), or of the 2-D matrix or
+  /// dataset `source` names (-1: the signal is a vector).
+  int column = -1;
   /// The sensor's or the ADC's full scale in `unit` (sidecar "range": [min, max]); a sample at
   /// or beyond either end is saturated. Unknown: no saturation check.
   std::optional<std::pair<double, double>> range;
@@ -77,6 +83,13 @@ struct CsvLayout {
                          // (with a header, a column named "t_s" is the time column)
 };
 
+/// Where a file that holds named signals keeps its time axis in s (sidecar key "time"), checked
+/// against the sidecar's rate: a time vector, or a column of a matrix (often the first).
+struct SignalTime {
+  std::string source;
+  int column = -1;  // -1: `source` is a vector
+};
+
 /// The JSON sidecar of a recording, contract §1. Unknown keys are kept in `extra` and written
 /// back, so a round trip loses nothing.
 struct Sidecar {
@@ -86,6 +99,7 @@ struct Sidecar {
   std::optional<Excitation> excitation;
   std::string notes;
   std::optional<CsvLayout> csv;
+  std::optional<SignalTime> time;                  // named-signal files only
   std::vector<InvalidInterval> invalid_intervals;  // in time order
   nlohmann::json extra = nlohmann::json::object();
 };

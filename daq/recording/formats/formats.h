@@ -1,0 +1,34 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "daq/recording/format_reader.h"
+
+// The formats Oscilab reads, one file each under daq/recording/formats/, and the writers of the
+// containers it records to.
+namespace oscilab::daq {
+
+/// Sound containers through libsndfile (WAV, FLAC, W64, RF64, AIFF, CAF, ...): the sidecar's
+/// channels are the file's channels in order.
+const FormatReader& sound_format();
+/// Delimited text (CSV, TSV): columns by header name or by the sidecar's "column".
+const FormatReader& csv_format();
+
+/// The libsndfile format Oscilab writes for a lower-case extension (".wav" → 64-bit float WAV,
+/// ".flac" → 24-bit FLAC, ...), or 0 when the extension is not a sound container.
+int sound_format_for(const std::string& extension);
+/// Whether the libsndfile `format` stores 24-bit integers (FLAC), between these counts.
+bool stores_24_bit_integers(int format);
+inline constexpr double kInt24Min = -8388608.0;  // -2^23
+inline constexpr double kInt24Max = 8388607.0;   // 2^23 - 1
+
+/// Writes interleaved stored values (row r, channel c at r × channels + c) to `file_path` as a
+/// sound container of `format`; `path` names the recording in messages. Throws InputError.
+void write_sound(const std::vector<double>& stored, const Sidecar& sidecar, int format,
+                 const std::string& file_path, const std::string& path);
+/// Writes interleaved stored values as a CSV with a `t_s` column at full precision.
+void write_csv(const std::vector<double>& stored, const Sidecar& sidecar,
+               const std::string& file_path, const std::string& path);
+
+}  // namespace oscilab::daq
