@@ -17,7 +17,8 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libfftw3-dev libsndfile1-dev libboost-dev
   nlohmann-json3-dev libcli11-dev
-  libpagmo-dev libnlopt-cxx-dev libmatio-dev libcairo2-dev parallel
+  libpagmo-dev libnlopt-cxx-dev libmatio-dev libhdf5-dev libcairo2-dev parallel
+  python3-numpy python3-scipy python3-h5py python3-pytest pybind11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev qt6-svg-dev libqcustomplot-dev libqcustomplot2.1-qt6
   xvfb xauth clang-format clang-tidy
