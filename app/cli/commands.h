@@ -9,6 +9,7 @@ namespace oscilab::cli {
 void add_model_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_info_command(CLI::App& app);
+void add_import_command(CLI::App& app);
 void add_analyze_command(CLI::App& app);
 void add_hbm_command(CLI::App& app);
 void add_fit_command(CLI::App& app);

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   oscilab::cli::add_model_command(app);
   oscilab::cli::add_simulate_command(app);
   oscilab::cli::add_info_command(app);
+  oscilab::cli::add_import_command(app);
   oscilab::cli::add_analyze_command(app);
   oscilab::cli::add_hbm_command(app);
   oscilab::cli::add_fit_command(app);

@@ -28,6 +28,9 @@ struct FileContents {
   std::string container;  // "NI TDMS 2.0, 4 segments", "UFF 58b, little-endian", ...
   std::vector<FileSignal> signals;
   nlohmann::json properties = nlohmann::json::object();  // the file's own properties
+  /// Whether a sidecar picks signals by channels[].source (files of named signals); false for
+  /// sound files (channels in order) and CSV (columns by the channel's name or "column").
+  bool picked_by_source = true;
 };
 
 /// One file format. Each lives in its own file under daq/recording/formats/; read_recording

@@ -46,7 +46,44 @@ std::string describe_excitation(const Sidecar& sidecar) {
   return text;
 }
 
+// Properties as `key: value` lines, long values cut, at most `limit` of them.
+std::string property_lines(const nlohmann::json& properties, const std::string& indent,
+                           std::size_t limit) {
+  std::string text;
+  std::size_t count = 0;
+  for (const auto& [key, value] : properties.items()) {
+    if (count++ == limit) {
+      text += indent + "... (" + std::to_string(properties.size() - limit) + " more)\n";
+      break;
+    }
+    std::string shown = value.is_string() ? value.get<std::string>() : value.dump();
+    if (shown.size() > 100) shown = shown.substr(0, 97) + "...";
+    text += indent + key + ": " + shown + "\n";
+  }
+  return text;
+}
+
 }  // namespace
+
+std::string describe_file_contents(const std::string& path, const FileContents& contents) {
+  std::string text = "File: " + path + "\n";
+  text += line("container", contents.container);
+  if (!contents.properties.empty()) {
+    text += "  properties:\n" + property_lines(contents.properties, "    ", 40);
+  }
+  text += "Signals (" + std::to_string(contents.signals.size()) +
+          (contents.picked_by_source ? "; a sidecar's channels[].source names them):\n"
+                                     : "; a sidecar's channels map them in order or by name):\n");
+  for (const FileSignal& signal : contents.signals) {
+    text += "  " + signal.name + ": " + std::to_string(signal.sample_count) + " samples";
+    if (signal.columns > 1) text += " x " + std::to_string(signal.columns) + " columns";
+    if (!signal.stored_type.empty()) text += ", " + signal.stored_type;
+    text += ", unit " + (signal.unit.empty() ? std::string("not stated") : signal.unit);
+    if (signal.sample_rate_hz) text += ", " + number(*signal.sample_rate_hz) + " Hz";
+    text += "\n" + property_lines(signal.properties, "      ", 12);
+  }
+  return text;
+}
 
 std::string describe_recording(const Recording& recording) {
   const Sidecar& sidecar = recording.sidecar;

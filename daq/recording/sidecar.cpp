@@ -506,6 +506,13 @@ std::string si_unit(Quantity quantity) {
   return "?";
 }
 
+std::optional<Quantity> unit_quantity(const std::string& unit) {
+  for (const UnitEntry& entry : kUnits) {
+    if (unit == entry.name) return entry.quantity;
+  }
+  return std::nullopt;
+}
+
 double unit_to_si(const std::string& unit, Quantity quantity, const std::string& where) {
   if (unit == "V") return 1.0;  // scale is the sensitivity in SI units per volt
   const UnitEntry* known = nullptr;

@@ -120,4 +120,8 @@ void write_sidecar(const Sidecar& sidecar, const std::string& sidecar_path);
 /// that does not fit the quantity.
 double unit_to_si(const std::string& unit, Quantity quantity, const std::string& where);
 
+/// The quantity a unit the sidecar knows measures ("mm/s" → velocity), or nothing for "V" and
+/// unknown units.
+std::optional<Quantity> unit_quantity(const std::string& unit);
+
 }  // namespace oscilab::daq

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <string_view>
 #include <system_error>
 
@@ -278,20 +279,45 @@ class CsvFormat final : public FormatReader {
     if (!reader.is_open()) throw InputError(path + ": cannot open: " + std::strerror(errno));
     FileContents contents;
     contents.container = "CSV";
+    contents.picked_by_source = false;
     const char delimiter = lower_extension(path) == ".tsv" ? '\t' : ',';
     std::vector<std::string_view> cells;
+    std::vector<std::string> names;
+    std::int64_t rows = 0;
+    int time_column = -1;
+    std::vector<double> first_times;
     while (reader.next()) {
       if (blank_line(reader.line())) continue;
       split(reader.line(), delimiter, cells);
-      for (std::size_t i = 0; i < cells.size(); ++i) {
-        FileSignal signal;
-        signal.name = std::string(clean_cell(cells[i]));
-        signal.properties["column"] = i;
-        contents.signals.push_back(std::move(signal));
+      if (names.empty()) {
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+          names.emplace_back(clean_cell(cells[i]));
+          if (names.back() == "t_s") time_column = static_cast<int>(i);
+        }
+        continue;
       }
-      break;
+      ++rows;
+      // The rate from the first two times of a t_s column.
+      if (time_column >= 0 && first_times.size() < 2 &&
+          static_cast<std::size_t>(time_column) < cells.size()) {
+        double t_s = 0.0;
+        if (parse_number(cells[static_cast<std::size_t>(time_column)], t_s).empty()) {
+          first_times.push_back(t_s);
+        }
+      }
     }
-    contents.properties["first_line"] = "the column names, when the file has a header";
+    std::optional<double> rate_hz;
+    if (first_times.size() == 2 && first_times[1] > first_times[0]) {
+      rate_hz = 1.0 / (first_times[1] - first_times[0]);
+    }
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      FileSignal signal;
+      signal.name = names[i];
+      signal.sample_count = rows;
+      signal.sample_rate_hz = rate_hz;
+      signal.properties["column"] = i;
+      contents.signals.push_back(std::move(signal));
+    }
     return contents;
   }
 

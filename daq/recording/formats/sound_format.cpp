@@ -152,6 +152,7 @@ class SoundFormat final : public FormatReader {
     }
     FileContents contents;
     contents.container = container_name(info.format);
+    contents.picked_by_source = false;
     for (int c = 0; c < info.channels; ++c) {
       FileSignal signal;
       signal.name = "channel " + std::to_string(c + 1);

@@ -309,3 +309,40 @@ TEST(SidecarFile, InvalidSidecarIsNotWrittenAndLeavesTheOldFile) {
 
 }  // namespace
 }  // namespace oscilab::daq
+
+namespace oscilab::daq {
+namespace {
+
+TEST(SidecarReader, KeepsWhereAFileOfNamedSignalsHoldsEachChannelAndItsTime) {
+  json value = contract_example();
+  value["channels"][0]["source"] = "analog/NI_9775/ai0";
+  value["channels"][1]["source"] = "data";
+  value["channels"][1]["column"] = 2;
+  value["time"] = {{"source", "data"}, {"column", 0}};
+  const Sidecar sidecar = parse_sidecar(value, "run1.json");
+  EXPECT_EQ(sidecar.channels[0].source, "analog/NI_9775/ai0");
+  EXPECT_EQ(sidecar.channels[1].column, 2);
+  ASSERT_TRUE(sidecar.time.has_value());
+  EXPECT_EQ(sidecar.time->source, "data");
+  EXPECT_EQ(sidecar.time->column, 0);
+  const Sidecar again = parse_sidecar(sidecar_to_json(sidecar), "again.json");
+  EXPECT_EQ(sidecar_to_json(again), sidecar_to_json(sidecar));
+
+  json empty_source = contract_example();
+  empty_source["channels"][0]["source"] = "";
+  EXPECT_EQ(parse_error_of(empty_source), "run1.json: channels[0].source: must not be empty");
+  json time_in_csv = value;
+  time_in_csv["csv"] = {{"header", true}};
+  EXPECT_EQ(parse_error_of(time_in_csv),
+            "run1.json: time: a CSV file names its time column in csv.time_column");
+  json odd_time = value;
+  odd_time["time"]["unit"] = "ms";
+  EXPECT_EQ(parse_error_of(odd_time),
+            "run1.json: time.unit: unknown key (expected source or column)");
+  json no_source = value;
+  no_source["time"] = {{"column", 0}};
+  EXPECT_EQ(parse_error_of(no_source).rfind("run1.json: time", 0), 0u);
+}
+
+}  // namespace
+}  // namespace oscilab::daq
