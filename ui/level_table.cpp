@@ -34,6 +34,8 @@ QTableWidgetItem* read_only(QTableWidgetItem* item) {
 LevelTable::LevelTable(QWidget* parent) : QTableWidget(0, kColumnCount, parent) {
   setHorizontalHeaderLabels({tr("record"), tr("well"), tr("f\u2080 [N]"), tr("EDC mean [mJ]"),
                              tr("EDC std [mJ]"), tr("cycles"), tr("flags")});
+  header_force_unit_ = QStringLiteral("N");
+  header_energy_unit_ = QStringLiteral("mJ");
   horizontalHeaderItem(kF0)->setToolTip(tr("forcing amplitude: |F\u2081| of f = \u2212m b\u0308"));
   horizontalHeaderItem(kEdcMean)->setToolTip(
       tr("energy dissipated per cycle \u222e f dz, mean over the steady cycles (\u00a74.1)"));
@@ -56,7 +58,15 @@ LevelTable::LevelTable(QWidget* parent) : QTableWidget(0, kColumnCount, parent) 
   });
 }
 
-void LevelTable::set_rows(const std::vector<LevelRow>& rows) {
+void LevelTable::set_rows(const std::vector<LevelRow>& rows, const QString& force_unit,
+                          const QString& energy_unit) {
+  if (force_unit != header_force_unit_ || energy_unit != header_energy_unit_) {
+    header_force_unit_ = force_unit;
+    header_energy_unit_ = energy_unit;
+    horizontalHeaderItem(kF0)->setText(tr("f\u2080 [%1]").arg(force_unit));
+    horizontalHeaderItem(kEdcMean)->setText(tr("EDC mean [%1]").arg(energy_unit));
+    horizontalHeaderItem(kEdcStd)->setText(tr("EDC std [%1]").arg(energy_unit));
+  }
   updating_ = true;
   const bool sorting = isSortingEnabled();
   setSortingEnabled(false);  // rows are filled in place, then sorted once

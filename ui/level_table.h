@@ -22,8 +22,10 @@ class LevelTable : public QTableWidget {
 
   explicit LevelTable(QWidget* parent = nullptr);
 
-  /// Replaces the rows (the selection is cleared, the sort order kept).
-  void set_rows(const std::vector<LevelRow>& rows);
+  /// Replaces the rows (the selection is cleared, the sort order kept). `force_unit` and
+  /// `energy_unit` head the f₀ and EDC columns ("N", "mJ"; "N/kg", "mJ/kg" per unit mass).
+  void set_rows(const std::vector<LevelRow>& rows, const QString& force_unit = QStringLiteral("N"),
+                const QString& energy_unit = QStringLiteral("mJ"));
   /// The level shown in `row` (the view's row, after sorting).
   LevelKey key_at(int row) const;
   /// The view's row of `key`, or -1.
@@ -40,6 +42,8 @@ class LevelTable : public QTableWidget {
 
  private:
   bool updating_ = false;
+  QString header_force_unit_;
+  QString header_energy_unit_;
 };
 
 }  // namespace oscilab::ui

@@ -30,16 +30,6 @@ void thin(ScatterPoints& points, std::size_t max_points) {
   points.y.resize(kept);
 }
 
-// The records whose z is absolute: those analysis::analyze_campaign stacks for the slices.
-std::vector<const analysis::MotionSignals*> slice_records(
-    const analysis::CampaignAnalysis& campaign) {
-  std::vector<const analysis::MotionSignals*> records;
-  for (const analysis::RecordAnalysis& r : campaign.records) {
-    if (r.motion.z_absolute) records.push_back(&r.motion);
-  }
-  return records;
-}
-
 }  // namespace
 
 ReviewAnalysis analyze_review(const std::vector<std::shared_ptr<const daq::Recording>>& recordings,
@@ -166,7 +156,7 @@ ScatterPoints stiffness_points(const analysis::CampaignAnalysis& campaign, std::
   ScatterPoints points;
   if (!campaign.stiffness) return points;
   const double band_m_s = campaign.stiffness->velocity_band_m_s;
-  for (const analysis::MotionSignals* s : slice_records(campaign)) {
+  for (const analysis::MotionSignals* s : analysis::slice_records(campaign.records)) {
     analysis::for_each_slice_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
       if (std::abs(s->z_dot_m_s[i]) < band_m_s) {
         points.x.push_back(s->z_m[i]);
@@ -183,7 +173,7 @@ ScatterPoints damping_points(const analysis::CampaignAnalysis& campaign,
   ScatterPoints points;
   if (!campaign.stiffness) return points;
   const analysis::PolynomialFit& fit = campaign.stiffness->fit;
-  for (const analysis::MotionSignals* s : slice_records(campaign)) {
+  for (const analysis::MotionSignals* s : analysis::slice_records(campaign.records)) {
     analysis::for_each_slice_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
       if (std::abs(s->z_m[i] - slice.z_center_m) < slice.position_band_m) {
         points.x.push_back(s->z_dot_m_s[i]);

@@ -18,6 +18,7 @@
 
 #include <qcustomplot.h>
 
+#include "analysis/pipeline/result_units.h"
 #include "ui/display_units.h"
 #include "ui/level_table.h"
 #include "ui/plot_helpers.h"
@@ -305,6 +306,12 @@ void ReviewView::show_record_index(int index) {
   show_recording(analysis_->recordings[std::size_t(index)]);
 }
 
+QString ReviewView::slice_force_unit(const DisplayUnit& unit) const {
+  const analysis::MassBasis basis =
+      analysis_ ? analysis::mass_basis(analysis_->campaign) : analysis::MassBasis::Absolute;
+  return text(analysis::result_unit(unit.symbol, basis));
+}
+
 void ReviewView::set_analysis_running(bool running) {
   analysis_running_ = running;
   if (!analysis_) set_analysis(nullptr);
@@ -313,14 +320,25 @@ void ReviewView::set_analysis_running(bool running) {
 void ReviewView::set_analysis(std::shared_ptr<const ReviewAnalysis> analysis) {
   analysis_ = std::move(analysis);
   if (analysis_) analysis_running_ = false;
-  level_table_->set_rows(analysis_ ? level_rows(analysis_->campaign) : std::vector<LevelRow>{});
+  // Without a mass the forces and energies are per unit mass: every label says so.
+  const analysis::MassBasis basis =
+      analysis_ ? analysis::mass_basis(analysis_->campaign) : analysis::MassBasis::Absolute;
+  const QString force_unit = text(analysis::result_unit("N", basis));
+  const QString energy_unit = text(analysis::result_unit("mJ", basis));
+  level_table_->set_rows(analysis_ ? level_rows(analysis_->campaign) : std::vector<LevelRow>{},
+                         force_unit, energy_unit);
+  cycle_plot_->yAxis->setLabel(tr("EDC per cycle [%1]").arg(energy_unit));
 
   QStringList lines;
   if (analysis_) {
     for (const std::string& error : analysis_->errors) lines << tr("Left out: %1").arg(text(error));
-    for (const analysis::RecordAnalysis& record : analysis_->campaign.records) {
-      for (const std::string& note : record.notes) lines << text(record.name + ": " + note);
+    // Each note once, with the records it concerns.
+    const analysis::CampaignAnalysis& campaign = analysis_->campaign;
+    for (const analysis::SharedNote& note : analysis::shared_notes(campaign)) {
+      lines << text(analysis::note_text(note, campaign.records.size()));
     }
+    if (campaign.z_about_mean)
+      lines << tr("Restoring force: %1").arg(text(analysis::kZAboutMeanNote));
     if (!analysis_->campaign.rfs_message.empty()) {
       lines << tr("Restoring force: %1").arg(text(analysis_->campaign.rfs_message));
     }
@@ -545,11 +563,15 @@ void ReviewView::plot_loops(const std::vector<LevelKey>& keys) {
     }
     curve->data()->set(data, true);
     curve->setPen(QPen(colour, 1.2));
-    curve->setName(tr("%1, f\u2080 = %2 N: EDC %3 mJ (%4 steady cycles)")
-                       .arg(text(analysis_->campaign.records[std::size_t(shown[i].record)].name))
+    const analysis::RecordAnalysis& record =
+        analysis_->campaign.records[std::size_t(shown[i].record)];
+    curve->setName(tr("%1, f\u2080 = %2 %5: EDC %3 %6 (%4 steady cycles)")
+                       .arg(text(record.name))
                        .arg(level.f0_n, 0, 'f', 2)
                        .arg(1e3 * level.edc_mean_j, 0, 'f', 3)
-                       .arg(loop.cycles));
+                       .arg(loop.cycles)
+                       .arg(text(analysis::result_unit("N", record.per_unit_mass)))
+                       .arg(text(analysis::result_unit("mJ", record.per_unit_mass))));
   }
   // Each rect over its loops' z; one force range for all, so that the rects compare. Room at
   // the top for the well's label.
@@ -684,8 +706,10 @@ void ReviewView::plot_slices() {
   const DisplayUnit z_unit = choose_display_unit("m", max_abs({&samples.x, &bin_z}));
   const DisplayUnit r_unit = choose_display_unit("N", max_abs({&samples.y, &bin_r}));
   const DisplayUnit band_unit = choose_display_unit("m/s", slice.velocity_band_m_s);
-  stiffness_plot_->xAxis->setLabel(tr("z [%1]").arg(text(z_unit.symbol)));
-  stiffness_plot_->yAxis->setLabel(tr("restoring force R [%1]").arg(text(r_unit.symbol)));
+  const bool about_mean = analysis_ && analysis_->campaign.z_about_mean;
+  stiffness_plot_->xAxis->setLabel(
+      (about_mean ? tr("z \u2212 z\u0304 [%1]") : tr("z [%1]")).arg(text(z_unit.symbol)));
+  stiffness_plot_->yAxis->setLabel(tr("restoring force R [%1]").arg(slice_force_unit(r_unit)));
   const auto to_display = [](const std::vector<double>& v, const DisplayUnit& unit) {
     QVector<double> out(qsizetype(v.size()));
     for (std::size_t i = 0; i < v.size(); ++i) out[qsizetype(i)] = unit.to_display(v[i]);
@@ -741,7 +765,7 @@ void ReviewView::plot_slices() {
   const DisplayUnit v_unit = choose_display_unit("m/s", v_max);
   const DisplayUnit d_unit = choose_display_unit("N", d_max);
   damping_plot_->xAxis->setLabel(tr("\u017c [%1]").arg(text(v_unit.symbol)));
-  damping_plot_->yAxis->setLabel(tr("D = R \u2212 K(z) [%1]").arg(text(d_unit.symbol)));
+  damping_plot_->yAxis->setLabel(tr("D = R \u2212 K(z) [%1]").arg(slice_force_unit(d_unit)));
   for (std::size_t i = 0; i < campaign->damping.size(); ++i) {
     const analysis::DampingSlice& d = campaign->damping[i];
     const QColor colour = kSliceColour[d.z_center_m < 0.0 ? 0 : 1];

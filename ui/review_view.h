@@ -10,6 +10,7 @@
 
 #include "daq/recording/recording.h"
 #include "ui/annotation.h"
+#include "ui/display_units.h"
 #include "ui/review_model.h"
 
 class QCPAbstractItem;
@@ -115,6 +116,8 @@ class ReviewView : public QWidget {
   void levels_selected(const std::vector<oscilab::ui::LevelKey>& keys);
 
  private:
+  /// A force unit of the slice plots, per unit mass when the campaign has no mass ("mN/kg").
+  QString slice_force_unit(const DisplayUnit& unit) const;
   void on_levels_selected(const std::vector<LevelKey>& keys);
   void show_record_index(int index);
   int shown_record() const;  // index into analysis_->campaign.records, or -1

@@ -133,6 +133,18 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
   return out;
 }
 
+std::vector<const MotionSignals*> slice_records(const std::vector<RecordAnalysis>& records) {
+  std::vector<const MotionSignals*> absolute, all;
+  for (const RecordAnalysis& r : records) {
+    if (r.motion.t_s.size() == 0) continue;
+    all.push_back(&r.motion);
+    if (r.motion.z_absolute) absolute.push_back(&r.motion);
+  }
+  // Without a position the integrated velocity's mean is lost to the integration's high-pass:
+  // z is z − z̄ already.
+  return absolute.empty() ? all : absolute;
+}
+
 CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
                                   const PipelineSettings& settings, const ProgressFn& progress,
                                   const CancelToken& cancel) {
@@ -163,12 +175,12 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
     campaign.status = JobStatus::Cancelled;
     return campaign;
   }
-  std::vector<const MotionSignals*> signals;
-  for (const RecordAnalysis& r : campaign.records) {
-    if (r.motion.z_absolute) signals.push_back(&r.motion);
-  }
+  const std::vector<const MotionSignals*> signals = slice_records(campaign.records);
+  campaign.z_about_mean =
+      !signals.empty() && std::none_of(campaign.records.begin(), campaign.records.end(),
+                                       [](const RecordAnalysis& r) { return r.motion.z_absolute; });
   if (signals.empty()) {
-    campaign.rfs_message = "no record measures the mass position (z's mean is unknown)";
+    campaign.rfs_message = "no record to slice";
   } else {
     try {
       campaign.stiffness = stiffness_slice(signals, settings);
@@ -232,7 +244,8 @@ nlohmann::json campaign_summary(const CampaignAnalysis& campaign) {
                                 {"samples", s.fit.samples},
                                 {"velocity_band_m_s", s.velocity_band_m_s},
                                 {"z_min_m", s.z_min_m},
-                                {"z_max_m", s.z_max_m}};
+                                {"z_max_m", s.z_max_m},
+                                {"z_about_mean", campaign.z_about_mean}};
     json damping = json::array();
     for (const DampingSlice& d : campaign.damping) {
       damping.push_back({{"z_center_m", d.z_center_m},

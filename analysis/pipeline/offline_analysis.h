@@ -36,6 +36,9 @@ struct CampaignAnalysis {
   std::optional<StiffnessSlice> stiffness;
   std::vector<DampingSlice> damping;  // at the stable zeros of the fitted K(z)
   std::string rfs_message;            // why there is no stiffness slice, when there is none
+  /// No record measures the mass position (the vibrometer gives velocity): z is known up to its
+  /// mean, and the slices are against z − z̄ of each record.
+  bool z_about_mean = false;
   JobStatus status = JobStatus::Ok;
 };
 
@@ -53,6 +56,15 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
 CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
                                   const PipelineSettings& settings, const ProgressFn& progress = {},
                                   const CancelToken& cancel = {});
+
+/// The records the restoring-force slices stack: those that measure z itself; when none does,
+/// every record, with z about its mean (z_about_mean).
+std::vector<const MotionSignals*> slice_records(const std::vector<RecordAnalysis>& records);
+
+/// What a reader must know about slices against z − z̄ (the CLI's report, the app's review).
+inline constexpr const char* kZAboutMeanNote =
+    "the mass is measured as velocity, so z is known up to its mean: the slices are against "
+    "z - mean(z) of each record, and K(z) is shifted by the unknown equilibrium";
 
 /// Summary JSON (docs/contracts.md §3 `stiffness_fit`, plus settings, per-record detections,
 /// noise).

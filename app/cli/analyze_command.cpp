@@ -6,6 +6,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/pipeline/offline_analysis.h"
+#include "analysis/pipeline/result_units.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/option_parsing.h"
@@ -52,7 +53,7 @@ void write_edc(const analysis::CampaignAnalysis& campaign, const std::string& pa
           l.well.c_str(), l.f0_n, l.edc_mean_j, l.edc_std_j, l.cycles, record.name.c_str(),
           l.edc_noise_floor_j, l.edc_eq13_mean_j, l.edc_trapz_mean_j, l.z1_abs_m, l.lag_rad,
           l.z_mean_m, l.start_s, l.end_s, l.transient_cycles, l.period1_change, l.usable() ? 1 : 0,
-          l.flags().c_str());
+          analysis::level_flags(record, l).c_str());
     }
   }
   close_output(out, path);
@@ -107,14 +108,20 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
           "EDC levels, restoring force only\n",
           record.name.c_str(), 100.0 * record.tone.power_fraction);
     }
-    for (const auto& note : record.notes) std::printf("  note: %s\n", note.c_str());
     if (record.levels.empty()) continue;
-    std::printf("  %-10s %7s %12s %11s %12s %6s  %s\n", "well", "f0 [N]", "EDC [J]", "std [J]",
-                "floor [J]", "cycles", "flags");
+    const std::string force = "f0 [" + analysis::result_unit("N", record.per_unit_mass) + "]";
+    const std::string energy = "[" + analysis::result_unit("J", record.per_unit_mass) + "]";
+    std::printf("  %-10s %9s %12s %11s %12s %6s  %s\n", "well", force.c_str(),
+                ("EDC " + energy).c_str(), ("std " + energy).c_str(), ("floor " + energy).c_str(),
+                "cycles", "flags");
     for (const auto& l : record.levels) {
-      std::printf("  %-10s %7.3f %12.5g %11.3g %12.3g %6d  %s\n", l.well.c_str(), l.f0_n,
+      std::printf("  %-10s %9.3f %12.5g %11.3g %12.3g %6d  %s\n", l.well.c_str(), l.f0_n,
                   l.edc_mean_j, l.edc_std_j, l.edc_noise_floor_j, l.cycles, l.flags().c_str());
     }
+  }
+  // Each note once, with the records it concerns.
+  for (const analysis::SharedNote& note : analysis::shared_notes(campaign)) {
+    std::printf("note: %s\n", analysis::note_text(note, campaign.records.size()).c_str());
   }
   if (campaign.stiffness) {
     const auto& c = campaign.stiffness->fit.coefficients;
@@ -127,7 +134,9 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
         c[3], e[3], c[2], e[2], -c[1], e[1], c[0], e[0]);
     const auto& slice = *campaign.stiffness;
     const double boundary = campaign.settings.well_boundary_m;
-    if (!(slice.z_min_m < boundary && slice.z_max_m > boundary)) {
+    if (campaign.z_about_mean) {
+      std::printf("  note: %s\n", analysis::kZAboutMeanNote);
+    } else if (!(slice.z_min_m < boundary && slice.z_max_m > boundary)) {
       std::printf(
           "  warning: the slice covers z from %.4f to %.4f m only, one side of the well "
           "boundary (z = %g m):\n  the cubic is extrapolated outside it and poorly "

@@ -11,6 +11,7 @@
 #include <matio.h>
 
 #include "analysis/common/input_error.h"
+#include "analysis/pipeline/result_units.h"
 #include "daq/recording/temporary_file.h"
 
 namespace oscilab::daq {
@@ -235,7 +236,9 @@ void write_recording_mat(const Recording& recording, const std::string& path) {
 std::vector<EdcTableRow> edc_table_rows(const analysis::CampaignAnalysis& campaign) {
   std::vector<EdcTableRow> rows;
   for (const auto& record : campaign.records) {
-    for (const auto& level : record.levels) rows.push_back({record.name, level});
+    for (const auto& level : record.levels) {
+      rows.push_back({record.name, level, analysis::level_flags(record, level)});
+    }
   }
   return rows;
 }
@@ -272,7 +275,7 @@ void write_edc_mat(const std::vector<EdcTableRow>& rows, const std::string& path
     const analysis::LevelResult& level = rows[i].level;
     well[i] = level.well;
     record[i] = rows[i].record;
-    flags[i] = level.flags();
+    flags[i] = rows[i].flags;
     usable[i] = level.usable() ? 1 : 0;
     for (std::size_t c = 0; c < std::size(kColumns); ++c) columns[c][i] = kColumns[c].value(level);
   }

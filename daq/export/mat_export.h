@@ -42,6 +42,7 @@ void write_recording_mat(const Recording& recording, const std::string& path);
 struct EdcTableRow {
   std::string record;  // the recording's name; may be empty
   analysis::LevelResult level;
+  std::string flags;  // analysis::level_flags: the level's, and per-unit-mass without a mass
 };
 
 /// Every level of every record of a campaign, in record then level order (the rows of
