@@ -5,8 +5,8 @@
 // fuzz test. Every record says which fields it holds; the values are the caller's.
 
 #include <bit>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <type_traits>
 #include <vector>
