@@ -416,12 +416,12 @@ class Scanner {
 
   void read_dataset(const std::string& number_line, Scan& scan) {
     const std::vector<std::string_view> fields = tokens(number_line);
-    std::string_view number_text = fields.empty() ? std::string_view() : fields.front();
+    std::string_view number_field = fields.empty() ? std::string_view() : fields.front();
     const bool binary =
-        !number_text.empty() && (number_text.back() == 'b' || number_text.back() == 'B');
-    if (binary) number_text.remove_suffix(1);
+        !number_field.empty() && (number_field.back() == 'b' || number_field.back() == 'B');
+    if (binary) number_field.remove_suffix(1);
     const std::optional<long long> number =
-        number_text.empty() ? std::nullopt : integer_field(number_text);
+        number_field.empty() ? std::nullopt : integer_field(number_field);
     if (!number || *number <= 0) {
       fail_dataset("expected a dataset number after the \"-1\" line, found " + shown(number_line));
     }
