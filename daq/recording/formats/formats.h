@@ -12,6 +12,9 @@ namespace oscilab::daq {
 /// Sound containers through libsndfile (WAV, FLAC, W64, RF64, AIFF, CAF, ...): the sidecar's
 /// channels are the file's channels in order.
 const FormatReader& sound_format();
+/// Universal File Format dataset 58 (function at nodal DOF), ASCII "58" and binary "58b": one
+/// signal per time response, named by its response DOF or "dataset <k>".
+const FormatReader& uff_format();
 /// Delimited text (CSV, TSV): columns by header name or by the sidecar's "column".
 const FormatReader& csv_format();
 
