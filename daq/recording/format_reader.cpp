@@ -121,8 +121,8 @@ Recording SignalFileReader::read(const std::string& path, const Sidecar& sidecar
 }
 
 const std::vector<const FormatReader*>& known_formats() {
-  static const std::vector<const FormatReader*> formats = {&sound_format(), &uff_format(),
-                                                           &csv_format()};
+  static const std::vector<const FormatReader*> formats = {&sound_format(), &tdms_format(),
+                                                           &uff_format(), &csv_format()};
   return formats;
 }
 

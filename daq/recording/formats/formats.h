@@ -12,6 +12,9 @@ namespace oscilab::daq {
 /// Sound containers through libsndfile (WAV, FLAC, W64, RF64, AIFF, CAF, ...): the sidecar's
 /// channels are the file's channels in order.
 const FormatReader& sound_format();
+/// NI TDMS (TDM Streaming) files: signals named "group/channel", DAQmx raw data scaled by the
+/// file's linear scales.
+const FormatReader& tdms_format();
 /// Universal File Format dataset 58 (function at nodal DOF), ASCII "58" and binary "58b": one
 /// signal per time response, named by its response DOF or "dataset <k>".
 const FormatReader& uff_format();
