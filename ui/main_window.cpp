@@ -20,7 +20,9 @@
 #include "analysis/common/input_error.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/edc_objective.h"
+#include "daq/recording/format_reader.h"
 #include "ui/background_job.h"
+#include "ui/channel_mapping_dialog.h"
 #include "ui/export_menu.h"
 #include "ui/identification_panel.h"
 #include "ui/live_monitor.h"
@@ -38,8 +40,9 @@ struct MainWindow::OpenedRecording {
 
 namespace {
 
-const QString kRecordingFilter =
-    QObject::tr("Recordings (*.wav *.flac *.w64 *.rf64 *.aiff *.aif *.caf *.csv);;All files (*)");
+const QString kRecordingFilter = QObject::tr(
+    "Recordings (*.wav *.flac *.w64 *.rf64 *.aiff *.aif *.caf *.csv *.tdms *.uff *.unv *.mat "
+    "*.h5 *.hdf5);;All files (*)");
 const QString kSessionFilter = QObject::tr("Oscilab sessions (*.json);;All files (*)");
 
 // "2 channels, 512 Hz, 262.00 s (134144 samples), stepped-sine at 9 Hz".
@@ -68,6 +71,12 @@ QString summary(const daq::Recording& recording) {
 MainWindow::MainWindow(QWidget* parent, Loader loader)
     : QMainWindow(parent), loader_(std::move(loader)) {
   if (!loader_) loader_ = [](const std::string& path) { return daq::read_recording(path); };
+  mapping_asker_ = [this](const QString& path,
+                          const daq::FileContents& contents) -> std::optional<daq::Sidecar> {
+    ChannelMappingDialog dialog(path, contents, this);
+    if (dialog.exec() != QDialog::Accepted) return std::nullopt;
+    return dialog.sidecar();
+  };
 
   review_view_ = new ReviewView;
   central_tabs_ = new QTabWidget(this);
@@ -187,6 +196,19 @@ bool MainWindow::load(const QString& path, QString& error) {
   const std::string path_utf8 = path.toStdString();
   std::shared_ptr<daq::Recording> recording;
   try {
+    // A file another program wrote, without a sidecar: ask what its signals are, and keep the
+    // answer as its sidecar.
+    const std::string sidecar_path = daq::sidecar_path_for(path_utf8);
+    if (QFileInfo(path).isFile() && !QFileInfo::exists(QString::fromStdString(sidecar_path)) &&
+        QFileInfo(path).suffix().toLower() != "json") {
+      const daq::FormatReader& format = daq::format_for_file(path_utf8);
+      const std::optional<daq::Sidecar> sidecar = mapping_asker_(path, format.describe(path_utf8));
+      if (!sidecar) {
+        error = tr("%1: not opened: no sidecar says what its signals are").arg(path);
+        return false;
+      }
+      daq::write_sidecar(*sidecar, sidecar_path);
+    }
     recording = std::make_shared<daq::Recording>(loader_(path_utf8));
     if (recording->source_path.empty()) recording->source_path = path_utf8;
   } catch (const InputError& input_error) {

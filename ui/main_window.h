@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/pipeline/pipeline_settings.h"
+#include "daq/recording/format_reader.h"
 #include "daq/recording/recording.h"
 #include "ui/review_session.h"
 
@@ -52,8 +54,16 @@ class MainWindow : public QMainWindow {
   /// Reads a recording from a path; throws oscilab::InputError on bad input.
   using Loader = std::function<daq::Recording(const std::string& path)>;
 
+  /// Asks a person how a file without a sidecar maps onto channels; nothing: not opened.
+  using MappingAsker =
+      std::function<std::optional<daq::Sidecar>(const QString& path, const daq::FileContents&)>;
+
   /// `loader` defaults to daq::read_recording.
   explicit MainWindow(QWidget* parent = nullptr, Loader loader = {});
+
+  /// Replaces the ChannelMappingDialog that File ▸ Open shows for a file without a sidecar (the
+  /// answer is saved as the file's sidecar before it is read).
+  void set_mapping_asker(MappingAsker asker) { mapping_asker_ = std::move(asker); }
   ~MainWindow() override;
 
   /// Reads the recording at `path`, adds it to the opened recordings (opening a path again
@@ -137,6 +147,7 @@ class MainWindow : public QMainWindow {
   void update_title();
 
   Loader loader_;
+  MappingAsker mapping_asker_;
   bool interactive_errors_ = true;
   QString last_directory_;
   std::vector<OpenedRecording> opened_;

@@ -14,18 +14,18 @@ namespace {
 // "group/a", "group/b", ... (at most 12), for a message about a name that is not there.
 std::string signal_list(const FileContents& contents) {
   std::string list;
-  for (std::size_t i = 0; i < contents.signals.size() && i < 12; ++i) {
-    list += (i == 0 ? "" : ", ") + in_quotes(contents.signals[i].name);
+  for (std::size_t i = 0; i < contents.file_signals.size() && i < 12; ++i) {
+    list += (i == 0 ? "" : ", ") + in_quotes(contents.file_signals[i].name);
   }
-  if (contents.signals.size() > 12) list += ", ...";
+  if (contents.file_signals.size() > 12) list += ", ...";
   return list.empty() ? "none" : list;
 }
 
 const FileSignal& find_signal(const FileContents& contents, const std::string& name, int column,
                               const std::string& path, const std::string& what) {
-  const auto it = std::find_if(contents.signals.begin(), contents.signals.end(),
+  const auto it = std::find_if(contents.file_signals.begin(), contents.file_signals.end(),
                                [&](const FileSignal& signal) { return signal.name == name; });
-  if (it == contents.signals.end()) {
+  if (it == contents.file_signals.end()) {
     throw InputError(path + ": " + what + " reads " + in_quotes(name) +
                      ", which the file does not hold (it holds " + signal_list(contents) +
                      "; `oscilab-cli info` lists them)");
@@ -52,16 +52,16 @@ Recording SignalFileReader::read(const std::string& path, const Sidecar& sidecar
                                  const std::string& sidecar_name) const {
   const FileContents contents = describe(path);
   const auto channels = static_cast<Eigen::Index>(sidecar.channels.size());
-  std::vector<const FileSignal*> signals;
+  std::vector<const FileSignal*> mapped;
   for (const ChannelInfo& channel : sidecar.channels) {
     const std::string& name = channel.source.empty() ? channel.name : channel.source;
     const std::string what = "channel " + in_quotes(channel.name) + " of " + sidecar_name;
     const FileSignal& signal = find_signal(contents, name, channel.column, path, what);
-    if (!signals.empty() && signal.sample_count != signals.front()->sample_count) {
+    if (!mapped.empty() && signal.sample_count != mapped.front()->sample_count) {
       throw InputError(path + ": " + in_quotes(signal.name) + " holds " +
                        std::to_string(signal.sample_count) + " samples, " +
-                       in_quotes(signals.front()->name) + " " +
-                       std::to_string(signals.front()->sample_count) +
+                       in_quotes(mapped.front()->name) + " " +
+                       std::to_string(mapped.front()->sample_count) +
                        "; a recording's channels have one length");
     }
     // A rate the file states must agree with the sidecar's to within half a sample over the
@@ -76,9 +76,9 @@ Recording SignalFileReader::read(const std::string& path, const Sidecar& sidecar
                          " says sample_rate_hz " + number_text(rate_hz));
       }
     }
-    signals.push_back(&signal);
+    mapped.push_back(&signal);
   }
-  const auto rows = static_cast<Eigen::Index>(signals.front()->sample_count);
+  const auto rows = static_cast<Eigen::Index>(mapped.front()->sample_count);
 
   if (sidecar.time) {
     const std::string what = "the time of " + sidecar_name;
@@ -102,9 +102,9 @@ Recording SignalFileReader::read(const std::string& path, const Sidecar& sidecar
   StoredSamples stored;
   stored.values.resize(static_cast<std::size_t>(rows * channels));
   for (Eigen::Index c = 0; c < channels; ++c) {
-    const std::vector<double> values = read_signal(path, *signals[c], sidecar.channels[c].column);
+    const std::vector<double> values = read_signal(path, *mapped[c], sidecar.channels[c].column);
     if (static_cast<Eigen::Index>(values.size()) != rows) {
-      throw InputError(path + ": " + in_quotes(signals[c]->name) + ": read " +
+      throw InputError(path + ": " + in_quotes(mapped[c]->name) + ": read " +
                        std::to_string(values.size()) + " samples, the file announced " +
                        std::to_string(rows));
     }

@@ -26,7 +26,7 @@ struct FileSignal {
 /// What a file holds (`oscilab-cli info`): enough to write the sidecar that maps it.
 struct FileContents {
   std::string container;  // "NI TDMS 2.0, 4 segments", "UFF 58b, little-endian", ...
-  std::vector<FileSignal> signals;
+  std::vector<FileSignal> file_signals;
   nlohmann::json properties = nlohmann::json::object();  // the file's own properties
   /// Whether a sidecar picks signals by channels[].source (files of named signals); false for
   /// sound files (channels in order) and CSV (columns by the channel's name or "column").

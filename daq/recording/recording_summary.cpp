@@ -71,10 +71,10 @@ std::string describe_file_contents(const std::string& path, const FileContents& 
   if (!contents.properties.empty()) {
     text += "  properties:\n" + property_lines(contents.properties, "    ", 40);
   }
-  text += "Signals (" + std::to_string(contents.signals.size()) +
+  text += "Signals (" + std::to_string(contents.file_signals.size()) +
           (contents.picked_by_source ? "; a sidecar's channels[].source names them):\n"
                                      : "; a sidecar's channels map them in order or by name):\n");
-  for (const FileSignal& signal : contents.signals) {
+  for (const FileSignal& signal : contents.file_signals) {
     text += "  " + signal.name + ": " + std::to_string(signal.sample_count) + " samples";
     if (signal.columns > 1) text += " x " + std::to_string(signal.columns) + " columns";
     if (!signal.stored_type.empty()) text += ", " + signal.stored_type;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <optional>
 #include <set>
 
@@ -94,7 +95,7 @@ SidecarDraft draft_sidecar(const FileContents& contents) {
   SidecarDraft draft;
   std::vector<Candidate> candidates;
   const FileSignal* time = nullptr;
-  for (const FileSignal& signal : contents.signals) {
+  for (const FileSignal& signal : contents.file_signals) {
     if (signal.sample_count < 2) continue;
     if (signal.columns == 1 && looks_like_time(signal)) {
       if (time == nullptr) time = &signal;
@@ -137,6 +138,9 @@ SidecarDraft draft_sidecar(const FileContents& contents) {
     }
   }
   if (rate_hz) {
+    // A rate from a printed increment (1 / 5e-6 s = 200000.0000000016 Hz) reads as meant.
+    const double whole_hz = std::round(*rate_hz);
+    if (std::abs(*rate_hz - whole_hz) <= 1e-9 * *rate_hz) rate_hz = whole_hz;
     out["sample_rate_hz"] = *rate_hz;
   } else {
     out["sample_rate_hz"] = nullptr;

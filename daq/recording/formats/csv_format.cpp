@@ -316,7 +316,7 @@ class CsvFormat final : public FormatReader {
       signal.sample_count = rows;
       signal.sample_rate_hz = rate_hz;
       signal.properties["column"] = i;
-      contents.signals.push_back(std::move(signal));
+      contents.file_signals.push_back(std::move(signal));
     }
     return contents;
   }

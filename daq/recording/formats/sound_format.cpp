@@ -159,7 +159,7 @@ class SoundFormat final : public FormatReader {
       signal.sample_count = info.frames;
       signal.sample_rate_hz = static_cast<double>(info.samplerate);
       signal.stored_type = sndfile_format_name(info.format & SF_FORMAT_SUBMASK);
-      contents.signals.push_back(std::move(signal));
+      contents.file_signals.push_back(std::move(signal));
     }
     return contents;
   }

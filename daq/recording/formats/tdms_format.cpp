@@ -1074,7 +1074,7 @@ class TdmsFormat final : public SignalFileReader {
         }
         signal.stored_type = stored_type(object);
         signal.properties = object.properties;
-        contents.signals.push_back(std::move(signal));
+        contents.file_signals.push_back(std::move(signal));
       }
     }
     return contents;

@@ -912,7 +912,7 @@ class UffFormat final : public SignalFileReader {
       const std::string name = !dof.empty() && uses[dof] == 1
                                    ? dof
                                    : std::string(kAliasPrefix) + std::to_string(set.index);
-      contents.signals.push_back(file_signal(set, name));
+      contents.file_signals.push_back(file_signal(set, name));
     }
     std::string container = scan.any_binary && scan.any_ascii ? "UFF 58 and 58b"
                             : scan.any_binary                 ? "UFF 58b"
@@ -927,7 +927,7 @@ class UffFormat final : public SignalFileReader {
     contents.container = container;
     contents.properties["datasets"] = scan.datasets;
     contents.properties["skipped_datasets"] = scan.skipped;
-    if (contents.signals.empty()) {
+    if (contents.file_signals.empty()) {
       std::string reasons;
       for (const nlohmann::json& skipped : scan.skipped) {
         if (reasons.size() > 200) {
@@ -957,7 +957,7 @@ class UffFormat final : public SignalFileReader {
     if (!aliases) return SignalFileReader::read(path, sidecar, sidecar_name);
     const FileContents contents = describe(path);
     const auto resolve = [&](const std::string& name) {
-      for (const FileSignal& signal : contents.signals) {
+      for (const FileSignal& signal : contents.file_signals) {
         if (signal.properties.value("alias", "") == name) return signal.name;
       }
       return name;

@@ -50,7 +50,7 @@ class MemorySignalReader final : public SignalFileReader {
     signal.columns = columns;
     signal.sample_count = static_cast<std::int64_t>(data.size()) / columns;
     signal.sample_rate_hz = rate_hz;
-    contents.signals.push_back(signal);
+    contents.file_signals.push_back(signal);
     values[name] = std::move(data);
   }
 };
@@ -170,7 +170,7 @@ TEST(FormatForFile, ChoosesBySignatureBeforeExtensionAndNamesTheFormatsItKnows) 
 
 TEST(SidecarDraft, GuessesRolesFromUnitsAndSpellsThemTheSidecarsWay) {
   FileContents contents;
-  contents.signals = {FileSignal{"logger/time", 400, 1, "s", 200.0, "float64", {}},
+  contents.file_signals = {FileSignal{"logger/time", 400, 1, "s", 200.0, "float64", {}},
                       FileSignal{"logger/laser", 400, 1, "mm/s", 200.0, "float64", {}},
                       FileSignal{"logger/table", 400, 1, "m/s\u00b2", 200.0, "float32", {}}};
   const SidecarDraft draft = draft_sidecar(contents);
@@ -190,7 +190,7 @@ TEST(SidecarDraft, GuessesRolesFromUnitsAndSpellsThemTheSidecarsWay) {
 
 TEST(SidecarDraft, SaysWhatIsMissingWhenTheFileStatesNeitherUnitsNorRate) {
   FileContents contents;
-  contents.signals = {FileSignal{"V1", 131072, 1, "", std::nullopt, "float64", {}},
+  contents.file_signals = {FileSignal{"V1", 131072, 1, "", std::nullopt, "float64", {}},
                       FileSignal{"V2", 131072, 1, "", std::nullopt, "float64", {}}};
   const SidecarDraft draft = draft_sidecar(contents);
   EXPECT_FALSE(draft.complete);

@@ -257,7 +257,7 @@ void read_every_way(const std::string& path, const Seed& seed) {
   try {
     const FileContents contents = format.describe(path);
     (void)contents.properties.dump();
-    for (const FileSignal& signal : contents.signals) (void)format.read_signal(path, signal, -1);
+    for (const FileSignal& signal : contents.file_signals) (void)format.read_signal(path, signal, -1);
   } catch (const InputError&) {
   }
   Sidecar sidecar;

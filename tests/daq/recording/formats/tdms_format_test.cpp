@@ -35,7 +35,7 @@ constexpr std::uint32_t kTocFirst = kTocMetaData | kTocNewObjList | kTocRawData;
 const SignalFileReader& tdms() { return dynamic_cast<const SignalFileReader&>(tdms_format()); }
 
 const FileSignal& signal_named(const FileContents& contents, const std::string& name) {
-  for (const FileSignal& signal : contents.signals) {
+  for (const FileSignal& signal : contents.file_signals) {
     if (signal.name == name) return signal;
   }
   ADD_FAILURE() << "no signal " << name;
@@ -73,25 +73,25 @@ TEST(TdmsReader, ReadsDaqmxRawInterleavedInt16WithItsLinearScales) {
   const std::string path = kFixtures + "example.tdms";
   const FileContents contents = tdms().describe(path);
   EXPECT_EQ(contents.container, "NI TDMS (version 4713), 4 segments");
-  ASSERT_EQ(contents.signals.size(), 2u);
-  EXPECT_EQ(contents.signals[0].name, "analog/NI_9775/ai0");
-  EXPECT_EQ(contents.signals[1].name, "analog/NI_9775/ai1");
-  for (const FileSignal& signal : contents.signals) {
+  ASSERT_EQ(contents.file_signals.size(), 2u);
+  EXPECT_EQ(contents.file_signals[0].name, "analog/NI_9775/ai0");
+  EXPECT_EQ(contents.file_signals[1].name, "analog/NI_9775/ai1");
+  for (const FileSignal& signal : contents.file_signals) {
     EXPECT_EQ(signal.sample_count, 4000);
     EXPECT_EQ(signal.unit, "Volts");
     EXPECT_EQ(signal.stored_type, "int16 (DAQmx raw data)");
     ASSERT_TRUE(signal.sample_rate_hz.has_value());
     EXPECT_NEAR(*signal.sample_rate_hz, 200000.0, 1e-6);  // wf_increment 5e-6 s
   }
-  EXPECT_EQ(contents.signals[0].properties["NI_Scale[1]_Linear_Slope"], 0.001380558);
-  EXPECT_EQ(contents.signals[1].properties["NI_Scale[1]_Linear_Slope"], 0.001371093);
-  EXPECT_NEAR(contents.signals[0].properties["NI_Scale[1]_Linear_Y_Intercept"].get<double>(),
+  EXPECT_EQ(contents.file_signals[0].properties["NI_Scale[1]_Linear_Slope"], 0.001380558);
+  EXPECT_EQ(contents.file_signals[1].properties["NI_Scale[1]_Linear_Slope"], 0.001371093);
+  EXPECT_NEAR(contents.file_signals[0].properties["NI_Scale[1]_Linear_Y_Intercept"].get<double>(),
               -0.020247, 1e-12);
   EXPECT_EQ(contents.properties["file"]["name"], "example");
   EXPECT_TRUE(contents.properties["groups"].contains("analog"));
 
-  const std::vector<double> ai0 = tdms().read_signal(path, contents.signals[0], -1);
-  const std::vector<double> ai1 = tdms().read_signal(path, contents.signals[1], -1);
+  const std::vector<double> ai0 = tdms().read_signal(path, contents.file_signals[0], -1);
+  const std::vector<double> ai1 = tdms().read_signal(path, contents.file_signals[1], -1);
   ASSERT_EQ(ai0.size(), 4000u);
   ASSERT_EQ(ai1.size(), 4000u);
   // As measured when the file was copied: a ≈0.97 V sine of RMS 0.687 V, and ~1.5 mV of noise.
@@ -209,8 +209,8 @@ TEST(TdmsReader, ReadsContiguousFloat64WithPropertiesOfEveryType) {
   EXPECT_EQ(&format_for_file(path), &tdms_format());
   const FileContents contents = tdms().describe(path);
   EXPECT_EQ(contents.container, "NI TDMS (version 4713), 1 segment");
-  ASSERT_EQ(contents.signals.size(), 2u);
-  const FileSignal& base = contents.signals[0];
+  ASSERT_EQ(contents.file_signals.size(), 2u);
+  const FileSignal& base = contents.file_signals[0];
   EXPECT_EQ(base.name, "Dr. T's table/base/acc");
   EXPECT_EQ(base.sample_count, 5);
   EXPECT_EQ(base.unit, "m/s^2");
@@ -218,9 +218,9 @@ TEST(TdmsReader, ReadsContiguousFloat64WithPropertiesOfEveryType) {
   ASSERT_TRUE(base.sample_rate_hz.has_value());
   EXPECT_DOUBLE_EQ(*base.sample_rate_hz, 500.0);
   EXPECT_EQ(base.properties["wf_start_offset"], 0.25);
-  EXPECT_EQ(contents.signals[1].name, "Dr. T's table/force");
-  EXPECT_EQ(contents.signals[1].unit, "N");
-  EXPECT_FALSE(contents.signals[1].sample_rate_hz.has_value());
+  EXPECT_EQ(contents.file_signals[1].name, "Dr. T's table/force");
+  EXPECT_EQ(contents.file_signals[1].unit, "N");
+  EXPECT_FALSE(contents.file_signals[1].sample_rate_hz.has_value());
   EXPECT_EQ(contents.properties["groups"]["Dr. T's table"]["operator"], "A. B.");
 
   const nlohmann::json& file = contents.properties["file"];
@@ -241,7 +241,7 @@ TEST(TdmsReader, ReadsContiguousFloat64WithPropertiesOfEveryType) {
 
   EXPECT_EQ(tdms().read_signal(path, base, -1),
             (std::vector<double>{0.0, 1.5, -2.25, 1e-300, 12345.678}));
-  EXPECT_EQ(tdms().read_signal(path, contents.signals[1], -1),
+  EXPECT_EQ(tdms().read_signal(path, contents.file_signals[1], -1),
             (std::vector<double>{10.0, -0.125, 3.0, 4.5, -1e10}));
 }
 
@@ -958,7 +958,7 @@ TEST(TdmsReader, RefusesAMissingFileAndAColumnOfAVector) {
   const std::string path = dir.file("run.tdms");
   testing::write_file(path, contiguous_float64_file());
   const FileContents contents = tdms().describe(path);
-  EXPECT_EQ(input_error_of([&] { tdms().read_signal(path, contents.signals[1], 1); }),
+  EXPECT_EQ(input_error_of([&] { tdms().read_signal(path, contents.file_signals[1], 1); }),
             path + ": \"Dr. T's table/force\" has one column, not 2");
 }
 
@@ -983,11 +983,11 @@ TEST(TdmsReader, ReplacesBytesThatAreNotUtf8InNamesAndProperties) {
   const std::string path = dir.file("utf8.tdms");
   testing::write_file(path, tdms_segment(kTocFirst, m.bytes(), "\x05"));
   const FileContents contents = tdms().describe(path);
-  ASSERT_EQ(contents.signals.size(), 1u);
-  EXPECT_EQ(contents.signals[0].name, "g\xEF\xBF\xBD/c");
-  EXPECT_EQ(contents.signals[0].properties["n\xEF\xBF\xBD"],
+  ASSERT_EQ(contents.file_signals.size(), 1u);
+  EXPECT_EQ(contents.file_signals[0].name, "g\xEF\xBF\xBD/c");
+  EXPECT_EQ(contents.file_signals[0].properties["n\xEF\xBF\xBD"],
             "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD v");
-  EXPECT_EQ(tdms().read_signal(path, contents.signals[0], -1), (std::vector<double>{5}));
+  EXPECT_EQ(tdms().read_signal(path, contents.file_signals[0], -1), (std::vector<double>{5}));
 }
 
 }  // namespace

@@ -57,8 +57,8 @@ TEST(UffFormat, DescribesTheAsciiMicrophoneRecording) {
   const std::string path = kFixtures + "Sample_UFF58_ascii.uff";
   ASSERT_EQ(&format_for_file(path), &uff_format());
   const FileContents contents = uff_format().describe(path);
-  ASSERT_EQ(contents.signals.size(), 1u);
-  const FileSignal& signal = contents.signals[0];
+  ASSERT_EQ(contents.file_signals.size(), 1u);
+  const FileSignal& signal = contents.file_signals[0];
   // Record 6: response entity "Mic 01", node 0, direction 1 (+X).
   EXPECT_EQ(signal.name, "Mic 01:0:+X");
   EXPECT_EQ(signal.sample_count, 79292);
@@ -81,11 +81,11 @@ TEST(UffFormat, ReadsTheMicrophoneRecordingAlikeFromAsciiAndBinary) {
   const std::string ascii_path = kFixtures + "Sample_UFF58_ascii.uff";
   const std::string binary_path = kFixtures + "Sample_UFF58b_bin.uff";
   const FileContents binary_contents = uff_format().describe(binary_path);
-  ASSERT_EQ(binary_contents.signals.size(), 1u);
-  EXPECT_EQ(binary_contents.signals[0].name, "Mic 01:0:+X");
-  EXPECT_EQ(binary_contents.signals[0].stored_type, "float32");
-  EXPECT_EQ(binary_contents.signals[0].properties["storage"]["byte_order"], "little-endian");
-  EXPECT_EQ(binary_contents.signals[0].properties["storage"]["bytes"], 317168);  // 79 292 × 4
+  ASSERT_EQ(binary_contents.file_signals.size(), 1u);
+  EXPECT_EQ(binary_contents.file_signals[0].name, "Mic 01:0:+X");
+  EXPECT_EQ(binary_contents.file_signals[0].stored_type, "float32");
+  EXPECT_EQ(binary_contents.file_signals[0].properties["storage"]["byte_order"], "little-endian");
+  EXPECT_EQ(binary_contents.file_signals[0].properties["storage"]["bytes"], 317168);  // 79 292 × 4
   EXPECT_EQ(binary_contents.container, "UFF 58b, little-endian, 1 time response");
 
   const Recording ascii = read_recording(ascii_path, volts_sidecar(65536.0, "Mic 01:0:+X"));
@@ -109,8 +109,8 @@ TEST(UffFormat, ReadsTheMicrophoneRecordingAlikeFromAsciiAndBinary) {
 TEST(UffFormat, ReadsTheCatmanFileWithThreeDigitExponentsAndAShortLastLine) {
   const std::string path = kFixtures + "time-history-not-all-columns-filled.uff";
   const FileContents contents = uff_format().describe(path);
-  ASSERT_EQ(contents.signals.size(), 1u);
-  const FileSignal& signal = contents.signals[0];
+  ASSERT_EQ(contents.file_signals.size(), 1u);
+  const FileSignal& signal = contents.file_signals[0];
   EXPECT_EQ(signal.name, "dataset 1");  // record 6 names no DOF (NONE, node 0)
   EXPECT_EQ(signal.sample_count, 13);
   EXPECT_EQ(signal.unit, "m/s\u00B2");  // UTF-8 '²'
@@ -158,11 +158,11 @@ TEST_P(UffBinary, ReadsEachByteOrderAndPrecision) {
   const std::string path = dir.file("b.uff");
   write_file(path, binary_uff58(h, c.byte_order, data));
   const FileContents contents = uff_format().describe(path);
-  ASSERT_EQ(contents.signals.size(), 1u);
-  EXPECT_EQ(contents.signals[0].name, "mic:3:-Y");
-  EXPECT_EQ(contents.signals[0].stored_type, c.float64 ? "float64" : "float32");
-  EXPECT_EQ(*contents.signals[0].sample_rate_hz, 500.0);
-  EXPECT_EQ(uff_signals().read_signal(path, contents.signals[0], -1), expected);
+  ASSERT_EQ(contents.file_signals.size(), 1u);
+  EXPECT_EQ(contents.file_signals[0].name, "mic:3:-Y");
+  EXPECT_EQ(contents.file_signals[0].stored_type, c.float64 ? "float64" : "float32");
+  EXPECT_EQ(*contents.file_signals[0].sample_rate_hz, 500.0);
+  EXPECT_EQ(uff_signals().read_signal(path, contents.file_signals[0], -1), expected);
   const Recording recording = read_recording(path, volts_sidecar(500.0, "mic:3:-Y"));
   EXPECT_EQ(column(recording, 0), expected);
   EXPECT_EQ(recording.container, std::string("UFF 58b, ") + (c.byte_order == 1 ? "little" : "big") +
@@ -235,11 +235,11 @@ TEST(UffFormat, ReadsTimeResponsesAmongOtherDatasetsAndSaysWhichItSkipped) {
   write_file(path, mixed_file());
   ASSERT_EQ(&format_for_file(path), &uff_format());
   const FileContents contents = uff_format().describe(path);
-  ASSERT_EQ(contents.signals.size(), 2u);
-  EXPECT_EQ(contents.signals[0].name, "base:1:+Z");
-  EXPECT_EQ(contents.signals[0].properties["dataset"], 4);
-  EXPECT_EQ(contents.signals[1].name, "mass:2:+Z");
-  EXPECT_EQ(contents.signals[1].properties["storage"]["byte_order"], "big-endian");
+  ASSERT_EQ(contents.file_signals.size(), 2u);
+  EXPECT_EQ(contents.file_signals[0].name, "base:1:+Z");
+  EXPECT_EQ(contents.file_signals[0].properties["dataset"], 4);
+  EXPECT_EQ(contents.file_signals[1].name, "mass:2:+Z");
+  EXPECT_EQ(contents.file_signals[1].properties["storage"]["byte_order"], "big-endian");
   EXPECT_EQ(contents.properties["datasets"], 7);
   const nlohmann::json& skipped = contents.properties["skipped_datasets"];
   ASSERT_EQ(skipped.size(), 5u);
@@ -271,9 +271,9 @@ TEST(UffFormat, NamesSignalsThatShareADofByTheirDataset) {
   const TempDir dir;
   write_file(dir.file("twice.uff"), file);
   const FileContents contents = uff_format().describe(dir.file("twice.uff"));
-  ASSERT_EQ(contents.signals.size(), 2u);
-  EXPECT_EQ(contents.signals[0].name, "dataset 1");
-  EXPECT_EQ(contents.signals[1].name, "dataset 2");
+  ASSERT_EQ(contents.file_signals.size(), 2u);
+  EXPECT_EQ(contents.file_signals[0].name, "dataset 1");
+  EXPECT_EQ(contents.file_signals[1].name, "dataset 2");
   const Recording recording =
       read_recording(dir.file("twice.uff"), volts_sidecar(1000.0, "dataset 2"));
   EXPECT_EQ(column(recording, 0), (std::vector<double>{2.0}));
@@ -296,10 +296,10 @@ TEST(UffFormat, ToleratesTouchingFieldsDExponentsLettersDroppedAndWideFields) {
   const TempDir dir;
   write_file(dir.file("t.uff"), ascii_uff58(h, lines));
   const FileContents contents = uff_format().describe(dir.file("t.uff"));
-  ASSERT_EQ(contents.signals.size(), 1u);
-  EXPECT_EQ(*contents.signals[0].sample_rate_hz, 1000.0);
+  ASSERT_EQ(contents.file_signals.size(), 1u);
+  EXPECT_EQ(*contents.file_signals[0].sample_rate_hz, 1000.0);
   const std::vector<double> values =
-      uff_signals().read_signal(dir.file("t.uff"), contents.signals[0], -1);
+      uff_signals().read_signal(dir.file("t.uff"), contents.file_signals[0], -1);
   EXPECT_EQ(values,
             (std::vector<double>{-1.5e-2, -2.5e2, 3e-5, 1.0, 1.23456e-100, 4.0, 0.5, -6.0, 7.0}));
 }
@@ -317,9 +317,9 @@ TEST(UffFormat, ReadsAnAbscissaInMillisecondsAndKeepsAnIncrementThatIsNoWholeRat
   write_file(dir.file("ms.uff"),
              ascii_uff58(h, e13_lines({1.0})) + ascii_uff58(g, e13_lines({2.0})));
   const FileContents contents = uff_format().describe(dir.file("ms.uff"));
-  ASSERT_EQ(contents.signals.size(), 2u);
-  EXPECT_DOUBLE_EQ(*contents.signals[0].sample_rate_hz, 4000.0);
-  EXPECT_DOUBLE_EQ(*contents.signals[1].sample_rate_hz, 1.0 / 1.6384e-3);
+  ASSERT_EQ(contents.file_signals.size(), 2u);
+  EXPECT_DOUBLE_EQ(*contents.file_signals[0].sample_rate_hz, 4000.0);
+  EXPECT_DOUBLE_EQ(*contents.file_signals[1].sample_rate_hz, 1.0 / 1.6384e-3);
 }
 
 TEST(UffFormat, MatchesItsSignatureAndExtensions) {
@@ -348,19 +348,19 @@ TEST(UffFormat, ReadsBackOscilabsOwnUff58Export) {
   const std::string path = dir.file("run.uff");
   write_recording_uff58(written, path);
   const FileContents contents = uff_format().describe(path);
-  ASSERT_EQ(contents.signals.size(), 3u);
+  ASSERT_EQ(contents.file_signals.size(), 3u);
   // The writer puts the base on node 1, the rest on node 2, all along +X.
-  EXPECT_EQ(contents.signals[0].name, "table:1:+X");
-  EXPECT_EQ(contents.signals[1].name, "mass:2:+X");
-  EXPECT_EQ(contents.signals[2].name, "force:2:+X");
-  EXPECT_EQ(contents.signals[0].unit, "m/s^2");
-  EXPECT_EQ(contents.signals[0].stored_type, "text, real double");
-  EXPECT_EQ(*contents.signals[0].sample_rate_hz, 512.0);
+  EXPECT_EQ(contents.file_signals[0].name, "table:1:+X");
+  EXPECT_EQ(contents.file_signals[1].name, "mass:2:+X");
+  EXPECT_EQ(contents.file_signals[2].name, "force:2:+X");
+  EXPECT_EQ(contents.file_signals[0].unit, "m/s^2");
+  EXPECT_EQ(contents.file_signals[0].stored_type, "text, real double");
+  EXPECT_EQ(*contents.file_signals[0].sample_rate_hz, 512.0);
   EXPECT_EQ(contents.properties["skipped_datasets"][0]["type"], "164");
 
   Sidecar sidecar = written.sidecar;
   for (std::size_t c = 0; c < sidecar.channels.size(); ++c) {
-    sidecar.channels[c].source = contents.signals[c].name;
+    sidecar.channels[c].source = contents.file_signals[c].name;
   }
   const Recording read = read_recording(path, sidecar);
   ASSERT_EQ(read.sample_count(), 1000);
