@@ -74,6 +74,7 @@ int main(int argc, char** argv) {
     if (auto* dock = window.findChild<QDockWidget*>("identification_dock")) dock->hide();
   }
   window.show();
+  if (script.active()) script.prepare(window);
 
   bool opened = true;
   if (parser.isSet(session_option)) opened = window.open_session(parser.value(session_option));
@@ -121,6 +122,7 @@ int main(int argc, char** argv) {
     }
     return QApplication::exec();
   }
+  if (script.picture_taken()) return script.status();
   if (!opened) {
     std::fprintf(stderr, "oscilab: %s\n", qPrintable(window.statusBar()->currentMessage()));
     return 1;

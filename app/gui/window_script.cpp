@@ -1,12 +1,15 @@
 #include "app/gui/window_script.h"
 
 #include <cstdio>
+#include <optional>
 
 #include <QApplication>
+#include <QEventLoop>
 #include <QTimer>
 
 #include <qcustomplot.h>
 
+#include "ui/channel_mapping_dialog.h"
 #include "ui/figure_dialog.h"
 #include "ui/identification_panel.h"
 #include "ui/live_monitor.h"
@@ -34,7 +37,8 @@ void WindowScript::add_options(QCommandLineParser& parser) {
        "job"},
       {"dialog",
        "With --run fit and --screenshot: open a dialog of the fit panel once the fit ended and "
-       "save its picture instead: hbm (the HBM branches) | map (the bifurcation map) | figures.",
+       "save its picture instead: hbm (the HBM branches) | map (the bifurcation map) | figures. "
+       "Without --run: mapping (the dialog File > Open shows for a file without a sidecar).",
        "dialog"},
       {"live",
        "With --screenshot: show the Live tab running <source>: rig (the virtual rig stepping "
@@ -50,6 +54,24 @@ WindowScript::WindowScript(const QCommandLineParser& parser)
       job_(parser.value("run")),
       dialog_(parser.value("dialog")),
       live_source_(parser.value("live")) {}
+
+void WindowScript::prepare(ui::MainWindow& window) {
+  if (dialog_ != "mapping") return;
+  window.set_mapping_asker([this](const QString& path, const daq::FileContents& contents) {
+    ui::ChannelMappingDialog dialog(path, contents);
+    if (size_given_) size_window(dialog);
+    dialog.show();
+    QEventLoop settle;
+    QTimer::singleShot(kSettleMs, &settle, &QEventLoop::quit);
+    settle.exec();
+    if (!dialog.grab().save(screenshot_path_)) {
+      std::fprintf(stderr, "oscilab: cannot write %s\n", qPrintable(screenshot_path_));
+      status_ = 1;
+    }
+    picture_taken_ = true;
+    return std::optional<daq::Sidecar>();
+  });
+}
 
 void WindowScript::size_window(QWidget& window) const {
   if (size_.size() == 2) window.resize(size_[0].toInt(), size_[1].toInt());
