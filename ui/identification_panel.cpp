@@ -419,12 +419,16 @@ void IdentificationPanel::on_finished(bool cancelled) {
                   .arg(outcome->diagnosis_result.seconds, 0, 'f', 1);
   } else {
     show_fit(*outcome);
-    message = tr("Fit: %1 evaluations in %2 s, cost eq. (8) %3 mJ, mean deviation %4 % / %5 %")
+    // A well without levels has no deviation (NaN).
+    const auto deviation = [this](double pct) {
+      return std::isfinite(pct) ? QString("%1 %").arg(pct, 0, 'f', 2) : tr("no levels");
+    };
+    message = tr("Fit: %1 evaluations in %2 s, cost eq. (8) %3 mJ, mean deviation %4 / %5")
                   .arg(outcome->fit.evaluations)
                   .arg(outcome->fit.seconds, 0, 'f', 1)
                   .arg(1e3 * outcome->fit.evaluation.cost_j, 0, 'g', 4)
-                  .arg(outcome->fit.evaluation.mean_deviation_pct_positive, 0, 'f', 2)
-                  .arg(outcome->fit.evaluation.mean_deviation_pct_negative, 0, 'f', 2);
+                  .arg(deviation(outcome->fit.evaluation.mean_deviation_pct_positive),
+                       deviation(outcome->fit.evaluation.mean_deviation_pct_negative));
     const std::string warning =
         outcome->objective ? analysis::truncation_warning(outcome->fit, *outcome->objective) : "";
     if (!warning.empty()) message += ". Warning: " + QString::fromStdString(warning) + ".";

@@ -62,9 +62,15 @@ void print_table(const analysis::FitResult& fit, const analysis::EdcObjective& o
   }
   std::printf("  cost eq. (8): %.5g J; chi2 %.5g (%s)\n", fit.evaluation.cost_j,
               fit.evaluation.weighted_cost, objective.weighted_cost_name().c_str());
-  std::printf("  mean deviation: %.2f %% (z+* well), %.2f %% (z-* well)\n",
-              fit.evaluation.mean_deviation_pct_positive,
-              fit.evaluation.mean_deviation_pct_negative);
+  // A well without levels has no deviation (NaN): say so instead of printing "nan".
+  const auto deviation = [](double pct) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f %%", pct);
+    return std::isfinite(pct) ? std::string(text) : std::string("no levels");
+  };
+  std::printf("  mean deviation: %s (z+* well), %s (z-* well)\n",
+              deviation(fit.evaluation.mean_deviation_pct_positive).c_str(),
+              deviation(fit.evaluation.mean_deviation_pct_negative).c_str());
   if (fit.check_harmonics > 0) {
     std::printf("  harmonic balance: S_mod changes by at most %.2g %% from H = %d to H = %d",
                 100.0 * fit.truncation_change_rel, objective.settings().hbm.harmonics,
