@@ -130,10 +130,10 @@ void BM_TdmsDescribe1GB(benchmark::State& state) {
   state.counters["file_MB"] = static_cast<double>(fs::file_size(path)) / 1e6;
   for (auto _ : state) {
     const FileContents contents = tdms_format().describe(path);
-    if (contents.signals.size() != 4 || contents.signals[0].sample_count != 32768000) {
+    if (contents.file_signals.size() != 4 || contents.file_signals[0].sample_count != 32768000) {
       state.SkipWithError("unexpected contents");
     }
-    benchmark::DoNotOptimize(contents.signals.data());
+    benchmark::DoNotOptimize(contents.file_signals.data());
   }
 }
 BENCHMARK(BM_TdmsDescribe1GB)->Unit(benchmark::kMillisecond)->UseRealTime();
