@@ -79,6 +79,8 @@ nlohmann::json attribute_value(hid_t attribute) {
   const htri_t variable = H5Tis_variable_str(type.get());
   const Handle memory_type(H5Tcopy(H5T_C_S1), H5Tclose);
   if (variable < 0 || !memory_type.valid()) return nullptr;
+  // The file's character set (h5py writes UTF-8): libhdf5 does not convert between them.
+  if (H5Tset_cset(memory_type.get(), H5Tget_cset(type.get())) < 0) return nullptr;
   std::string text;
   if (variable > 0) {
     if (H5Tset_size(memory_type.get(), H5T_VARIABLE) < 0) return nullptr;
