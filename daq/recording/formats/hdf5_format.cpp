@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <set>
 
@@ -498,6 +499,13 @@ ChildReply read_in_child(const std::string& path, const FileSignal& signal, int 
   return {true, std::move(reply)};
 }
 
+// A libhdf5 call in a child process, with the library initialised in this one first.
+std::string run_hdf5(const std::string& path, std::size_t reply,
+                     const std::function<ChildReply()>& work) {
+  initialise_hdf5_once();
+  return run_in_child(path, kLibrary, child_limits_for(path, reply), work);
+}
+
 class Hdf5Format final : public SignalFileReader {
  public:
   std::string_view format_name() const override { return "HDF5"; }
@@ -511,23 +519,26 @@ class Hdf5Format final : public SignalFileReader {
   FileContents describe(const std::string& path) const override {
     check_data_file(path);
     const std::size_t reply = (std::size_t{1} << 20) + 64 * file_bytes(path);
-    const std::string text = run_in_child(path, kLibrary, child_limits_for(path, reply),
-                                          [&] { return describe_in_child(path, false); });
+    const std::string text = run_hdf5(path, reply, [&] { return describe_in_child(path, false); });
     return contents_from_text(text, path);
   }
 
   Recording read(const std::string& path, const Sidecar& sidecar,
                  const std::string& sidecar_name) const override {
-    refuse_skipped_sources(describe(path), sidecar, path);
-    return SignalFileReader::read(path, sidecar, sidecar_name);
+    try {
+      return SignalFileReader::read(path, sidecar, sidecar_name);
+    } catch (const InputError&) {
+      // Say why a variable the sidecar names is not a signal, when that is the problem.
+      refuse_skipped_sources(describe(path), sidecar, path);
+      throw;
+    }
   }
 
   std::vector<double> read_signal(const std::string& path, const FileSignal& signal,
                                   int column) const override {
     const std::size_t reply = static_cast<std::size_t>(signal.sample_count) * sizeof(double);
-    const std::string bytes = run_in_child(path, kLibrary, child_limits_for(path, reply), [&] {
-      return read_in_child(path, signal, column, false);
-    });
+    const std::string bytes =
+        run_hdf5(path, reply, [&] { return read_in_child(path, signal, column, false); });
     if (bytes.size() != reply) {
       throw InputError(path + ": dataset " + signal.name + ": read " +
                        std::to_string(bytes.size() / sizeof(double)) + " values, expected " +
@@ -541,18 +552,22 @@ class Hdf5Format final : public SignalFileReader {
 
 }  // namespace
 
+void initialise_hdf5_once() {
+  static std::once_flag once;
+  std::call_once(once, [] { H5open(); });
+}
+
 FileContents describe_mat73(const std::string& path) {
   const std::size_t reply = (std::size_t{1} << 20) + 64 * file_bytes(path);
-  const std::string text = run_in_child(path, kLibrary, child_limits_for(path, reply),
-                                        [&] { return describe_in_child(path, true); });
+  const std::string text = run_hdf5(path, reply, [&] { return describe_in_child(path, true); });
   return contents_from_text(text, path);
 }
 
 std::vector<double> read_mat73_signal(const std::string& path, const FileSignal& signal,
                                       int column) {
   const std::size_t reply = static_cast<std::size_t>(signal.sample_count) * sizeof(double);
-  const std::string bytes = run_in_child(path, kLibrary, child_limits_for(path, reply),
-                                         [&] { return read_in_child(path, signal, column, true); });
+  const std::string bytes =
+      run_hdf5(path, reply, [&] { return read_in_child(path, signal, column, true); });
   if (bytes.size() != reply) {
     throw InputError(path + ": variable " + in_quotes(signal.name) + ": read " +
                      std::to_string(bytes.size() / sizeof(double)) + " values, expected " +

@@ -11,9 +11,10 @@
 // another thread held at that moment stays locked forever, so POSIX allows only
 // async-signal-safe functions until exec. The child here breaks that rule only where it cannot
 // be avoided, and each exception is safe for a reason:
-//   - The libraries' own state is pristine: the parent never calls libhdf5 or matio (every call
-//     is made in a child), so no parent thread can hold a libhdf5/matio lock or leave their
-//     globals half-updated at the moment of fork; each child initialises them afresh.
+//   - The libraries' state is consistent and unlocked: the parent never calls matio, and calls
+//     libhdf5 only once, H5open under std::call_once before its first child (hdf5_format.h), so
+//     no parent thread can hold a libhdf5/matio lock or leave their globals half-updated at the
+//     moment of fork. Every other call is made in a child.
 //   - malloc/free: the libraries allocate. glibc's fork() takes every malloc arena lock before it
 //     forks and resets them in the child, and likewise the stdio list lock and the dynamic
 //     loader's locks, so the child's malloc, fopen (matio) and open/pread (libhdf5) work.
@@ -233,7 +234,8 @@ std::string run_in_child(const std::string& path, const std::string& library,
 
   if (timed_out) {
     throw InputError(failed + "it did not finish within " +
-                     std::to_string(limits.timeout.count() / 1000) + " s and was stopped)");
+                     number_text(static_cast<double>(limits.timeout.count()) / 1000.0) +
+                     " s and was stopped)");
   }
   if (!problem.empty()) throw InputError(failed + problem + ")");
   if (waited == pid && WIFSIGNALED(status)) {
@@ -258,8 +260,9 @@ ChildLimits child_limits_for(const std::string& path, std::size_t max_reply_byte
   const std::size_t size = error ? 0 : static_cast<std::size_t>(file_bytes);
   ChildLimits limits;
   limits.max_reply_bytes = max_reply_bytes;
-  // 30 s, and 1 s more per 10 MB: libhdf5 and matio read well over 100 MB/s.
-  limits.timeout = std::chrono::milliseconds(30000 + size / 10000);
+  // 5 s, and 1 s more per MB: libhdf5 and matio read well over 100 MB/s, so only a library
+  // that loops (libhdf5 does on some malformed files) or a machine stalled for seconds reaches it.
+  limits.timeout = std::chrono::milliseconds(5000 + size / 1000);
   // 512 MiB for the library (libhdf5's chunk cache is 1 MiB per dataset), plus the reply twice
   // (the library's buffer and the child's copy) and the file once (a compressed element).
   limits.memory_bytes = (std::size_t{512} << 20) + 2 * max_reply_bytes + size;

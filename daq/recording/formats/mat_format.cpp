@@ -335,6 +335,7 @@ class MatFormat final : public SignalFileReader {
     if (is_mat73(path)) return describe_mat73(path);
     // A variable's description takes well under 64 bytes of the file per 1 KiB of text.
     const std::size_t reply = (std::size_t{1} << 20) + 64 * file_bytes(path);
+    initialise_hdf5_once();  // the child silences libhdf5's messages (matio links it)
     const std::string text = run_in_child(path, kLibrary, child_limits_for(path, reply),
                                           [&] { return describe_in_child(path); });
     return contents_from_text(text, path);
@@ -342,14 +343,20 @@ class MatFormat final : public SignalFileReader {
 
   Recording read(const std::string& path, const Sidecar& sidecar,
                  const std::string& sidecar_name) const override {
-    refuse_skipped_sources(describe(path), sidecar, path);
-    return SignalFileReader::read(path, sidecar, sidecar_name);
+    try {
+      return SignalFileReader::read(path, sidecar, sidecar_name);
+    } catch (const InputError&) {
+      // Say why a variable the sidecar names is not a signal, when that is the problem.
+      refuse_skipped_sources(describe(path), sidecar, path);
+      throw;
+    }
   }
 
   std::vector<double> read_signal(const std::string& path, const FileSignal& signal,
                                   int column) const override {
     if (is_mat73(path)) return read_mat73_signal(path, signal, column);
     const std::size_t reply = static_cast<std::size_t>(signal.sample_count) * sizeof(double);
+    initialise_hdf5_once();
     const std::string bytes = run_in_child(path, kLibrary, child_limits_for(path, reply),
                                            [&] { return read_in_child(path, signal, column); });
     if (bytes.size() != reply) {
