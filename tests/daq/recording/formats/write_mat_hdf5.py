@@ -4,7 +4,8 @@
 Usage: write_mat_hdf5.py SPEC.json. The spec (written by the test) says which file to write:
   {"format": "mat5" | "mat73" | "hdf5", "path": "...", "compress": bool, "userblock": int,
    "variables": [{"name": "V1" or "/group/data", "dtype": "float64", "shape": [rows, cols],
-                  "values": [... row-major ...], "byteorder": "<" or ">",
+                  "values": [... row-major ...] or "amplitude": A (a sine instead),
+                  "byteorder": "<" or ">",
                   "attrs": {"dT": 0.001, "units": "m/s"}}],
    "groups": [{"path": "/g", "attrs": {...}}],
    "special": [{"name": "...", "kind": "cell" | "struct" | "char" | "sparse" | "complex" |
@@ -19,7 +20,11 @@ import numpy as np
 
 
 def array_of(variable):
-    values = np.array(variable["values"], dtype=np.float64)
+    if "values" in variable:
+        values = np.array(variable["values"], dtype=np.float64)
+    else:  # "sine": a sine of `amplitude` and period 97 samples (benchmark files)
+        count = int(np.prod(variable["shape"]))
+        values = variable["amplitude"] * np.sin(2 * np.pi * np.arange(count) / 97.0)
     dtype = np.dtype(variable.get("byteorder", "=") + np.dtype(variable["dtype"]).str[1:])
     if variable["dtype"] == "bool":
         return values.astype(bool).reshape(variable["shape"])
