@@ -300,13 +300,15 @@ void describe_dataset(Walk& walk, hid_t dataset, const std::string& path,
   if (walk.mat73) {
     signal.properties["dims"] = {shape.cols, shape.rows};  // MATLAB's rows x columns
     if (!vector) {
-      signal.properties["samples_along"] = sample_dimension(shape, true) == 1 ? "rows" : "columns";
+      signal.properties["column_k_is"] =
+          sample_dimension(shape, true) == 1 ? "column k of the matrix" : "row k of the matrix";
     }
   } else {
     signal.properties["dims"] =
         shape.rank == 1 ? nlohmann::json{shape.rows} : nlohmann::json{shape.rows, shape.cols};
     if (!vector) {
-      signal.properties["samples_along"] = sample_dimension(shape, false) == 1 ? "dim 1" : "dim 0";
+      signal.properties["column_k_is"] =
+          sample_dimension(shape, false) == 1 ? "data[k, :]" : "data[:, k]";
     }
   }
   const nlohmann::json attributes = attributes_of(dataset);

@@ -205,7 +205,8 @@ ChildReply describe_in_child(const std::string& path) {
     signal.stored_type = variable->isLogical ? "logical" : class_name(variable->class_type);
     signal.properties["dims"] = {rows, cols};
     if (!vector) {
-      signal.properties["samples_along"] = sample_dimension(rows, cols) == 0 ? "rows" : "columns";
+      signal.properties["column_k_is"] =
+          sample_dimension(rows, cols) == 0 ? "column k of the matrix" : "row k of the matrix";
     }
     contents.signals.push_back(std::move(signal));
   }

@@ -133,6 +133,7 @@ TEST(Hdf5Format, ReadsH5pyDatasetsValueByValueWithRatesAndUnits) {
   EXPECT_EQ(*signal_named(contents, "/other/single").sample_rate_hz, 250.0);  // wf_increment
   const FileSignal& m = signal_named(contents, "/other/matrix");
   EXPECT_EQ(m.columns, 4);
+  EXPECT_EQ(m.properties.at("column_k_is"), "data[:, k]");
   for (int c = 0; c < 4; ++c) {
     const std::vector<double> column = read("/other/matrix", c);
     for (std::size_t r = 0; r < 100; ++r) ASSERT_EQ(column[r], matrix[r * 4 + c]);
@@ -140,6 +141,7 @@ TEST(Hdf5Format, ReadsH5pyDatasetsValueByValueWithRatesAndUnits) {
   const FileSignal& w = signal_named(contents, "/other/wide");
   EXPECT_EQ(w.sample_count, 100);
   EXPECT_EQ(w.columns, 3);
+  EXPECT_EQ(w.properties.at("column_k_is"), "data[k, :]");
   EXPECT_EQ(read("/other/wide", 2), std::vector<double>(wide.begin() + 200, wide.end()));
   EXPECT_FALSE(w.sample_rate_hz.has_value());  // fs -5 is no rate
   EXPECT_EQ(w.properties.at("sample_rate_ignored"),

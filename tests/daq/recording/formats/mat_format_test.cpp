@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -195,6 +196,7 @@ void check_numeric_variables(bool compress) {
   const FileSignal& wide_signal = signal_named(contents, "wide");
   EXPECT_EQ(wide_signal.sample_count, 25);
   EXPECT_EQ(wide_signal.columns, 3);
+  EXPECT_EQ(wide_signal.properties.at("column_k_is"), "row k of the matrix");
   for (int r = 0; r < 3; ++r) {
     EXPECT_EQ(read("wide", r),
               std::vector<double>(wide.begin() + 25 * r, wide.begin() + 25 * (r + 1)));
@@ -315,7 +317,12 @@ TEST(MatFormat, ReadsV73Files) {
                                {"variables",
                                 {fixture_variable("row", "float64", {1, 60}, row),
                                  fixture_variable("M", "float64", {40, 3}, matrix),
-                                 fixture_variable("counts", "int16", {10, 1}, counts)}}});
+                                 fixture_variable("counts", "int16", {10, 1}, counts)}},
+                               {"special",
+                                {{{"name", "text"}, {"kind", "char"}},
+                                 {{"name", "s"}, {"kind", "struct"}},
+                                 {{"name", "nothing"}, {"kind", "empty"}},
+                                 {{"name", "plain"}, {"kind", "plain"}}}}});
   EXPECT_EQ(&format_for_file(path), &mat_format());
   const FileContents contents = mat_format().describe(path);
   EXPECT_EQ(contents.container,
@@ -325,8 +332,22 @@ TEST(MatFormat, ReadsV73Files) {
   const FileSignal& m = signal_named(contents, "M");
   EXPECT_EQ(m.sample_count, 40);
   EXPECT_EQ(m.columns, 3);
+  EXPECT_EQ(m.properties.at("column_k_is"), "column k of the matrix");
   const std::vector<double> column2 = mat_reader().read_signal(path, m, 2);
   for (std::size_t r = 0; r < 40; ++r) EXPECT_EQ(column2[r], matrix[r * 3 + 2]) << r;
+  EXPECT_EQ(signal_named(contents, "nothing").sample_count, 0);
+  std::map<std::string, std::string> skipped;
+  for (const json& item : contents.properties.at("skipped")) {
+    skipped[item.at("name")] = item.at("reason");
+  }
+  EXPECT_EQ(skipped.size(), 3u) << contents.properties.dump();
+  EXPECT_EQ(skipped["text"], "it is of class char, not a numeric matrix");
+  EXPECT_EQ(skipped["s"], "it is of class struct, not a numeric matrix");
+  EXPECT_EQ(skipped["plain"], "it has no MATLAB_class");
+  EXPECT_NE(input_error_of([&] {
+              read_recording(path, sidecar_of(100.0, {{"text", -1}}));
+            }).find("which is not a signal: it is of class char"),
+            std::string::npos);
 }
 
 TEST(MatFormat, IsChosenBySignatureThenExtension) {

@@ -73,6 +73,24 @@ def write_mat73(spec):
             if variable["dtype"] == "bool":
                 dataset[...] = values.T.astype(np.uint8)
             dataset.attrs.create("MATLAB_class", np.bytes_(matlab_class))
+        for special in spec.get("special", []):
+            name, kind = special["name"], special["kind"]
+            if kind == "char":  # MATLAB's chars: uint16 code units
+                dataset = f.create_dataset(name, data=np.frombuffer(b"hi", np.uint8).astype(
+                    np.uint16).reshape(2, 1))
+                dataset.attrs.create("MATLAB_class", np.bytes_("char"))
+            elif kind == "struct":  # a group
+                group = f.create_group(name)
+                group.attrs.create("MATLAB_class", np.bytes_("struct"))
+                group.create_dataset("a", data=np.ones((1, 1)))
+            elif kind == "empty":  # MATLAB stores an empty array's dimensions as its values
+                dataset = f.create_dataset(name, data=np.array([0, 0], dtype=np.uint64))
+                dataset.attrs.create("MATLAB_class", np.bytes_("double"))
+                dataset.attrs.create("MATLAB_empty", np.uint8(1))
+            elif kind == "plain":  # a dataset without MATLAB_class
+                f.create_dataset(name, data=np.ones(3))
+            else:
+                raise ValueError(kind)
     with open(spec["path"], "r+b") as f:
         f.write(mat73_header())
 
