@@ -226,6 +226,15 @@ std::string dataset_refusal(hid_t dataset, hid_t type, std::size_t file_size, Da
   if (space_class != H5S_SIMPLE) return "no values (null dataspace)";
   const int rank = H5Sget_simple_extent_ndims(space.get());
   if (rank < 1 || rank > 2) return std::to_string(rank) + " dimensions, not 1 or 2";
+  // Values kept in other files (external raw data, virtual datasets) are not read: a file must
+  // not make Oscilab read whatever other file it names.
+  {
+    const Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+    if (!plist.valid()) return "its creation properties cannot be read";
+    if (H5Pget_layout(plist.get()) == H5D_VIRTUAL)
+      return "a virtual dataset (values in other files)";
+    if (H5Pget_external_count(plist.get()) != 0) return "its values are in external files";
+  }
   hsize_t dims[2] = {0, 1};
   if (H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0) return "unreadable dimensions";
   shape = {dims[0], rank == 2 ? dims[1] : 1, rank};

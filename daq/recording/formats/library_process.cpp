@@ -249,7 +249,12 @@ std::string run_in_child(const std::string& path, const std::string& library,
   if (!header_seen || received.size() != kHeaderBytes + payload_bytes) {
     throw InputError(failed + "the reading process ended without a complete reply)");
   }
-  if (received[0] != 'O') throw InputError(path + ": " + received.substr(kHeaderBytes));
+  if (received[0] != 'O') {
+    std::string problem = received.substr(kHeaderBytes);
+    std::replace(problem.begin(), problem.end(), '\n', ' ');  // one line, whatever the library said
+    std::replace(problem.begin(), problem.end(), '\r', ' ');
+    throw InputError(path + ": " + problem);
+  }
   received.erase(0, kHeaderBytes);
   return received;
 }

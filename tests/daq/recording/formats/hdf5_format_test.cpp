@@ -113,6 +113,8 @@ TEST(Hdf5Format, ReadsH5pyDatasetsValueByValueWithRatesAndUnits) {
               {{"name", "/odd/bools"}, {"kind", "enum"}},
               {{"name", "/odd/soft"}, {"kind", "soft"}, {"target", "/run/be"}},
               {{"name", "/odd/external"}, {"kind", "external"}},
+              {{"name", "/odd/elsewhere"}, {"kind", "external_data"}},
+              {{"name", "/odd/empty"}, {"kind", "empty"}},
               {{"name", "/run/deep/er/loop"}, {"kind", "cycle"}, {"target", "/run"}}}}});
   const FileContents contents = hdf5_format().describe(path);
   const auto read = [&](const std::string& name, int column = -1) {
@@ -159,6 +161,12 @@ TEST(Hdf5Format, ReadsH5pyDatasetsValueByValueWithRatesAndUnits) {
   EXPECT_EQ(skipped["/odd/soft"], "a soft link (not followed)");
   EXPECT_EQ(skipped["/odd/external"], "an external or user-defined link (not followed)");
   EXPECT_EQ(skipped["/run/deep/er/loop"], "another link to an object listed already");
+  EXPECT_EQ(skipped["/odd/elsewhere"], "its values are in external files");
+  EXPECT_EQ(signal_named(contents, "/odd/empty").sample_count, 0);
+  EXPECT_NE(input_error_of([&] {
+              read_recording(path, one_channel(1000.0, "/odd/empty", -1));
+            }).find("\"/odd/empty\" holds no samples"),
+            std::string::npos);
 
   // Refusals through a sidecar.
   EXPECT_EQ(input_error_of([&] { read_recording(path, one_channel(1000.0, "/run/be", -1)); }), "");

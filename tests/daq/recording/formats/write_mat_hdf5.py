@@ -127,6 +127,10 @@ def write_hdf5(spec):
                 f[name] = h5py.SoftLink(special["target"])
             elif kind == "external":
                 f[name] = h5py.ExternalLink("elsewhere.h5", "/data")
+            elif kind == "empty":
+                f.create_dataset(name, data=np.zeros(0))
+            elif kind == "external_data":  # raw data in another file
+                f.create_dataset(name, (4,), dtype="f8", external=[("other.bin", 0, 32)])
             elif kind == "cycle":
                 f[name] = f[special["target"]]
             else:
