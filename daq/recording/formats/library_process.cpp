@@ -16,8 +16,9 @@
 //     no parent thread can hold a libhdf5/matio lock or leave their globals half-updated at the
 //     moment of fork. Every other call is made in a child.
 //   - malloc/free: the libraries allocate. glibc's fork() takes every malloc arena lock before it
-//     forks and resets them in the child, and likewise the stdio list lock and the dynamic
-//     loader's locks, so the child's malloc, fopen (matio) and open/pread (libhdf5) work.
+//     forks and re-initialises them in the child, and likewise the stdio list lock and the
+//     dynamic loader's load lock, so the child's malloc, fopen (matio) and open/pread (libhdf5)
+//     work. (This is glibc's behaviour, which Oscilab relies on; POSIX does not promise it.)
 //   - Anything else a parent thread may hold (a C++ static being initialised, a mutex of our
 //     own): the child's work touches only its own objects and the library, and the parent's
 //     timeout kills a child that deadlocks anyway, so the worst case is an InputError, never a
