@@ -91,6 +91,7 @@ bool write_all(int fd, const char* data, std::size_t size) {
     ::setrlimit(RLIMIT_AS, &address_space);
   }
 #else
+  (void)limits;
   (void)parent_vm_bytes;
 #endif
   ChildReply reply;
