@@ -121,8 +121,9 @@ Recording SignalFileReader::read(const std::string& path, const Sidecar& sidecar
 }
 
 const std::vector<const FormatReader*>& known_formats() {
-  static const std::vector<const FormatReader*> formats = {&sound_format(), &tdms_format(),
-                                                           &uff_format(), &csv_format()};
+  // MAT before HDF5: a MAT v7.3 file is an HDF5 file behind a "MATLAB 7.3 MAT-file" header.
+  static const std::vector<const FormatReader*> formats = {
+      &sound_format(), &tdms_format(), &uff_format(), &mat_format(), &hdf5_format(), &csv_format()};
   return formats;
 }
 

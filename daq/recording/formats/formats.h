@@ -20,6 +20,10 @@ const FormatReader& tdms_format();
 const FormatReader& uff_format();
 /// Delimited text (CSV, TSV): columns by header name or by the sidecar's "column".
 const FormatReader& csv_format();
+/// MATLAB MAT-files (Level 4, Level 5, v7.3) through matio: real numeric matrices by variable name.
+const FormatReader& mat_format();
+/// HDF5 files through libhdf5: numeric 1-D and 2-D datasets by path, rate and unit from attributes.
+const FormatReader& hdf5_format();
 
 /// The libsndfile format Oscilab writes for a lower-case extension (".wav" → 64-bit float WAV,
 /// ".flac" → 24-bit FLAC, ...), or 0 when the extension is not a sound container.
