@@ -243,34 +243,34 @@ void write_instrument_csv(const TempDir& dir) {
 }
 
 TEST(RecordingFuzz, MutatedSidecarBytesGiveOnlyInputErrors) {
-  fuzz_written("run.csv", "run.json", 20261123, 1500);
+  fuzz_written("run.csv", "run.json", 20261123, 10000);
 }
 
 TEST(RecordingFuzz, MutatedCsvBytesGiveOnlyInputErrors) {
-  fuzz_written("run.csv", "run.csv", 4242, 1500);
+  fuzz_written("run.csv", "run.csv", 4242, 10000);
 }
 
 TEST(RecordingFuzz, MutatedHeaderlessCsvAndItsSidecarGiveOnlyInputErrors) {
   const TempDir dir;
   write_instrument_csv(dir);
-  fuzz_file_bytes(dir, "scope.csv", "scope.csv", 2048, 700);
+  fuzz_file_bytes(dir, "scope.csv", "scope.csv", 2048, 10000);
   write_instrument_csv(dir);
-  fuzz_file_bytes(dir, "scope.csv", "scope.json", 9, 700);
+  fuzz_file_bytes(dir, "scope.csv", "scope.json", 9, 10000);
 }
 
 TEST(RecordingFuzz, MutatedWavBytesGiveOnlyInputErrors) {
-  fuzz_written("run.wav", "run.wav", 512, 1500);
+  fuzz_written("run.wav", "run.wav", 512, 10000);
 }
 
 TEST(RecordingFuzz, MutatedFlacBytesGiveOnlyInputErrors) {
-  fuzz_written("run.flac", "run.flac", 24, 500);
+  fuzz_written("run.flac", "run.flac", 24, 10000);
 }
 
 TEST(RecordingFuzz, SidecarsWithWrongTypesGiveOnlyInputErrors) {
   const json original = sidecar_to_json(base_recording().sidecar);
   std::mt19937_64 rng(1901);
   int accepted = 0;
-  for (int i = 0; i < 3000; ++i) {
+  for (int i = 0; i < 10000; ++i) {
     json value = original;
     const int rounds = std::uniform_int_distribution<int>(1, 3)(rng);
     for (int r = 0; r < rounds; ++r) mutate_json(value, rng);
