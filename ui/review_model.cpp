@@ -191,7 +191,7 @@ std::string value_with_error(double value, double error) {
   return text;
 }
 
-std::string stiffness_fit_text(const analysis::StiffnessSlice& slice) {
+std::string stiffness_fit_text(const analysis::StiffnessSlice& slice, bool per_unit_mass) {
   const auto& c = slice.fit.coefficients;
   const auto& e = slice.fit.std_errors;
   const auto coefficient = [&](Eigen::Index i, double sign) {
@@ -199,15 +199,20 @@ std::string stiffness_fit_text(const analysis::StiffnessSlice& slice) {
     const double error = i < e.size() ? e[i] : 0.0;
     return value_with_error(value, error);
   };
+  // N/m^k, or N/(kg m^k) per unit mass.
+  const auto unit = [&](const char* length) {
+    if (!per_unit_mass) return std::string("N") + (*length ? std::string("/") + length : "");
+    return std::string("N/(kg") + (*length ? std::string(" ") + length : "") + ")";
+  };
   // Eq. (2): K(z) = k3 z³ + k2 z² − k1 z + k0, so k1 = −c1.
   std::string text = "K(z) = k\u2083z\u00b3 + k\u2082z\u00b2 \u2212 k\u2081z + k\u2080 (eq. 2): ";
-  text += "k\u2083 = " + coefficient(3, 1.0) + " N/m\u00b3,  ";
-  text += "k\u2082 = " + coefficient(2, 1.0) + " N/m\u00b2,  ";
-  text += "k\u2081 = " + coefficient(1, -1.0) + " N/m,  ";
-  text += "k\u2080 = " + coefficient(0, 1.0) + " N";
+  text += "k\u2083 = " + coefficient(3, 1.0) + " " + unit("m\u00b3") + ",  ";
+  text += "k\u2082 = " + coefficient(2, 1.0) + " " + unit("m\u00b2") + ",  ";
+  text += "k\u2081 = " + coefficient(1, -1.0) + " " + unit("m") + ",  ";
+  text += "k\u2080 = " + coefficient(0, 1.0) + " " + unit("");
   char tail[96];
-  std::snprintf(tail, sizeof tail, "  (rms residual %.3g N, %ld samples)", slice.fit.residual_rms,
-                long(slice.fit.samples));
+  std::snprintf(tail, sizeof tail, "  (rms residual %.3g %s, %ld samples)", slice.fit.residual_rms,
+                per_unit_mass ? "N/kg" : "N", long(slice.fit.samples));
   return text + tail;
 }
 

@@ -101,7 +101,8 @@ ScatterPoints damping_points(const analysis::CampaignAnalysis& campaign,
 
 /// The fitted K(z) of eq. (2) with standard errors, in the paper's signs (k1 = −c1), e.g.
 /// "K(z) = k₃z³ + k₂z² − k₁z + k₀ (eq. 2): k₃ = 2.041e+05 ± 12 N/m³, ...".
-std::string stiffness_fit_text(const analysis::StiffnessSlice& slice);
+/// With `per_unit_mass` (no mass_kg) the forces are in N/kg and the coefficients in N/(kg m^k).
+std::string stiffness_fit_text(const analysis::StiffnessSlice& slice, bool per_unit_mass = false);
 
 /// A value and its standard error, "2.041e+05 ± 12": the value to 4 significant digits, the
 /// error to 2.

@@ -745,7 +745,8 @@ void ReviewView::plot_slices() {
   // Room above the data for the legend (three entries).
   stiffness_plot_->yAxis->setRange(r_range.lower - kRangeMargin * r_range.size(),
                                    r_range.upper + 0.35 * r_range.size());
-  stiffness_label_->setText(text(stiffness_fit_text(slice)));
+  stiffness_label_->setText(text(stiffness_fit_text(
+      slice, analysis::mass_basis(analysis_->campaign) == analysis::MassBasis::PerUnitMass)));
   stiffness_plot_->replot(QCustomPlot::rpQueuedReplot);
 
   // Damping slices: samples and bin means of each, by equilibrium.

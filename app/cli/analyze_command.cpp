@@ -126,12 +126,14 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
   if (campaign.stiffness) {
     const auto& c = campaign.stiffness->fit.coefficients;
     const auto& e = campaign.stiffness->fit.std_errors;
+    const bool per_kg = analysis::mass_basis(campaign) == analysis::MassBasis::PerUnitMass;
     std::printf(
         "stiffness K(z) = k3 z^3 + k2 z^2 - k1 z + k0 (eq. (2)) from %ld samples with "
-        "|z_dot| < %.3g m/s:\n  k3 = %.4g ± %.2g N/m^3, k2 = %.4g ± %.2g N/m^2, "
-        "k1 = %.4g ± %.2g N/m, k0 = %.4g ± %.2g N\n",
+        "|z_dot| < %.3g m/s:\n  k3 = %.4g ± %.2g %s, k2 = %.4g ± %.2g %s, "
+        "k1 = %.4g ± %.2g %s, k0 = %.4g ± %.2g %s\n",
         static_cast<long>(campaign.stiffness->fit.samples), campaign.stiffness->velocity_band_m_s,
-        c[3], e[3], c[2], e[2], -c[1], e[1], c[0], e[0]);
+        c[3], e[3], per_kg ? "N/(kg m^3)" : "N/m^3", c[2], e[2], per_kg ? "N/(kg m^2)" : "N/m^2",
+        -c[1], e[1], per_kg ? "N/(kg m)" : "N/m", c[0], e[0], per_kg ? "N/kg" : "N");
     const auto& slice = *campaign.stiffness;
     const double boundary = campaign.settings.well_boundary_m;
     if (campaign.z_about_mean) {
