@@ -1,0 +1,103 @@
+// Long C++ jobs from Python: the GIL released while they run, progress handed to a Python
+// callback on the calling thread, Ctrl-C turned into the job's CancelToken (bindings.h).
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "bindings.h"
+
+namespace oscilab::python {
+namespace {
+
+// How long the calling thread waits between signal checks when the job reports nothing: the
+// bound on Ctrl-C's latency on top of the job's own cancel polling.
+constexpr auto kSignalPoll = std::chrono::milliseconds(20);
+
+struct JobState {
+  std::mutex mutex;
+  std::condition_variable wake;
+  bool done = false;
+  bool has_report = false;
+  ProgressReport report;
+  std::exception_ptr error;
+};
+
+}  // namespace
+
+ProgressFn fraction_reporter(const ReportFn& report) {
+  return [report](double fraction) { report(ProgressReport{fraction, nlohmann::json::object()}); };
+}
+
+void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& work,
+             const py::object& progress) {
+  auto state = std::make_shared<JobState>();
+  const CancelToken cancel;
+  const ReportFn report = [state](const ProgressReport& r) {
+    {
+      const std::lock_guard lock(state->mutex);
+      state->report = r;
+      state->has_report = true;
+    }
+    state->wake.notify_all();
+  };
+  std::thread worker([state, &work, report, cancel] {
+    try {
+      work(report, cancel);
+    } catch (...) {
+      state->error = std::current_exception();
+    }
+    {
+      const std::lock_guard lock(state->mutex);
+      state->done = true;
+    }
+    state->wake.notify_all();
+  });
+
+  std::optional<py::error_already_set> pending;  // the Python exception to raise once joined
+  const bool has_callback = !progress.is_none();
+  for (;;) {
+    ProgressReport latest;
+    bool have_report = false;
+    bool done = false;
+    {
+      py::gil_scoped_release release;
+      std::unique_lock lock(state->mutex);
+      state->wake.wait_for(lock, kSignalPoll, [&] { return state->done || state->has_report; });
+      done = state->done;
+      if (state->has_report) {
+        latest = state->report;
+        have_report = true;
+        state->has_report = false;
+      }
+    }
+    if (done) break;
+    if (pending) continue;  // cancelling: wait for the job to return
+    if (PyErr_CheckSignals() != 0) {
+      pending.emplace();  // fetches KeyboardInterrupt (or what a handler raised)
+      cancel.cancel();
+      continue;
+    }
+    if (have_report && has_callback) {
+      try {
+        py::dict info = to_python(latest.extra);
+        info["fraction"] = latest.fraction;
+        const py::object answer = progress(info);
+        if (py::isinstance<py::bool_>(answer) && !answer.cast<bool>()) cancel.cancel();
+      } catch (py::error_already_set& e) {
+        pending.emplace(std::move(e));
+        cancel.cancel();
+      }
+    }
+  }
+  {
+    py::gil_scoped_release release;
+    worker.join();
+  }
+  if (pending) throw std::move(*pending);
+  if (state->error) std::rethrow_exception(state->error);
+}
+
+}  // namespace oscilab::python
