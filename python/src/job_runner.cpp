@@ -73,13 +73,16 @@ void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& wor
         state->has_report = false;
       }
     }
-    if (done) break;
-    if (pending) continue;  // cancelling: wait for the job to return
-    if (PyErr_CheckSignals() != 0) {
+    if (pending) {
+      if (done) break;
+      continue;  // cancelling: wait for the job to return
+    }
+    if (!done && PyErr_CheckSignals() != 0) {
       pending.emplace();  // fetches KeyboardInterrupt (or what a handler raised)
       cancel.cancel();
       continue;
     }
+    // The last report of a finished job is delivered too (its answer no longer matters).
     if (have_report && has_callback) {
       try {
         py::dict info = to_python(latest.extra);
@@ -91,6 +94,7 @@ void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& wor
         cancel.cancel();
       }
     }
+    if (done) break;
   }
   {
     py::gil_scoped_release release;
