@@ -138,7 +138,8 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
   if (any_recording) {
     for (const auto& item : items) {
       if (py::isinstance<daq::Recording>(item)) {
-        in_memory.push_back(daq::measurement_channels(item.cast<const daq::Recording&>(), overrides));
+        in_memory.push_back(
+            daq::measurement_channels(item.cast<const daq::Recording&>(), overrides));
       } else {
         daq::Recording read;
         const std::string path = path_string(item);
@@ -157,11 +158,10 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
   auto result = std::make_shared<analysis::CampaignAnalysis>();
   run_job(
       [&](const ReportFn& report, const CancelToken& cancel) {
-        *result = any_recording
-                      ? analysis::analyze_campaign(in_memory, settings,
-                                                   fraction_reporter(report), cancel)
-                      : daq::analyze_recordings(paths, overrides, settings,
-                                                fraction_reporter(report), cancel);
+        *result = any_recording ? analysis::analyze_campaign(in_memory, settings,
+                                                             fraction_reporter(report), cancel)
+                                : daq::analyze_recordings(paths, overrides, settings,
+                                                          fraction_reporter(report), cancel);
       },
       progress);
   return result;
@@ -277,7 +277,9 @@ summary is the CLI's --summary JSON as a dict. Pass it to ``fit`` or ``diagnose`
           "z_center_m [m], z_dot_m_s [m/s], damping_force_n [N], samples.")
       .def_property_readonly(
           "summary",
-          [](const AnalysisHandle& h) { return to_python(analysis::campaign_summary(*h.campaign)); },
+          [](const AnalysisHandle& h) {
+            return to_python(analysis::campaign_summary(*h.campaign));
+          },
           "The summary JSON of `analyze --summary` as a dict: stiffness_fit, settings, records, "
           "damping_slices ...")
       .def_property_readonly(
@@ -349,14 +351,14 @@ summary is the CLI's --summary JSON as a dict. Pass it to ``fit`` or ``diagnose`
       [](const py::object& recordings, const py::object& freq_hz, const py::object& well,
          bool detect_levels, int harmonics, double highpass_hz, double lowpass_hz,
          double well_boundary_m, const py::object& progress) {
-        AnalysisArguments a{freq_hz,   well,        detect_levels,  harmonics,
+        AnalysisArguments a{freq_hz,     well,       detect_levels,  harmonics,
                             highpass_hz, lowpass_hz, well_boundary_m};
         return AnalysisHandle{run_analysis(recordings, a, progress)};
       },
       py::arg("recordings"), py::kw_only(), py::arg("freq_hz") = py::none(),
       py::arg("well") = py::none(), py::arg("detect_levels") = false, py::arg("harmonics") = 8,
-      py::arg("highpass_hz") = 1.0, py::arg("lowpass_hz") = 60.0,
-      py::arg("well_boundary_m") = 0.0, py::arg("progress") = py::none(),
+      py::arg("highpass_hz") = 1.0, py::arg("lowpass_hz") = 60.0, py::arg("well_boundary_m") = 0.0,
+      py::arg("progress") = py::none(),
       R"doc(Measurement analysis of recordings (`oscilab-cli analyze`): per-level energy dissipated per
 cycle of stepped-sine records and the restoring-force surface of all records together.
 

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-#include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "analysis/common/job.h"
 
@@ -59,11 +59,11 @@ struct ProgressReport {
 };
 using ReportFn = std::function<void(const ProgressReport&)>;
 
-/// Runs `work(report, cancel)` on a worker thread with the GIL released, while the calling thread
-/// waits: every 20 ms, or at once when the job reports progress, it re-acquires the GIL, checks
-/// for signals (PyErr_CheckSignals: Ctrl-C raises KeyboardInterrupt there) and hands the latest
-/// report to `progress` (None: no callback). On a signal, or when the callback raises, the job's
-/// CancelToken is set, the worker is joined (the C++ job returns its best so far) and the Python
+/// Runs `work(report, cancel)` on a pooled worker thread with the GIL released, while the calling
+/// thread waits: every 20 ms, or at once when the job reports progress, it re-acquires the GIL,
+/// checks for signals (PyErr_CheckSignals: Ctrl-C raises KeyboardInterrupt there) and hands the
+/// latest report to `progress` (None: no callback). On a signal, or when the callback raises, the
+/// job's CancelToken is set, the job is waited for (it returns its best so far) and the Python
 /// exception propagates: the job has stopped when KeyboardInterrupt arrives. A callback that
 /// returns False cancels the job without an exception (its result says cancelled). C++
 /// exceptions of the job are rethrown on the calling thread (InputError → ValueError/OSError).

@@ -119,8 +119,8 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
               r.extra["stage"] = p.stage;
               r.extra["evaluations"] = p.evaluations;
               r.extra["best_weighted_cost"] = p.best_weighted_cost;
-              r.extra["best_theta"] =
-                  std::vector<double>(p.best_theta.data(), p.best_theta.data() + p.best_theta.size());
+              r.extra["best_theta"] = std::vector<double>(
+                  p.best_theta.data(), p.best_theta.data() + p.best_theta.size());
               report(r);
             },
             cancel);
@@ -151,8 +151,7 @@ levels of both wells, and the objective: eq. (8) and the σ-weighted cost. Made 
           "sigma_j", [](const FitProblem& p) { return to_array(p.prepared.objective->sigma_j()); },
           "σ_k of each level [J] (the σ budget, or the fixed floor), groups in order.")
       .def_property_readonly(
-          "notes",
-          [](const FitProblem& p) { return py::cast(p.prepared.notes); },
+          "notes", [](const FitProblem& p) { return py::cast(p.prepared.notes); },
           "What the set-up changed (the recordings' mass, the RFS stiffness).")
       .def_property_readonly(
           "records", [](const FitProblem& p) { return py::cast(p.records); },
@@ -196,8 +195,8 @@ levels of both wells, and the objective: eq. (8) and the σ-weighted cost. Made 
           [](const FitProblem& p, const std::string& method, int population, int generations,
              double mutation, long evaluations, bool polish, std::uint64_t seed, int threads,
              int bootstrap, const py::object& progress) {
-            return run_fit(p, method, population, generations, mutation, evaluations, polish,
-                           seed, threads, bootstrap, progress);
+            return run_fit(p, method, population, generations, mutation, evaluations, polish, seed,
+                           threads, bootstrap, progress);
           },
           py::kw_only(), py::arg("method") = "cmaes", py::arg("population") = 100,
           py::arg("generations") = 20, py::arg("mutation") = 0.2, py::arg("evaluations") = 2000,
@@ -235,13 +234,13 @@ oscilab.fit(); `progress` reports the analysis of paths.)doc");
         return run_fit(problem, method, population, generations, mutation, evaluations, polish,
                        seed, threads, bootstrap, progress);
       },
-      py::arg("recordings"), py::kw_only(), py::arg("model") = "paper",
-      py::arg("method") = "cmaes", py::arg("population") = 100, py::arg("generations") = 20,
-      py::arg("mutation") = 0.2, py::arg("evaluations") = 2000, py::arg("polish") = false,
-      py::arg("seed") = 1, py::arg("threads") = 0, py::arg("harmonics") = 7,
-      py::arg("max_harmonics") = 63, py::arg("model_error") = -1.0, py::arg("bootstrap") = 0,
-      py::arg("stiffness") = "model", py::arg("freq_hz") = py::none(),
-      py::arg("model_form") = "paper", py::arg("progress") = py::none(),
+      py::arg("recordings"), py::kw_only(), py::arg("model") = "paper", py::arg("method") = "cmaes",
+      py::arg("population") = 100, py::arg("generations") = 20, py::arg("mutation") = 0.2,
+      py::arg("evaluations") = 2000, py::arg("polish") = false, py::arg("seed") = 1,
+      py::arg("threads") = 0, py::arg("harmonics") = 7, py::arg("max_harmonics") = 63,
+      py::arg("model_error") = -1.0, py::arg("bootstrap") = 0, py::arg("stiffness") = "model",
+      py::arg("freq_hz") = py::none(), py::arg("model_form") = "paper",
+      py::arg("progress") = py::none(),
       R"doc(Identifies the friction model from the EDCs of stepped-sine records (`oscilab-cli fit`):
 θ of eq. (9) by the paper's genetic algorithm ('ga'), CMA-ES with a BOBYQA polish ('cmaes') or
 BOBYQA alone ('local').
@@ -265,8 +264,8 @@ status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
       "diagnose",
       [](const py::object& recordings, const py::object& model, std::uint64_t seed, int threads,
          int harmonics, int max_harmonics, double model_error, double max_seconds, bool edc_only,
-         double bic_threshold, int max_steps, long baseline_evaluations,
-         long candidate_evaluations, const std::string& model_form, const py::object& progress) {
+         double bic_threshold, int max_steps, long baseline_evaluations, long candidate_evaluations,
+         const std::string& model_form, const py::object& progress) {
         if (model_form != "paper") {
           throw InputError("model_form: unknown form \"" + model_form + "\" (paper)");
         }
@@ -299,8 +298,8 @@ status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
         analysis::DiagnosisResult result;
         run_job(
             [&](const ReportFn& report, const CancelToken& cancel) {
-              result = analysis::diagnose(*campaign, *form, options, fraction_reporter(report),
-                                          cancel);
+              result =
+                  analysis::diagnose(*campaign, *form, options, fraction_reporter(report), cancel);
             },
             progress);
         nlohmann::json report = analysis::diagnosis_report_json(result, records, bic_threshold);
@@ -313,8 +312,8 @@ status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
       },
       py::arg("recordings"), py::kw_only(), py::arg("model") = "paper", py::arg("seed") = 1,
       py::arg("threads") = 0, py::arg("harmonics") = 7, py::arg("max_harmonics") = 63,
-      py::arg("model_error") = -1.0, py::arg("max_seconds") = 120.0,
-      py::arg("edc_only") = false, py::arg("bic_threshold") = 10.0, py::arg("max_steps") = 3,
+      py::arg("model_error") = -1.0, py::arg("max_seconds") = 120.0, py::arg("edc_only") = false,
+      py::arg("bic_threshold") = 10.0, py::arg("max_steps") = 3,
       py::arg("baseline_evaluations") = 1500, py::arg("candidate_evaluations") = 600,
       py::arg("model_form") = "paper", py::arg("progress") = py::none(),
       R"doc(The model-gap diagnosis (`oscilab-cli diagnose`): fit the paper's form, map where model

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <vector>
 
 #include "bindings.h"
 
@@ -25,6 +26,67 @@ struct JobState {
   std::exception_ptr error;
 };
 
+// A thread that runs one job at a time, kept for the next one: the core keeps per-thread
+// scratch buffers (spectral_calculus.cpp's thread_local FFT buffers), which a fresh thread per
+// call would allocate and fault in anew, a fifth of analyze()'s time on the samples. Workers are
+// never destroyed (detached, idle on a condition variable at exit).
+class Worker {
+ public:
+  Worker() {
+    std::thread([this] { loop(); }).detach();
+  }
+  void post(std::function<void()> task) {
+    {
+      const std::lock_guard lock(mutex_);
+      task_ = std::move(task);
+    }
+    wake_.notify_one();
+  }
+
+ private:
+  void loop() {
+    for (;;) {
+      std::function<void()> task;
+      {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [this] { return static_cast<bool>(task_); });
+        task = std::move(task_);
+        task_ = nullptr;
+      }
+      task();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::function<void()> task_;
+};
+
+// Idle workers; one more is made when every worker is busy (jobs from several Python threads).
+class WorkerPool {
+ public:
+  Worker* acquire() {
+    const std::lock_guard lock(mutex_);
+    if (idle_.empty()) return new Worker;  // owned by the pool for the process's life
+    Worker* worker = idle_.back();
+    idle_.pop_back();
+    return worker;
+  }
+  void release(Worker* worker) {
+    const std::lock_guard lock(mutex_);
+    idle_.push_back(worker);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<Worker*> idle_;
+};
+
+WorkerPool& pool() {
+  static auto* instance = new WorkerPool;  // never destroyed: workers outlive static destructors
+  return *instance;
+}
+
 }  // namespace
 
 ProgressFn fraction_reporter(const ReportFn& report) {
@@ -35,7 +97,10 @@ void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& wor
              const py::object& progress) {
   auto state = std::make_shared<JobState>();
   const CancelToken cancel;
-  const ReportFn report = [state](const ProgressReport& r) {
+  const bool has_callback = !progress.is_none();
+  // Without a callback reports are dropped: the calling thread then wakes only to check signals.
+  const ReportFn report = [state, has_callback](const ProgressReport& r) {
+    if (!has_callback) return;
     {
       const std::lock_guard lock(state->mutex);
       state->report = r;
@@ -43,7 +108,8 @@ void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& wor
     }
     state->wake.notify_all();
   };
-  std::thread worker([state, &work, report, cancel] {
+  Worker* worker = pool().acquire();
+  worker->post([state, &work, report, cancel] {
     try {
       work(report, cancel);
     } catch (...) {
@@ -56,8 +122,7 @@ void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& wor
     state->wake.notify_all();
   });
 
-  std::optional<py::error_already_set> pending;  // the Python exception to raise once joined
-  const bool has_callback = !progress.is_none();
+  std::optional<py::error_already_set> pending;  // the Python exception to raise once done
   for (;;) {
     ProgressReport latest;
     bool have_report = false;
@@ -96,10 +161,7 @@ void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& wor
     }
     if (done) break;
   }
-  {
-    py::gil_scoped_release release;
-    worker.join();
-  }
+  pool().release(worker);  // done: the worker only returns to its loop now
   if (pending) throw std::move(*pending);
   if (state->error) std::rethrow_exception(state->error);
 }

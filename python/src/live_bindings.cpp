@@ -205,8 +205,7 @@ it on leaving. Made by oscilab.live().
       .def("__next__", &next_update)
       .def("__enter__", [](LiveSession& s) -> LiveSession& { return s; })
       .def("__exit__", [](LiveSession& s, const py::args&) { s.stop(); })
-      .def("start", &LiveSession::start,
-           "Starts the source (the first iteration does it too).")
+      .def("start", &LiveSession::start, "Starts the source (the first iteration does it too).")
       .def("stop", &LiveSession::stop,
            "Stops the source, processes what it delivered, closes the levels and the recording.")
       .def(
@@ -275,8 +274,7 @@ it on leaving. Made by oscilab.live().
           rig.speed = speed;
           rig.duration_s = session->duration_s;
           if (!levels_n.is_none()) {
-            rig.schedule =
-                daq::rig_schedule(levels_argument(levels_n), hold_s, lead_in_s, freq_hz);
+            rig.schedule = daq::rig_schedule(levels_argument(levels_n), hold_s, lead_in_s, freq_hz);
           }
           auto s = std::make_unique<daq::RigSource>(model_argument(model), rig);
           session->rig = s.get();
@@ -312,14 +310,15 @@ it on leaving. Made by oscilab.live().
           src = std::move(s);
         }
         daq::AcquisitionOptions options;
-        if (!excitation_freq_hz.is_none()) options.excitation_freq_hz = excitation_freq_hz.cast<double>();
+        if (!excitation_freq_hz.is_none())
+          options.excitation_freq_hz = excitation_freq_hz.cast<double>();
         session->acquisition = std::make_unique<daq::Acquisition>(std::move(src), options);
         return session;
       },
-      py::arg("source"), py::kw_only(), py::arg("duration_s") = py::none(),
-      py::arg("speed") = 1.0, py::arg("model") = "paper", py::arg("well") = "positive",
-      py::arg("freq_hz") = 9.0, py::arg("levels_n") = py::none(), py::arg("hold_s") = 10.0,
-      py::arg("lead_in_s") = 2.5, py::arg("seed") = 1, py::arg("expected_sidecar") = py::none(),
+      py::arg("source"), py::kw_only(), py::arg("duration_s") = py::none(), py::arg("speed") = 1.0,
+      py::arg("model") = "paper", py::arg("well") = "positive", py::arg("freq_hz") = 9.0,
+      py::arg("levels_n") = py::none(), py::arg("hold_s") = 10.0, py::arg("lead_in_s") = 2.5,
+      py::arg("seed") = 1, py::arg("expected_sidecar") = py::none(),
       py::arg("record_to") = py::none(), py::arg("poll_s") = 0.1, py::arg("blocks") = true,
       py::arg("excitation_freq_hz") = py::none(),
       R"doc(A live source through the acquisition chain, as an iterator of updates (LiveSession).

@@ -34,8 +34,8 @@ py::object elementwise(const py::object& a, const py::object& b,
   }
   const py::ssize_t nx = x.size(), ny = y.size();
   if (nx != ny && nx != 1 && ny != 1) {
-    throw InputError("z_m, z_dot_m_s: arrays of different lengths (" + std::to_string(nx) +
-                     ", " + std::to_string(ny) + ")");
+    throw InputError("z_m, z_dot_m_s: arrays of different lengths (" + std::to_string(nx) + ", " +
+                     std::to_string(ny) + ")");
   }
   const py::ssize_t n = std::max(nx, ny);
   if (x.ndim() == 0 && y.ndim() == 0) return py::float_(f(*x.data(), *y.data()));

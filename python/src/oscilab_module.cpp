@@ -15,8 +15,8 @@ namespace {
 // file (not found, cannot open, read or write it) it becomes OSError instead, and
 // FileNotFoundError for a missing file.
 bool is_file_problem(const std::string& message) {
-  for (const char* marker : {": file not found", ": cannot open", ": cannot read: ",
-                             ": cannot write", ": cannot create"}) {
+  for (const char* marker : {": file not found", ": cannot open",
+                             ": cannot read: ", ": cannot write", ": cannot create"}) {
     if (message.find(marker) != std::string::npos) return true;
   }
   return false;

@@ -110,7 +110,8 @@ written. Raises ValueError with the reader's message for an invalid sidecar.
       .def_property_readonly(
           "mass_kg",
           [](const Recording& r) -> py::object {
-            return r.sidecar.mass_kg ? py::object(py::float_(*r.sidecar.mass_kg)) : py::object(py::none());
+            return r.sidecar.mass_kg ? py::object(py::float_(*r.sidecar.mass_kg))
+                                     : py::object(py::none());
           },
           "Mass of the oscillator [kg], or None when the sidecar does not give it.")
       .def_property_readonly(
@@ -147,10 +148,12 @@ written. Raises ValueError with the reader's message for an invalid sidecar.
             return to_array(t);
           },
           "Sample times t = i / sample_rate_hz [s].")
-      .def_property_readonly("source_path", [](const Recording& r) { return r.source_path; },
-                             "Where it was read from ('' when made in memory).")
-      .def_property_readonly("container", [](const Recording& r) { return r.container; },
-                             "The file's container as the reader saw it, e.g. 'FLAC ...' or 'CSV'.")
+      .def_property_readonly(
+          "source_path", [](const Recording& r) { return r.source_path; },
+          "Where it was read from ('' when made in memory).")
+      .def_property_readonly(
+          "container", [](const Recording& r) { return r.container; },
+          "The file's container as the reader saw it, e.g. 'FLAC ...' or 'CSV'.")
       .def_property_readonly("duration_s", &Recording::duration_s, "Duration [s].")
       .def_property_readonly("sample_count", &Recording::sample_count, "Samples per channel.")
       .def(
@@ -165,7 +168,8 @@ written. Raises ValueError with the reader's message for an invalid sidecar.
           "channel_by_role",
           [](const Recording& r, const std::string& role) {
             const int index = r.channel_index(parse_role(role));
-            if (index < 0) throw InputError("channel_by_role: no channel with role \"" + role + "\"");
+            if (index < 0)
+              throw InputError("channel_by_role: no channel with role \"" + role + "\"");
             return to_array(Eigen::VectorXd(r.samples_si.col(index)));
           },
           py::arg("role"),
@@ -235,8 +239,9 @@ reader's one-line message (the CLI's) for anything it cannot trust.)doc");
         py::gil_scoped_release release;
         return daq::describe_recording(daq::read_recording(p));
       },
-      py::arg("path"), "The text `oscilab-cli info PATH` prints: channels, units, rate, "
-                       "duration, excitation.");
+      py::arg("path"),
+      "The text `oscilab-cli info PATH` prints: channels, units, rate, "
+      "duration, excitation.");
 }
 
 }  // namespace oscilab::python

@@ -100,8 +100,8 @@ analysis::RandomMotionSpec random_argument(double rms_n, const std::pair<double,
 // CLI's --levels uses) or "A,B,...".
 std::vector<double> levels_argument(const py::object& levels) {
   if (!py::isinstance<py::str>(levels)) {
-    const Eigen::VectorXd v = to_vector(py::module_::import("numpy").attr("atleast_1d")(levels),
-                                        "levels_n");
+    const Eigen::VectorXd v =
+        to_vector(py::module_::import("numpy").attr("atleast_1d")(levels), "levels_n");
     return {v.data(), v.data() + v.size()};
   }
   const std::string text = levels.cast<std::string>();
@@ -189,9 +189,8 @@ void bind_simulation(py::module_& m) {
       py::arg("freq_hz") = 9.0, py::arg("levels_n") = "0.2:0.1:2.7", py::arg("hold_s") = 10.0,
       py::arg("ramp_s") = 0.5, py::arg("lead_in_s") = 2.5, py::arg("rms_n") = 2.0,
       py::arg("band_hz") = std::pair<double, double>(2.0, 30.0), py::arg("duration_s") = 120.0,
-      py::arg("seed") = 1, py::arg("sample_rate_hz") = 512.0,
-      py::arg("relative_tolerance") = 1e-9, py::arg("absolute_tolerance") = 1e-12,
-      py::arg("progress") = py::none(),
+      py::arg("seed") = 1, py::arg("sample_rate_hz") = 512.0, py::arg("relative_tolerance") = 1e-9,
+      py::arg("absolute_tolerance") = 1e-12, py::arg("progress") = py::none(),
       R"doc(Time simulation of eq. (1), m z̈ + R(z, ż) = f(t) = −m b̈(t), with error control
 (Dormand–Prince 5(4)) and exact energy integrals: the true motion, no sensors.
 
@@ -209,9 +208,9 @@ cycles, start_s, end_s). progress: callable(info) with info['fraction']; Ctrl-C 
   m.def(
       "virtual_rig",
       [](const py::object& model_arg, const std::string& test, const std::string& well,
-         double freq_hz, const py::object& levels_n, double hold_s, double ramp_s,
-         double lead_in_s, double rms_n, std::pair<double, double> band_hz, double duration_s,
-         double rate_hz, std::uint64_t seed, bool ideal_sensors, const py::object& progress) {
+         double freq_hz, const py::object& levels_n, double hold_s, double ramp_s, double lead_in_s,
+         double rms_n, std::pair<double, double> band_hz, double duration_s, double rate_hz,
+         std::uint64_t seed, bool ideal_sensors, const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
         daq::RigSpec spec;
         spec.positive_well = well_argument(well);
@@ -253,12 +252,11 @@ cycles, start_s, end_s). progress: callable(info) with info['fraction']; Ctrl-C 
         return d;
       },
       py::arg("model") = "paper", py::kw_only(), py::arg("test") = "stepped-sine",
-      py::arg("well") = "positive", py::arg("freq_hz") = 9.0,
-      py::arg("levels_n") = "0.2:0.1:2.7", py::arg("hold_s") = 10.0, py::arg("ramp_s") = 0.5,
-      py::arg("lead_in_s") = 2.5, py::arg("rms_n") = 2.0,
-      py::arg("band_hz") = std::pair<double, double>(2.0, 30.0), py::arg("duration_s") = 120.0,
-      py::arg("rate_hz") = 512.0, py::arg("seed") = 1, py::arg("ideal_sensors") = false,
-      py::arg("progress") = py::none(),
+      py::arg("well") = "positive", py::arg("freq_hz") = 9.0, py::arg("levels_n") = "0.2:0.1:2.7",
+      py::arg("hold_s") = 10.0, py::arg("ramp_s") = 0.5, py::arg("lead_in_s") = 2.5,
+      py::arg("rms_n") = 2.0, py::arg("band_hz") = std::pair<double, double>(2.0, 30.0),
+      py::arg("duration_s") = 120.0, py::arg("rate_hz") = 512.0, py::arg("seed") = 1,
+      py::arg("ideal_sensors") = false, py::arg("progress") = py::none(),
       R"doc(The virtual rig (`oscilab-cli simulate`): the model on the shaking table, an accelerometer
 on the table and a laser vibrometer on the mass (bias, noise, quantisation, creep), stored as ADC
 counts. Same arguments as the CLI's options (freq_hz [Hz], levels_n [N] sequence or 'A:STEP:B',
