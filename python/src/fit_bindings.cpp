@@ -14,6 +14,7 @@
 #include "analysis/model/model_json.h"
 #include "bindings.h"
 #include "daq/recording/fit_json.h"
+#include "daq/recording/recording.h"
 #include "python_types.h"
 
 namespace oscilab::python {
@@ -44,16 +45,20 @@ std::shared_ptr<const analysis::CampaignAnalysis> campaign_of(const py::object& 
   }
   AnalysisArguments arguments;
   arguments.freq_hz = freq_hz;
-  auto campaign = run_analysis(recordings, arguments, progress);
   const bool single = py::isinstance<py::str>(recordings) || py::hasattr(recordings, "__fspath__");
-  bool all_paths = true;
-  if (!single) {
-    for (const auto& item : py::iterable(recordings)) {
+  // A sequence is read once (it may be a generator).
+  const py::object items = single || py::isinstance<daq::Recording>(recordings)
+                               ? recordings
+                               : py::object(py::list(py::iterable(recordings)));
+  auto campaign = run_analysis(items, arguments, progress);
+  bool all_paths = !py::isinstance<daq::Recording>(items);
+  if (!single && all_paths) {
+    for (const auto& item : items) {
       all_paths &= py::isinstance<py::str>(item) || py::hasattr(item, "__fspath__");
     }
   }
   if (all_paths) {
-    records = path_list(recordings, "recordings");
+    records = path_list(items, "recordings");
   } else {
     for (const auto& r : campaign->records) records.push_back(r.name);
   }

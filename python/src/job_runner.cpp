@@ -1,5 +1,8 @@
 // Long C++ jobs from Python: the GIL released while they run, progress handed to a Python
 // callback on the calling thread, Ctrl-C turned into the job's CancelToken (bindings.h).
+#include <pthread.h>
+
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
@@ -82,9 +85,18 @@ class WorkerPool {
   std::vector<Worker*> idle_;
 };
 
+// Never destroyed: workers outlive static destructors. A child made by fork() (multiprocessing)
+// has none of the parent's threads, so it starts a pool of its own.
+std::atomic<WorkerPool*> g_pool{nullptr};
+
 WorkerPool& pool() {
-  static auto* instance = new WorkerPool;  // never destroyed: workers outlive static destructors
-  return *instance;
+  static const bool registered = [] {
+    g_pool.store(new WorkerPool);
+    pthread_atfork(nullptr, nullptr, [] { g_pool.store(new WorkerPool); });
+    return true;
+  }();
+  static_cast<void>(registered);
+  return *g_pool.load();
 }
 
 }  // namespace
