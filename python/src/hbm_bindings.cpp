@@ -8,6 +8,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/hbm/branch.h"
+#include "analysis/hbm/branch_switching.h"
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model.h"
 #include "bindings.h"
@@ -116,6 +117,29 @@ py::dict branch_dict(const analysis::Branch& branch) {
   return d;
 }
 
+// The period-doubled branches after `branch`, as `oscilab-cli hbm --follow-period-doubling`
+// follows them: a switch at the first period doubling (switch_at_period_doubling, at most 2000
+// points), and once more at the first one of the new branch (period 4T at most).
+void follow_period_doublings(const analysis::Model& model, const analysis::Branch& branch,
+                             const analysis::ContinuationOptions& options, int period,
+                             const ProgressFn& progress, const CancelToken& cancel,
+                             std::vector<std::pair<int, analysis::PeriodDoublingSwitch>>& out) {
+  const auto flips = branch.events_of(analysis::PointMarker::PeriodDoubling);
+  if (flips.empty() || cancel.cancelled()) return;
+  analysis::PeriodDoublingSwitchOptions switching;
+  switching.continuation = options;
+  switching.continuation.hbm = branch.hbm;
+  switching.continuation.max_points = 2000;
+  analysis::PeriodDoublingSwitch doubled = analysis::switch_at_period_doubling(
+      model, branch.points[flips.front().point_index], switching, progress, cancel);
+  const bool followed = doubled.status == JobStatus::Ok || !doubled.branch.points.empty();
+  out.emplace_back(2 * period, std::move(doubled));  // `branch` may dangle from here on
+  if (followed && 2 * period < 4) {
+    follow_period_doublings(model, out.back().second.branch, options, 2 * period, progress, cancel,
+                            out);
+  }
+}
+
 }  // namespace
 
 void bind_hbm(py::module_& m) {
@@ -124,7 +148,7 @@ void bind_hbm(py::module_& m) {
       [](const py::object& model_arg, double freq_hz, std::pair<double, double> f0_n,
          const std::string& well, int harmonics, int subharmonic, int samples, int floquet_steps,
          bool stability, double max_step, const std::vector<double>& landing,
-         const py::object& progress) {
+         bool follow_period_doubling, const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
         if (well != "positive" && well != "negative") {
           throw InputError("well: \"" + well + "\" is not positive or negative");
@@ -142,19 +166,45 @@ void bind_hbm(py::module_& m) {
         options.max_step = max_step;
         options.initial_step = std::min(options.initial_step, max_step);
         options.landing = landing;
+        if (follow_period_doubling && !stability) {
+          throw InputError(
+              "follow_period_doubling: period doublings are found from the Floquet multipliers; "
+              "drop stability=False");
+        }
         analysis::Branch branch;
+        std::vector<std::pair<int, analysis::PeriodDoublingSwitch>> doubled;
         run_job(
             [&](const ReportFn& report, const CancelToken& cancel) {
               branch = analysis::continue_branch(model, options, fraction_reporter(report), cancel);
+              if (follow_period_doubling) {
+                follow_period_doublings(model, branch, options, subharmonic,
+                                        fraction_reporter(report), cancel, doubled);
+              }
             },
             progress);
-        return branch_dict(branch);
+        py::dict d = branch_dict(branch);
+        d["period"] = subharmonic;
+        if (follow_period_doubling) {
+          py::list list;
+          for (const auto& [period, s] : doubled) {
+            py::dict b = branch_dict(s.branch);
+            b["period"] = period;
+            b["status"] = job_status_name(s.status);
+            b["message"] = s.message;
+            b["f0_flip_n"] = s.f0_flip_n;
+            b["f0_pitchfork_n"] = s.f0_pitchfork_n;
+            list.append(b);
+          }
+          d["period_doubled"] = list;
+        }
+        return d;
       },
       py::arg("model") = "paper", py::kw_only(), py::arg("freq_hz") = 9.0,
       py::arg("f0_n") = std::pair<double, double>(0.1, 3.7), py::arg("well") = "positive",
       py::arg("harmonics") = 7, py::arg("subharmonic") = 1, py::arg("samples") = 0,
       py::arg("floquet_steps") = 1024, py::arg("stability") = true, py::arg("max_step") = 0.1,
-      py::arg("landing") = std::vector<double>{}, py::arg("progress") = py::none(),
+      py::arg("landing") = std::vector<double>{}, py::arg("follow_period_doubling") = false,
+      py::arg("progress") = py::none(),
       R"doc(Harmonic balance with pseudo-arclength continuation in the forcing amplitude
 (`oscilab-cli hbm`): the periodic response of the model at freq_hz [Hz] from f0_n[0] to f0_n[1]
 [N], growing from the stable equilibrium of `well`, folds followed, not jumped.
@@ -167,7 +217,11 @@ phase_rad, edc_j, stable (1/0), freq_hz, edc_dissipation_j, mu1_abs, mu2_abs, mu
 mu2_re, mu2_im (NaN without stability), marker, newton_iterations; and z_mean_m, coefficients
 (points × [a0, a1, b1, …]), folds, period_doublings, branch_points ({f0_n, amp_m, point_index}
 arrays), events, status, message, well, harmonics, subharmonic, samples, steps_accepted,
-steps_rejected. A continuation that stops early is status != 'ok' with the points so far.)doc");
+steps_rejected, period (1 for ν = 1). A continuation that stops early is status != 'ok' with the
+points so far. follow_period_doubling: at the first period doubling switch onto the period-2
+branch and continue it over the f0 range (and once more at its first period doubling: period 4),
+as `hbm --follow-period-doubling`; the result then has period_doubled, a list of such dicts with
+period (in forcing periods), f0_flip_n and f0_pitchfork_n [N].)doc");
 }
 
 }  // namespace oscilab::python

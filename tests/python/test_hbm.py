@@ -65,3 +65,35 @@ def test_bad_options_raise_value_error():
         oscilab.hbm_branch(well="both")
     with pytest.raises(ValueError):
         oscilab.hbm_branch(harmonics=0)
+
+
+def assert_branch_prints_as(branch, rows):
+    assert len(branch["f0_n"]) == len(rows)
+    for name in COLUMNS:
+        for i, row in enumerate(rows):
+            value = branch[name][i]
+            if name in ("stable", "newton_iterations"):
+                assert str(int(value)) == row[name], (name, i)
+            elif name == "marker":
+                assert value == row[name]
+            elif math.isnan(value):
+                assert row[name] == ""
+            else:
+                assert cxx_print(value) == row[name], (name, i, value, row[name])
+
+
+def test_period_doubled_branches_equal_cli_follow_period_doubling(tmp_path):
+    out = tmp_path / "pd.csv"
+    run_cli("hbm", "--f0", "3.0:3.7", "--well", "positive", "--follow-period-doubling",
+            "--out", out)
+    rows = read_csv(out)
+    branch = oscilab.hbm_branch("paper", f0_n=(3.0, 3.7), follow_period_doubling=True)
+    assert len(branch["period_doublings"]["f0_n"]) >= 1
+    assert_branch_prints_as(branch, [r for r in rows if r["period"] == "1"])
+    followed = [b for b in branch["period_doubled"] if len(b["f0_n"]) > 0]
+    assert followed and followed[0]["period"] == 2
+    assert followed[0]["f0_pitchfork_n"] < followed[0]["f0_flip_n"]
+    for b in followed:
+        assert_branch_prints_as(b, [r for r in rows if r["period"] == str(b["period"])])
+    with pytest.raises(ValueError, match="follow_period_doubling"):
+        oscilab.hbm_branch(follow_period_doubling=True, stability=False)
