@@ -34,5 +34,12 @@ dissipated per cycle, restoring force), harmonic balance with continuation,
 friction identification and model-gap diagnosis, and export to MATLAB and UFF 58.")
 # Depends from the shared libraries the binaries link (dpkg-shlibdeps, in dpkg-dev).
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# The Python module (python/) links no libpython, so dpkg-shlibdeps cannot see what it needs: the
+# interpreter it was built for (its extension suffix names the minor version) and NumPy.
+if(OSCILAB_PYTHON)
+  math(EXPR python_next_minor "${Python3_VERSION_MINOR} + 1")
+  set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}), \
+python3 (<< ${Python3_VERSION_MAJOR}.${python_next_minor}), python3-numpy")
+endif()
 
 include(CPack)

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Oscilab set-up for a fresh Debian 12 machine (as root, or a user with sudo).
 #
-#   bash scripts/setup.sh run    install, build the app and the CLI, start the app on the bundled sample
-#                                (headless: print the analysis of the same sample instead)
+#   bash scripts/setup.sh run    install, build the app, the CLI and the Python module (installed into
+#                                the system's Python: `python3 -c "import oscilab"`), start the app on
+#                                the bundled sample (headless: print the analysis of it instead)
 #   bash scripts/setup.sh test   install, build and run every test: clang-format check, release
 #                                build with -Werror (unit, integration, GUI offscreen, benchmarks
 #                                printed), then the headless tests again under ASan + UBSan
@@ -18,7 +19,7 @@ PACKAGES=(
   libeigen3-dev libfftw3-dev libsndfile1-dev libboost-dev
   nlohmann-json3-dev libcli11-dev
   libpagmo-dev libnlopt-cxx-dev libmatio-dev libhdf5-dev libcairo2-dev parallel
-  python3-numpy python3-scipy python3-h5py python3-pytest pybind11-dev
+  python3-numpy python3-scipy python3-h5py python3-pytest python3-dev pybind11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev qt6-svg-dev libqcustomplot-dev libqcustomplot2.1-qt6
   xvfb xauth clang-format clang-tidy
@@ -51,9 +52,26 @@ build() {  # build DIR [cmake options...]: everything, tests included
   cmake --build "$dir" -j "$JOBS"
 }
 
-run_main() {  # only what the main job needs: the app, the CLI and the optimiser module
+python_module() {  # builds the Python module and installs it into the system's Python
+  if [ ! -d build/python ]; then
+    echo "setup: the Python module is not configured (needs python3-dev and pybind11-dev)"
+    return
+  fi
+  cmake --build build -j "$JOBS" --target oscilab_python
+  as_root cmake --install build --component python
+  local python
+  python=$(sed -n 's/^Python3_EXECUTABLE:FILEPATH=//p' build/CMakeCache.txt)
+  (cd / && "$python" -c "import oscilab; print('setup: Python module oscilab', oscilab.__version__, 'for', '$python')")
+  if [ "$(command -v python3)" != "$python" ] && ! (cd / && python3 -c "import oscilab" 2>/dev/null); then
+    echo "setup: note: python3 on PATH ($(command -v python3)) is not $python, the Python with NumPy"
+    echo "setup: the module was built for; use $python (or configure with -DPython3_EXECUTABLE=...)"
+  fi
+}
+
+run_main() {  # only what the main job needs: the app, the CLI, the optimiser and Python modules
   cmake -S . -B build -G Ninja
   cmake --build build -j "$JOBS" --target oscilab oscilab-cli oscilab_cmaes
+  python_module
   if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
     echo "setup: starting the Oscilab desktop app on $DEFAULT_SAMPLE"
     exec ./build/app/oscilab "$DEFAULT_SAMPLE"

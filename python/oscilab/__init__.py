@@ -1,0 +1,78 @@
+"""Oscilab from Python: the same C++ core as ``oscilab-cli`` and the app.
+
+Read and write recordings (any format the core reads), analyse them (EDC per stepped-sine level,
+restoring-force surface), build models (the paper's, the illustrative, from JSON or from terms),
+simulate them in time and with the virtual rig, follow harmonic-balance branches, fit the
+friction model and diagnose missing effects, and run the live chain as an iterator.
+
+Arrays are NumPy arrays in SI units (N, m, s, J, Hz, kg); tables are dicts of columns named like
+the CLI's CSV columns, JSON results are dicts with the CLI's keys (docs/contracts.md). Bad input
+raises ValueError with the CLI's one-line message; a file that cannot be found, opened or written
+raises OSError (FileNotFoundError when missing). Long calls release the GIL, report progress to
+an optional callback and stop on Ctrl-C (KeyboardInterrupt, raised once the C++ job has
+stopped). See docs/python.md.
+"""
+
+from ._native._oscilab import (  # noqa: F401  (re-exported)
+    Analysis,
+    FitProblem,
+    LiveSession,
+    Model,
+    Recording,
+    analyze,
+    describe_recording,
+    diagnose,
+    fit,
+    hbm_branch,
+    live,
+    prepare_fit,
+    read_recording,
+    simulate,
+    virtual_rig,
+    write_recording,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Analysis",
+    "FitProblem",
+    "LiveSession",
+    "Model",
+    "Recording",
+    "analyze",
+    "describe_recording",
+    "diagnose",
+    "fit",
+    "hbm_branch",
+    "live",
+    "prepare_fit",
+    "read_recording",
+    "simulate",
+    "to_dataframe",
+    "virtual_rig",
+    "write_recording",
+]
+
+
+def to_dataframe(table):
+    """A table (a dict of equal-length columns, e.g. ``Analysis.edc``) as a pandas.DataFrame.
+
+    pandas is optional: raises ImportError naming it when it is not installed; the dict form
+    works without it.
+    """
+    try:
+        import pandas
+    except ImportError as error:
+        raise ImportError("to_dataframe needs pandas (python3-pandas); the dict form "
+                          "(e.g. Analysis.edc) works without it") from error
+    return pandas.DataFrame({name: list(column) if isinstance(column, list) else column
+                             for name, column in table.items()})
+
+
+def _edc_dataframe(self):
+    """The EDC table (``self.edc``) as a pandas.DataFrame; ImportError without pandas."""
+    return to_dataframe(self.edc)
+
+
+Analysis.edc_dataframe = _edc_dataframe

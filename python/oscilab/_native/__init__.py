@@ -1,0 +1,1 @@
+"""The compiled part of oscilab (pybind11); import oscilab instead."""

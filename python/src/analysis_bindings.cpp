@@ -1,0 +1,376 @@
+// Measurement analysis (§3, §4.1): the same daq::analyze_recordings / analysis::analyze_campaign
+// as `oscilab-cli analyze`, results as tables named like its CSV columns and JSON keys.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/common/input_error.h"
+#include "analysis/pipeline/offline_analysis.h"
+#include "bindings.h"
+#include "daq/recording/campaign_reader.h"
+#include "daq/recording/measurement_mapping.h"
+#include "python_types.h"
+
+namespace oscilab::python {
+
+py::dict level_table(const std::vector<analysis::LevelResult>& levels,
+                     const std::vector<std::string>* records) {
+  const std::size_t n = levels.size();
+  py::list well, record, flags;
+  std::vector<double> f0(n), mean(n), std_j(n), floor(n), eq13(n), trapz(n), z1(n), lag(n),
+      z_mean(n), start(n), end(n), change(n);
+  std::vector<int> cycles(n), transient(n), usable(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const analysis::LevelResult& l = levels[i];
+    well.append(l.well);
+    f0[i] = l.f0_n;
+    mean[i] = l.edc_mean_j;
+    std_j[i] = l.edc_std_j;
+    cycles[i] = l.cycles;
+    if (records) record.append((*records)[i]);
+    floor[i] = l.edc_noise_floor_j;
+    eq13[i] = l.edc_eq13_mean_j;
+    trapz[i] = l.edc_trapz_mean_j;
+    z1[i] = l.z1_abs_m;
+    lag[i] = l.lag_rad;
+    z_mean[i] = l.z_mean_m;
+    start[i] = l.start_s;
+    end[i] = l.end_s;
+    transient[i] = l.transient_cycles;
+    change[i] = l.period1_change;
+    usable[i] = l.usable() ? 1 : 0;
+    flags.append(l.flags());
+  }
+  py::dict t;
+  t["well"] = well;
+  t["f0_n"] = to_array(f0);
+  t["edc_mean_j"] = to_array(mean);
+  t["edc_std_j"] = to_array(std_j);
+  t["cycles"] = to_int_array(cycles);
+  if (records) t["record"] = record;
+  t["edc_noise_floor_j"] = to_array(floor);
+  t["edc_eq13_mean_j"] = to_array(eq13);
+  t["edc_trapz_mean_j"] = to_array(trapz);
+  t["z1_abs_m"] = to_array(z1);
+  t["lag_rad"] = to_array(lag);
+  t["z_mean_m"] = to_array(z_mean);
+  t["start_s"] = to_array(start);
+  t["end_s"] = to_array(end);
+  t["transient_cycles"] = to_int_array(transient);
+  t["period1_change"] = to_array(change);
+  t["usable"] = to_int_array(usable);
+  t["flags"] = flags;
+  return t;
+}
+
+py::dict cycle_table(const std::vector<analysis::CycleFit>& cycles,
+                     const std::vector<std::string>* records) {
+  const std::size_t n = cycles.size();
+  py::list record;
+  std::vector<double> start(n), end(n), f0(n), edc(n), eq13(n), trapz(n), z1(n), lag(n), mean(n),
+      lo(n), hi(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const analysis::CycleFit& c = cycles[i];
+    if (records) record.append((*records)[i]);
+    start[i] = c.start_s;
+    end[i] = c.end_s;
+    f0[i] = c.f0_n;
+    edc[i] = c.edc_j;
+    eq13[i] = c.edc_eq13_j;
+    trapz[i] = c.edc_trapz_j;
+    z1[i] = c.z_h.empty() ? 0.0 : std::abs(c.z_h.front());
+    lag[i] = c.lag_rad;
+    mean[i] = c.z_mean_m;
+    lo[i] = c.z_min_m;
+    hi[i] = c.z_max_m;
+  }
+  py::dict t;
+  if (records) t["record"] = record;
+  t["start_s"] = to_array(start);
+  t["end_s"] = to_array(end);
+  t["f0_n"] = to_array(f0);
+  t["edc_j"] = to_array(edc);
+  t["edc_eq13_j"] = to_array(eq13);
+  t["edc_trapz_j"] = to_array(trapz);
+  t["z1_abs_m"] = to_array(z1);
+  t["lag_rad"] = to_array(lag);
+  t["z_mean_m"] = to_array(mean);
+  t["z_min_m"] = to_array(lo);
+  t["z_max_m"] = to_array(hi);
+  return t;
+}
+
+std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object& recordings,
+                                                               const AnalysisArguments& a,
+                                                               const py::object& progress) {
+  daq::MappingOverrides overrides;
+  if (!a.freq_hz.is_none()) {
+    const double freq = a.freq_hz.cast<double>();
+    if (!(std::isfinite(freq) && freq > 0.0)) {
+      throw InputError("freq_hz: " + std::to_string(freq) + " is not a positive number");
+    }
+    overrides.excitation_freq_hz = freq;
+  }
+  if (!a.well.is_none()) {
+    const std::string well = a.well.cast<std::string>();
+    if (well != "positive" && well != "negative") {
+      throw InputError("well: \"" + well + "\" is not positive or negative");
+    }
+    overrides.well_positive = well == "positive";
+  }
+  overrides.ignore_sidecar_levels = a.detect_levels;
+  analysis::PipelineSettings settings;
+  settings.harmonics = a.harmonics;
+  settings.integration_highpass_hz = a.highpass_hz;
+  settings.derivative_lowpass_hz = a.lowpass_hz;
+  settings.well_boundary_m = a.well_boundary_m;
+
+  // Recordings in memory go through the same mapping and campaign analysis as files.
+  std::vector<analysis::MeasurementChannels> in_memory;
+  std::vector<std::string> paths;
+  const bool single = py::isinstance<daq::Recording>(recordings) ||
+                      py::isinstance<py::str>(recordings) || py::hasattr(recordings, "__fspath__");
+  const py::list items =
+      single ? py::list(py::make_tuple(recordings)) : py::list(py::iterable(recordings));
+  bool any_recording = false;
+  for (const auto& item : items) any_recording |= py::isinstance<daq::Recording>(item);
+  if (any_recording) {
+    for (const auto& item : items) {
+      if (py::isinstance<daq::Recording>(item)) {
+        in_memory.push_back(
+            daq::measurement_channels(item.cast<const daq::Recording&>(), overrides));
+      } else {
+        daq::Recording read;
+        const std::string path = path_string(item);
+        {
+          py::gil_scoped_release release;
+          read = daq::read_recording(path);
+        }
+        in_memory.push_back(daq::measurement_channels(read, overrides));
+      }
+    }
+  } else {
+    paths = path_list(recordings, "recordings");
+  }
+  if (items.empty()) throw InputError("recordings: no recordings given");
+
+  auto result = std::make_shared<analysis::CampaignAnalysis>();
+  run_job(
+      [&](const ReportFn& report, const CancelToken& cancel) {
+        *result = any_recording ? analysis::analyze_campaign(in_memory, settings,
+                                                             fraction_reporter(report), cancel)
+                                : daq::analyze_recordings(paths, overrides, settings,
+                                                          fraction_reporter(report), cancel);
+      },
+      progress);
+  return result;
+}
+
+namespace {
+
+std::vector<std::string> record_per_level(const analysis::CampaignAnalysis& c) {
+  std::vector<std::string> names;
+  for (const auto& r : c.records) {
+    for (std::size_t i = 0; i < r.levels.size(); ++i) names.push_back(r.name);
+  }
+  return names;
+}
+
+std::vector<analysis::LevelResult> all_levels(const analysis::CampaignAnalysis& c) {
+  std::vector<analysis::LevelResult> levels;
+  for (const auto& r : c.records) levels.insert(levels.end(), r.levels.begin(), r.levels.end());
+  return levels;
+}
+
+const char* status_name(JobStatus status) {
+  switch (status) {
+    case JobStatus::Ok:
+      return "ok";
+    case JobStatus::Cancelled:
+      return "cancelled";
+    case JobStatus::NoConvergence:
+      return "no-convergence";
+    case JobStatus::NumericalIssue:
+      return "numerical-issue";
+    case JobStatus::InvalidInput:
+      return "invalid-input";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+std::string job_status_name(JobStatus status) { return status_name(status); }
+
+void bind_analysis(py::module_& m) {
+  py::class_<AnalysisHandle>(m, "Analysis", R"doc(
+The offline analysis of one or more recordings (what `oscilab-cli analyze` computes): the EDC of
+every stepped-sine level, the restoring-force surface (stiffness slice with its cubic fit, damping
+slices), every fitted cycle. Tables are dicts of columns named like the CLI's CSV columns; the
+summary is the CLI's --summary JSON as a dict. Pass it to ``fit`` or ``diagnose`` to reuse it.
+)doc")
+      .def_property_readonly(
+          "edc",
+          [](const AnalysisHandle& h) {
+            const auto names = record_per_level(*h.campaign);
+            return level_table(all_levels(*h.campaign), &names);
+          },
+          "EDC table, one row per stepped-sine level of each record, records in order: columns "
+          "well, f0_n [N], edc_mean_j [J], edc_std_j [J], cycles, record, edc_noise_floor_j, "
+          "edc_eq13_mean_j, edc_trapz_mean_j, z1_abs_m [m], lag_rad, z_mean_m, start_s, end_s, "
+          "transient_cycles, period1_change, usable (1/0), flags. J/kg and N/kg without mass_kg.")
+      .def_property_readonly(
+          "cycles",
+          [](const AnalysisHandle& h) {
+            std::vector<analysis::CycleFit> cycles;
+            std::vector<std::string> names;
+            for (const auto& r : h.campaign->records) {
+              cycles.insert(cycles.end(), r.cycles.begin(), r.cycles.end());
+              names.insert(names.end(), r.cycles.size(), r.name);
+            }
+            return cycle_table(cycles, &names);
+          },
+          "Every fitted cycle (columns of `analyze --cycles`): record, start_s, end_s, f0_n, "
+          "edc_j, edc_eq13_j, edc_trapz_j, z1_abs_m, lag_rad, z_mean_m, z_min_m, z_max_m.")
+      .def_property_readonly(
+          "rfs",
+          [](const AnalysisHandle& h) -> py::object {
+            if (!h.campaign->stiffness) return py::none();
+            std::vector<double> z, force;
+            std::vector<int> samples;
+            for (const auto& bin : h.campaign->stiffness->bins) {
+              z.push_back(bin.x);
+              force.push_back(bin.force_n);
+              samples.push_back(bin.samples);
+            }
+            py::dict t;
+            t["z_m"] = to_array(z);
+            t["restoring_force_n"] = to_array(force);
+            t["samples"] = to_int_array(samples);
+            return t;
+          },
+          "Stiffness slice (columns of `analyze --rfs`): z_m [m] bin centres, restoring_force_n "
+          "[N] R = f − m z̈ at ż ≈ 0, samples per bin; None when no slice could be made "
+          "(rfs_message says why).")
+      .def_property_readonly(
+          "damping",
+          [](const AnalysisHandle& h) {
+            std::vector<double> center, z_dot, force;
+            std::vector<int> samples;
+            for (const auto& slice : h.campaign->damping) {
+              for (const auto& bin : slice.bins) {
+                center.push_back(slice.z_center_m);
+                z_dot.push_back(bin.x);
+                force.push_back(bin.force_n);
+                samples.push_back(bin.samples);
+              }
+            }
+            py::dict t;
+            t["z_center_m"] = to_array(center);
+            t["z_dot_m_s"] = to_array(z_dot);
+            t["damping_force_n"] = to_array(force);
+            t["samples"] = to_int_array(samples);
+            return t;
+          },
+          "Damping slices at the stable equilibria (columns of `analyze --damping`): "
+          "z_center_m [m], z_dot_m_s [m/s], damping_force_n [N], samples.")
+      .def_property_readonly(
+          "summary",
+          [](const AnalysisHandle& h) {
+            return to_python(analysis::campaign_summary(*h.campaign));
+          },
+          "The summary JSON of `analyze --summary` as a dict: stiffness_fit, settings, records, "
+          "damping_slices ...")
+      .def_property_readonly(
+          "stiffness_fit",
+          [](const AnalysisHandle& h) {
+            return to_python(analysis::campaign_summary(*h.campaign)["stiffness_fit"]);
+          },
+          "K(z) = k3 z³ + k2 z² − k1 z + k0 (eq. (2)) fitted to the stiffness slice: keys "
+          "k3_n_m3, k2_n_m2, k1_n_m, k0_n, each with a _std twin, and residual_rms_n, samples, "
+          "velocity_band_m_s, z_min_m, z_max_m; None when there is no slice.")
+      .def_property_readonly(
+          "rfs_message", [](const AnalysisHandle& h) { return h.campaign->rfs_message; },
+          "Why there is no stiffness slice, when there is none.")
+      .def_property_readonly(
+          "status", [](const AnalysisHandle& h) { return job_status_name(h.campaign->status); },
+          "'ok', or 'cancelled' when the progress callback returned False.")
+      .def_property_readonly(
+          "records",
+          [](const AnalysisHandle& h) {
+            py::list out;
+            for (const auto& r : h.campaign->records) {
+              py::dict d;
+              d["name"] = r.name;
+              d["stepped_sine"] = r.stepped_sine;
+              d["excitation_freq_hz"] = r.setup.excitation_freq_hz;
+              d["frequency_detected"] = r.frequency_detected;
+              d["per_unit_mass"] = r.per_unit_mass;
+              d["levels"] = r.levels.size();
+              d["cycles"] = r.cycles.size();
+              py::list notes;
+              for (const auto& note : r.notes) notes.append(note);
+              d["notes"] = notes;
+              out.append(d);
+            }
+            return out;
+          },
+          "Per record: name, stepped_sine, excitation_freq_hz [Hz], frequency_detected, "
+          "per_unit_mass, levels, cycles, notes.")
+      .def(
+          "motion",
+          [](const AnalysisHandle& h, int record) {
+            const auto& records = h.campaign->records;
+            if (record < 0 || record >= static_cast<int>(records.size())) {
+              throw InputError("record: " + std::to_string(record) + " is not in 0.." +
+                               std::to_string(static_cast<int>(records.size()) - 1));
+            }
+            const analysis::MotionSignals& s = records[static_cast<std::size_t>(record)].motion;
+            py::dict d;
+            d["t_s"] = to_array(s.t_s);
+            d["z_m"] = to_array(s.z_m);
+            d["z_dot_m_s"] = to_array(s.z_dot_m_s);
+            d["restoring_force_n"] = to_array(s.restoring_force_n);
+            d["z_absolute"] = s.z_absolute;
+            return d;
+          },
+          py::arg("record") = 0,
+          "The time signals of the restoring surface of one record (§3): t_s [s], z_m [m], "
+          "z_dot_m_s [m/s], restoring_force_n [N] R = f − m z̈, and z_absolute (False: z's mean "
+          "unknown).")
+      .def("__repr__", [](const AnalysisHandle& h) {
+        std::size_t levels = 0;
+        for (const auto& r : h.campaign->records) levels += r.levels.size();
+        return "<oscilab.Analysis " + std::to_string(h.campaign->records.size()) + " records, " +
+               std::to_string(levels) + " levels>";
+      });
+
+  m.def(
+      "analyze",
+      [](const py::object& recordings, const py::object& freq_hz, const py::object& well,
+         bool detect_levels, int harmonics, double highpass_hz, double lowpass_hz,
+         double well_boundary_m, const py::object& progress) {
+        AnalysisArguments a{freq_hz,     well,       detect_levels,  harmonics,
+                            highpass_hz, lowpass_hz, well_boundary_m};
+        return AnalysisHandle{run_analysis(recordings, a, progress)};
+      },
+      py::arg("recordings"), py::kw_only(), py::arg("freq_hz") = py::none(),
+      py::arg("well") = py::none(), py::arg("detect_levels") = false, py::arg("harmonics") = 8,
+      py::arg("highpass_hz") = 1.0, py::arg("lowpass_hz") = 60.0, py::arg("well_boundary_m") = 0.0,
+      py::arg("progress") = py::none(),
+      R"doc(Measurement analysis of recordings (`oscilab-cli analyze`): per-level energy dissipated per
+cycle of stepped-sine records and the restoring-force surface of all records together.
+
+recordings: a path, a Recording, or a sequence of them (each file with its JSON sidecar).
+freq_hz: excitation frequency [Hz] (default: the sidecar's, else detected).
+well: 'positive' or 'negative' when the mass channel cannot tell.
+detect_levels: find levels from the force amplitude even when the sidecar lists them.
+harmonics: harmonics per cycle fit; highpass_hz: cut-off of the zero-phase double integration
+[Hz]; lowpass_hz: cut-off of the spectral differentiation [Hz]; well_boundary_m: z between the
+wells [m].
+progress: callable(info: dict) with info['fraction'] in [0, 1]; return False to cancel.
+Returns an Analysis. Ctrl-C stops it (KeyboardInterrupt); the GIL is released while it runs.)doc");
+}
+
+}  // namespace oscilab::python

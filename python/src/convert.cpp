@@ -1,0 +1,141 @@
+// JSON, array and path conversions between Python and the C++ core.
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "analysis/common/input_error.h"
+#include "bindings.h"
+
+namespace oscilab::python {
+
+py::object to_python(const nlohmann::json& json) {
+  switch (json.type()) {
+    case nlohmann::json::value_t::null:
+      return py::none();
+    case nlohmann::json::value_t::boolean:
+      return py::bool_(json.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+      return py::int_(json.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned:
+      return py::int_(json.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float:
+      return py::float_(json.get<double>());
+    case nlohmann::json::value_t::string:
+      return py::str(json.get_ref<const std::string&>());
+    case nlohmann::json::value_t::array: {
+      py::list list;
+      for (const auto& item : json) list.append(to_python(item));
+      return list;
+    }
+    case nlohmann::json::value_t::object: {
+      py::dict dict;
+      for (auto it = json.begin(); it != json.end(); ++it) dict[py::str(it.key())] = to_python(*it);
+      return dict;
+    }
+    default:
+      return py::none();  // binary and discarded values never come out of the core
+  }
+}
+
+nlohmann::json to_json(const py::handle& object, const std::string& where) {
+  if (object.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(object)) return object.cast<bool>();
+  if (py::isinstance<py::int_>(object)) return object.cast<std::int64_t>();
+  if (py::isinstance<py::float_>(object)) return object.cast<double>();
+  if (py::isinstance<py::str>(object)) return object.cast<std::string>();
+  if (py::isinstance<py::dict>(object)) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [key, value] : object.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(key)) throw InputError(where + ": dict keys must be str");
+      const std::string name = key.cast<std::string>();
+      out[name] = to_json(value, where + "." + name);
+    }
+    return out;
+  }
+  if (py::isinstance<py::list>(object) || py::isinstance<py::tuple>(object) ||
+      py::isinstance<py::array>(object)) {
+    nlohmann::json out = nlohmann::json::array();
+    std::size_t i = 0;
+    for (const auto& item : object) {
+      out.push_back(to_json(item, where + "[" + std::to_string(i++) + "]"));
+    }
+    return out;
+  }
+  // NumPy scalars and other numbers: through their Python value.
+  if (py::hasattr(object, "item") && py::hasattr(object, "dtype")) {
+    return to_json(object.attr("item")(), where);
+  }
+  throw InputError(where + ": cannot be written as JSON (" +
+                   py::str(py::type::of(object).attr("__name__")).cast<std::string>() + ")");
+}
+
+nlohmann::json json_argument(const py::handle& object, const std::string& where) {
+  if (py::isinstance<py::str>(object)) {
+    try {
+      return nlohmann::json::parse(object.cast<std::string>());
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InputError(where + ": not JSON: " + e.what());
+    }
+  }
+  return to_json(object, where);
+}
+
+py::array_t<double> to_array(const Eigen::VectorXd& v) {
+  py::array_t<double> out(v.size());
+  if (v.size() > 0) std::memcpy(out.mutable_data(), v.data(), sizeof(double) * v.size());
+  return out;
+}
+
+py::array_t<double> to_array(const std::vector<double>& v) {
+  py::array_t<double> out(static_cast<py::ssize_t>(v.size()));
+  if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), sizeof(double) * v.size());
+  return out;
+}
+
+py::array_t<double> to_array(const Eigen::MatrixXd& m) {
+  py::array_t<double> out({m.rows(), m.cols()});
+  auto view = out.mutable_unchecked<2>();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    for (Eigen::Index c = 0; c < m.cols(); ++c) view(r, c) = m(r, c);
+  }
+  return out;
+}
+
+py::array_t<int> to_int_array(const std::vector<int>& v) {
+  py::array_t<int> out(static_cast<py::ssize_t>(v.size()));
+  if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), sizeof(int) * v.size());
+  return out;
+}
+
+Eigen::VectorXd to_vector(const py::handle& object, const std::string& where) {
+  py::array_t<double, py::array::c_style | py::array::forcecast> array;
+  try {
+    array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(object);
+  } catch (const py::error_already_set&) {
+    throw InputError(where + ": not an array of numbers");
+  }
+  if (!array || array.ndim() != 1) throw InputError(where + ": must be a 1-D array of numbers");
+  Eigen::VectorXd out(array.shape(0));
+  if (out.size() > 0) std::memcpy(out.data(), array.data(), sizeof(double) * out.size());
+  return out;
+}
+
+std::string path_string(const py::handle& object) {
+  return py::str(py::module_::import("os").attr("fspath")(object)).cast<std::string>();
+}
+
+std::vector<std::string> path_list(const py::handle& object, const std::string& where) {
+  if (py::isinstance<py::str>(object) || py::hasattr(object, "__fspath__")) {
+    return {path_string(object)};
+  }
+  std::vector<std::string> out;
+  try {
+    for (const auto& item : object) out.push_back(path_string(item));
+  } catch (const py::error_already_set&) {
+    throw InputError(where + ": expected a path or a sequence of paths");
+  }
+  if (out.empty()) throw InputError(where + ": no recordings given");
+  return out;
+}
+
+}  // namespace oscilab::python

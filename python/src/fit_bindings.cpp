@@ -1,0 +1,336 @@
+// Identification (§4, §5) and model-gap diagnosis: the fit sequence both front-ends use
+// (analysis/identification/fit_setup.h: prepare_fit, fit_edc) and diagnose(), results as the
+// CLI's FIT JSON and report.json.
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/common/input_error.h"
+#include "analysis/diagnosis/diagnosis.h"
+#include "analysis/identification/edc_fit.h"
+#include "analysis/identification/fit_setup.h"
+#include "analysis/model/model.h"
+#include "analysis/model/model_json.h"
+#include "bindings.h"
+#include "daq/recording/fit_json.h"
+#include "daq/recording/recording.h"
+#include "python_types.h"
+
+namespace oscilab::python {
+namespace {
+
+// The cost options shared by fit and diagnose (the CLI's --harmonics, --max-harmonics,
+// --model-error, checked as cost_settings checks them).
+analysis::EdcCostSettings cost_arguments(int harmonics, int max_harmonics, double model_error) {
+  if (harmonics < 1) throw InputError("harmonics: must be at least 1");
+  if (max_harmonics < 1) throw InputError("max_harmonics: must be at least 1");
+  analysis::EdcCostSettings cost;
+  cost.hbm.harmonics = harmonics;
+  cost.max_harmonics = std::max(max_harmonics, harmonics);
+  cost.model_error_rel = model_error;
+  return cost;
+}
+
+// Recordings (paths, Recording objects) or an Analysis → the analysis, and the names the JSON
+// lists as records (the paths as given, else the records' names).
+std::shared_ptr<const analysis::CampaignAnalysis> campaign_of(const py::object& recordings,
+                                                              const py::object& freq_hz,
+                                                              const py::object& progress,
+                                                              std::vector<std::string>& records) {
+  if (py::isinstance<AnalysisHandle>(recordings)) {
+    auto campaign = recordings.cast<const AnalysisHandle&>().campaign;
+    for (const auto& r : campaign->records) records.push_back(r.name);
+    return campaign;
+  }
+  AnalysisArguments arguments;
+  arguments.freq_hz = freq_hz;
+  const bool single = py::isinstance<py::str>(recordings) || py::hasattr(recordings, "__fspath__");
+  // A sequence is read once (it may be a generator).
+  const py::object items = single || py::isinstance<daq::Recording>(recordings)
+                               ? recordings
+                               : py::object(py::list(py::iterable(recordings)));
+  auto campaign = run_analysis(items, arguments, progress);
+  bool all_paths = !py::isinstance<daq::Recording>(items);
+  if (!single && all_paths) {
+    for (const auto& item : items) {
+      all_paths &= py::isinstance<py::str>(item) || py::hasattr(item, "__fspath__");
+    }
+  }
+  if (all_paths) {
+    records = path_list(items, "recordings");
+  } else {
+    for (const auto& r : campaign->records) records.push_back(r.name);
+  }
+  return campaign;
+}
+
+FitProblem make_problem(const py::object& recordings, const py::object& model,
+                        const std::string& stiffness, int harmonics, int max_harmonics,
+                        double model_error, const py::object& freq_hz, const py::object& progress) {
+  if (stiffness != "model" && stiffness != "rfs") {
+    throw InputError("stiffness: \"" + stiffness + "\" is not model or rfs");
+  }
+  FitProblem problem;
+  problem.campaign = campaign_of(recordings, freq_hz, progress, problem.records);
+  analysis::FitSetup setup;
+  setup.base_model = model_argument(model);
+  setup.stiffness =
+      stiffness == "rfs" ? analysis::StiffnessSource::Rfs : analysis::StiffnessSource::Model;
+  setup.cost = cost_arguments(harmonics, max_harmonics, model_error);
+  // The σ budget's calibration (harmonic balance sweeps) polls the cost's token: Ctrl-C stops it.
+  run_job(
+      [&](const ReportFn&, const CancelToken& cancel) {
+        analysis::FitSetup cancellable = setup;
+        cancellable.cost.cancel = cancel;
+        problem.prepared = analysis::prepare_fit(*problem.campaign, cancellable);
+      },
+      py::none());
+  return problem;
+}
+
+py::dict run_fit(const FitProblem& problem, const std::string& method, int population,
+                 int generations, double mutation, long evaluations, bool polish,
+                 std::uint64_t seed, int threads, int bootstrap, const py::object& progress) {
+  if (bootstrap < 0) throw InputError("bootstrap: must be ≥ 0");
+  if (evaluations < 10) throw InputError("evaluations: must be at least 10");
+  if (!(mutation >= 0.0 && mutation <= 1.0)) throw InputError("mutation: must lie in [0, 1]");
+  if (population < 2) throw InputError("population: must be at least 2");
+  if (generations < 0) throw InputError("generations: must be ≥ 0");
+  analysis::FitOptions options;
+  options.method = analysis::parse_fit_method(method);
+  options.seed = seed;
+  options.threads = threads;
+  options.max_evaluations = evaluations;
+  options.genetic.population = population;
+  options.genetic.generations = generations;
+  options.genetic.mutation_rate = mutation;
+  options.genetic.elite = analysis::default_elite(population);
+  options.polish_after_genetic = polish;
+  options.uncertainty.bootstrap_replicates = bootstrap;
+  const analysis::EdcObjective& objective = *problem.prepared.objective;
+  const long budget = analysis::evaluation_budget(options);
+  analysis::FitResult fit;
+  run_job(
+      [&](const ReportFn& report, const CancelToken& cancel) {
+        fit = analysis::fit_edc(
+            objective, options,
+            [&](const analysis::FitProgress& p) {
+              ProgressReport r;
+              r.fraction = p.stage == "uncertainty"
+                               ? 1.0
+                               : std::min(1.0, static_cast<double>(p.evaluations) /
+                                                   static_cast<double>(budget));
+              r.extra["stage"] = p.stage;
+              r.extra["evaluations"] = p.evaluations;
+              r.extra["best_weighted_cost"] = p.best_weighted_cost;
+              r.extra["best_theta"] = std::vector<double>(
+                  p.best_theta.data(), p.best_theta.data() + p.best_theta.size());
+              report(r);
+            },
+            cancel);
+      },
+      progress);
+  return to_python(daq::fit_json(fit, objective, problem.records, problem.prepared.notes));
+}
+
+}  // namespace
+
+void bind_fit(py::module_& m) {
+  py::class_<FitProblem>(m, "FitProblem", R"doc(
+A friction fit's problem (fit_setup.h's prepare_fit): the paper's model form (eq. (7), θ of
+eq. (9)) of the base model with the recordings' mass and the chosen stiffness, the usable EDC
+levels of both wells, and the objective: eq. (8) and the σ-weighted cost. Made by prepare_fit().
+)doc")
+      .def_property_readonly(
+          "names", [](const FitProblem& p) { return p.prepared.objective->form().names(); },
+          "Parameter names of θ, e.g. fd_zminus_n, fd_zero_n, fd_zplus_n, ks, c_ns_m, vt_m_s.")
+      .def_property_readonly(
+          "initial_theta",
+          [](const FitProblem& p) { return to_array(p.prepared.objective->form().initial()); },
+          "The form's starting θ (the base model's values), SI units.")
+      .def_property_readonly(
+          "level_count", [](const FitProblem& p) { return p.prepared.objective->level_count(); },
+          "Number of measured levels in the cost.")
+      .def_property_readonly(
+          "sigma_j", [](const FitProblem& p) { return to_array(p.prepared.objective->sigma_j()); },
+          "σ_k of each level [J] (the σ budget, or the fixed floor), groups in order.")
+      .def_property_readonly(
+          "notes", [](const FitProblem& p) { return py::cast(p.prepared.notes); },
+          "What the set-up changed (the recordings' mass, the RFS stiffness).")
+      .def_property_readonly(
+          "records", [](const FitProblem& p) { return py::cast(p.records); },
+          "The records the FIT JSON lists.")
+      .def(
+          "evaluate",
+          [](const FitProblem& p, const py::object& theta_arg) {
+            const Eigen::VectorXd theta = to_vector(theta_arg, "theta");
+            const auto& objective = *p.prepared.objective;
+            if (theta.size() != objective.form().size()) {
+              throw InputError("theta: " + std::to_string(theta.size()) + " values for " +
+                               std::to_string(objective.form().size()) + " parameters");
+            }
+            analysis::EdcEvaluation e;
+            {
+              py::gil_scoped_release release;
+              e = objective.evaluate(theta);
+            }
+            py::dict d;
+            d["ok"] = e.ok;
+            d["message"] = e.message;
+            d["cost_j"] = e.cost_j;
+            d["weighted_cost"] = e.weighted_cost;
+            d["residuals"] = to_array(e.residuals);
+            py::list edc;
+            for (const auto& group : e.edc_mod_j) edc.append(to_array(group));
+            d["edc_mod_j"] = edc;
+            py::dict deviation;
+            deviation["positive"] = e.mean_deviation_pct_positive;
+            deviation["negative"] = e.mean_deviation_pct_negative;
+            d["mean_deviation_pct"] = deviation;
+            return d;
+          },
+          py::arg("theta"),
+          "One evaluation of the cost at θ (SI, in `names` order): cost_j [J] of eq. (8), "
+          "weighted_cost (χ² the fit minimises), residuals (r_k in σ), edc_mod_j (the model's "
+          "EDC per group and level [J]), mean_deviation_pct {positive, negative} [%], ok, "
+          "message. The GIL is released while it runs.")
+      .def(
+          "fit",
+          [](const FitProblem& p, const std::string& method, int population, int generations,
+             double mutation, long evaluations, bool polish, std::uint64_t seed, int threads,
+             int bootstrap, const py::object& progress) {
+            return run_fit(p, method, population, generations, mutation, evaluations, polish, seed,
+                           threads, bootstrap, progress);
+          },
+          py::kw_only(), py::arg("method") = "cmaes", py::arg("population") = 100,
+          py::arg("generations") = 20, py::arg("mutation") = 0.2, py::arg("evaluations") = 2000,
+          py::arg("polish") = false, py::arg("seed") = 1, py::arg("threads") = 0,
+          py::arg("bootstrap") = 0, py::arg("progress") = py::none(),
+          "Runs the fit on this problem; arguments and result as oscilab.fit().");
+
+  m.def(
+      "prepare_fit",
+      [](const py::object& recordings, const py::object& model, const std::string& stiffness,
+         int harmonics, int max_harmonics, double model_error, const py::object& freq_hz,
+         const py::object& progress) {
+        return make_problem(recordings, model, stiffness, harmonics, max_harmonics, model_error,
+                            freq_hz, progress);
+      },
+      py::arg("recordings"), py::kw_only(), py::arg("model") = "paper",
+      py::arg("stiffness") = "model", py::arg("harmonics") = 7, py::arg("max_harmonics") = 63,
+      py::arg("model_error") = -1.0, py::arg("freq_hz") = py::none(),
+      py::arg("progress") = py::none(),
+      R"doc(The fit's problem without running it (a FitProblem: evaluate θ, then fit). Arguments as
+oscilab.fit(); `progress` reports the analysis of paths.)doc");
+
+  m.def(
+      "fit",
+      [](const py::object& recordings, const py::object& model, const std::string& method,
+         int population, int generations, double mutation, long evaluations, bool polish,
+         std::uint64_t seed, int threads, int harmonics, int max_harmonics, double model_error,
+         int bootstrap, const std::string& stiffness, const py::object& freq_hz,
+         const std::string& model_form, const py::object& progress) {
+        if (model_form != "paper") {
+          throw InputError("model_form: unknown form \"" + model_form + "\" (paper)");
+        }
+        const FitProblem problem = make_problem(recordings, model, stiffness, harmonics,
+                                                max_harmonics, model_error, freq_hz, py::none());
+        return run_fit(problem, method, population, generations, mutation, evaluations, polish,
+                       seed, threads, bootstrap, progress);
+      },
+      py::arg("recordings"), py::kw_only(), py::arg("model") = "paper", py::arg("method") = "cmaes",
+      py::arg("population") = 100, py::arg("generations") = 20, py::arg("mutation") = 0.2,
+      py::arg("evaluations") = 2000, py::arg("polish") = false, py::arg("seed") = 1,
+      py::arg("threads") = 0, py::arg("harmonics") = 7, py::arg("max_harmonics") = 63,
+      py::arg("model_error") = -1.0, py::arg("bootstrap") = 0, py::arg("stiffness") = "model",
+      py::arg("freq_hz") = py::none(), py::arg("model_form") = "paper",
+      py::arg("progress") = py::none(),
+      R"doc(Identifies the friction model from the EDCs of stepped-sine records (`oscilab-cli fit`):
+θ of eq. (9) by the paper's genetic algorithm ('ga'), CMA-ES with a BOBYQA polish ('cmaes') or
+BOBYQA alone ('local').
+
+recordings: paths, Recording objects, or an Analysis. model: the base model (mass, stiffness,
+starting friction): a Model, 'paper' or a model JSON path. population, generations, mutation: the
+GA's; polish: BOBYQA after the GA; evaluations: model evaluations of cmaes or local; seed (same
+seed, same result); threads (0: all cores); harmonics: H of the model's harmonic balance;
+max_harmonics: largest reference H of the σ budget; model_error: fixed relative error floor
+(negative: the σ budget); bootstrap: replicates over levels; stiffness: 'model' or 'rfs';
+freq_hz: excitation frequency [Hz] (default: sidecar, else detected).
+progress: callable(info) with fraction, stage, evaluations, best_weighted_cost, best_theta;
+return False to cancel (the result then has status 'cancelled' and the best θ so far).
+Ctrl-C cancels the fit and raises KeyboardInterrupt once it has stopped; the GIL is released.
+
+Returns the FIT JSON of the CLI as a dict: parameters {fd_zminus_n, fd_zero_n, fd_zplus_n, ks,
+c_ns_m, vt_m_s}, cost_j [J], mean_deviation_pct {positive, negative} [%], evaluations, seconds,
+status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
+
+  m.def(
+      "diagnose",
+      [](const py::object& recordings, const py::object& model, std::uint64_t seed, int threads,
+         int harmonics, int max_harmonics, double model_error, double max_seconds, bool edc_only,
+         double bic_threshold, int max_steps, long baseline_evaluations, long candidate_evaluations,
+         const std::string& model_form, const py::object& progress) {
+        if (model_form != "paper") {
+          throw InputError("model_form: unknown form \"" + model_form + "\" (paper)");
+        }
+        if (!(max_seconds >= 0.0)) throw InputError("max_seconds: must be ≥ 0");
+        if (max_steps < 1) throw InputError("max_steps: must be at least 1");
+        if (baseline_evaluations < 10 || candidate_evaluations < 10) {
+          throw InputError("baseline_evaluations, candidate_evaluations: must be at least 10");
+        }
+        std::vector<std::string> records;
+        const auto campaign = campaign_of(recordings, py::none(), py::none(), records);
+        analysis::FitSetup setup;
+        setup.base_model = model_argument(model);
+        setup.cost = cost_arguments(harmonics, max_harmonics, model_error);
+        std::vector<std::string> notes;
+        std::optional<analysis::ModelForm> form;
+        {
+          py::gil_scoped_release release;
+          form = analysis::fit_form(*campaign, setup, notes);
+        }
+        analysis::DiagnosisOptions options;
+        options.cost = setup.cost;
+        options.max_seconds = max_seconds;
+        options.use_fingerprints = !edc_only;
+        options.bic_threshold = bic_threshold;
+        options.max_steps = max_steps;
+        options.baseline_evaluations = baseline_evaluations;
+        options.candidate_evaluations = candidate_evaluations;
+        options.seed = seed;
+        options.threads = threads;
+        analysis::DiagnosisResult result;
+        run_job(
+            [&](const ReportFn& report, const CancelToken& cancel) {
+              result =
+                  analysis::diagnose(*campaign, *form, options, fraction_reporter(report), cancel);
+            },
+            progress);
+        nlohmann::json report = analysis::diagnosis_report_json(result, records, bic_threshold);
+        report["notes"] = notes;
+        py::dict out = to_python(report);
+        if (result.final_form) {
+          out["final_model_object"] = py::cast(result.final_form->build(result.final_theta));
+        }
+        return out;
+      },
+      py::arg("recordings"), py::kw_only(), py::arg("model") = "paper", py::arg("seed") = 1,
+      py::arg("threads") = 0, py::arg("harmonics") = 7, py::arg("max_harmonics") = 63,
+      py::arg("model_error") = -1.0, py::arg("max_seconds") = 120.0, py::arg("edc_only") = false,
+      py::arg("bic_threshold") = 10.0, py::arg("max_steps") = 3,
+      py::arg("baseline_evaluations") = 1500, py::arg("candidate_evaluations") = 600,
+      py::arg("model_form") = "paper", py::arg("progress") = py::none(),
+      R"doc(The model-gap diagnosis (`oscilab-cli diagnose`): fit the paper's form, map where model
+and measurement disagree, refit every candidate effect, accept the best by joint ΔBIC, repeat.
+
+recordings: paths, Recording objects or an Analysis (stepped-sine records of both wells).
+max_seconds: wall-clock bound [s] (0: none); edc_only: compare on the EDC alone; bic_threshold:
+accept when ΔBIC < −this; max_steps: effects added at most; baseline_evaluations,
+candidate_evaluations: model evaluations of those fits; other arguments as fit().
+Returns report.json as a dict: baseline {cost_j ...}, steps [{effect, evidence, cost_before_j,
+cost_after_j}], verdict (an effect name of contract §3, or 'none'), final_model, notes; and
+final_model_object (a Model) when there is one. Ctrl-C stops it (KeyboardInterrupt).)doc");
+}
+
+}  // namespace oscilab::python

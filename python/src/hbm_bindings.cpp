@@ -1,0 +1,227 @@
+// Harmonic balance with pseudo-arclength continuation in the forcing amplitude (§4.2), Floquet
+// stability, folds and period doublings: the continue_branch of `oscilab-cli hbm`.
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "analysis/common/input_error.h"
+#include "analysis/hbm/branch.h"
+#include "analysis/hbm/branch_switching.h"
+#include "analysis/hbm/continuation.h"
+#include "analysis/model/model.h"
+#include "bindings.h"
+#include "python_types.h"
+
+namespace oscilab::python {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+py::dict events_table(const analysis::Branch& branch, analysis::PointMarker kind) {
+  std::vector<double> f0, amp;
+  std::vector<int> index;
+  for (const analysis::BranchEvent& e : branch.events_of(kind)) {
+    f0.push_back(e.f0_n);
+    amp.push_back(e.amp_m);
+    index.push_back(static_cast<int>(e.point_index));
+  }
+  py::dict d;
+  d["f0_n"] = to_array(f0);
+  d["amp_m"] = to_array(amp);
+  d["point_index"] = to_int_array(index);
+  return d;
+}
+
+// The branch as columns named like the branch CSV (write_branch_csv), in continuation order.
+py::dict branch_dict(const analysis::Branch& branch) {
+  const std::size_t n = branch.points.size();
+  std::vector<double> f0(n), amp(n), z1(n), phase(n), edc(n), freq(n), edc_diss(n), mu1_abs(n),
+      mu2_abs(n), mu1_re(n), mu1_im(n), mu2_re(n), mu2_im(n), mean(n);
+  std::vector<int> stable(n), iterations(n);
+  py::list marker;
+  Eigen::MatrixXd coefficients;
+  for (std::size_t i = 0; i < n; ++i) {
+    const analysis::BranchPoint& p = branch.points[i];
+    const analysis::HbmMeasures& m = p.measures;
+    if (i == 0) coefficients.resize(static_cast<Eigen::Index>(n), p.coefficients.size());
+    if (p.coefficients.size() == coefficients.cols()) {
+      coefficients.row(static_cast<Eigen::Index>(i)) = p.coefficients.transpose();
+    }
+    f0[i] = p.f0_n;
+    amp[i] = m.amp_m;
+    z1[i] = std::abs(m.z1_m);
+    phase[i] = std::arg(m.z1_m) + 0.0;
+    edc[i] = m.edc_j + 0.0;
+    stable[i] = p.stability_known && p.floquet.stable ? 1 : 0;
+    freq[i] = p.freq_hz;
+    edc_diss[i] = m.edc_dissipation_j;
+    mean[i] = m.mean_m;
+    if (p.stability_known) {
+      const auto& mu = p.floquet.multipliers;
+      mu1_abs[i] = std::abs(mu[0]);
+      mu2_abs[i] = std::abs(mu[1]);
+      mu1_re[i] = mu[0].real();
+      mu1_im[i] = mu[0].imag();
+      mu2_re[i] = mu[1].real();
+      mu2_im[i] = mu[1].imag();
+    } else {
+      mu1_abs[i] = mu2_abs[i] = mu1_re[i] = mu1_im[i] = mu2_re[i] = mu2_im[i] = kNaN;
+    }
+    marker.append(analysis::marker_name(p.marker));
+    iterations[i] = p.newton_iterations;
+  }
+  py::dict d;
+  d["f0_n"] = to_array(f0);
+  d["amp_m"] = to_array(amp);
+  d["z1_abs_m"] = to_array(z1);
+  d["phase_rad"] = to_array(phase);
+  d["edc_j"] = to_array(edc);
+  d["stable"] = to_int_array(stable);
+  d["freq_hz"] = to_array(freq);
+  d["edc_dissipation_j"] = to_array(edc_diss);
+  d["mu1_abs"] = to_array(mu1_abs);
+  d["mu2_abs"] = to_array(mu2_abs);
+  d["mu1_re"] = to_array(mu1_re);
+  d["mu1_im"] = to_array(mu1_im);
+  d["mu2_re"] = to_array(mu2_re);
+  d["mu2_im"] = to_array(mu2_im);
+  d["marker"] = marker;
+  d["newton_iterations"] = to_int_array(iterations);
+  d["z_mean_m"] = to_array(mean);
+  d["coefficients"] = to_array(coefficients);
+  d["folds"] = events_table(branch, analysis::PointMarker::Fold);
+  d["period_doublings"] = events_table(branch, analysis::PointMarker::PeriodDoubling);
+  d["branch_points"] = events_table(branch, analysis::PointMarker::BranchPoint);
+  py::list events;
+  for (const analysis::BranchEvent& e : branch.events) {
+    py::dict event;
+    event["kind"] = analysis::marker_name(e.kind);
+    event["f0_n"] = e.f0_n;
+    event["freq_hz"] = e.freq_hz;
+    event["amp_m"] = e.amp_m;
+    event["point_index"] = e.point_index;
+    events.append(event);
+  }
+  d["events"] = events;
+  d["status"] = job_status_name(branch.status);
+  d["message"] = branch.message;
+  d["well"] = branch.positive_well ? "positive" : "negative";
+  d["harmonics"] = branch.hbm.harmonics;
+  d["subharmonic"] = branch.hbm.subharmonic;
+  d["samples"] = branch.samples;
+  d["steps_accepted"] = branch.steps_accepted;
+  d["steps_rejected"] = branch.steps_rejected;
+  d["newton_iterations_total"] = branch.newton_iterations;
+  return d;
+}
+
+// The period-doubled branches after `branch`, as `oscilab-cli hbm --follow-period-doubling`
+// follows them: a switch at the first period doubling (switch_at_period_doubling, at most 2000
+// points), and once more at the first one of the new branch (period 4T at most).
+void follow_period_doublings(const analysis::Model& model, const analysis::Branch& branch,
+                             const analysis::ContinuationOptions& options, int period,
+                             const ProgressFn& progress, const CancelToken& cancel,
+                             std::vector<std::pair<int, analysis::PeriodDoublingSwitch>>& out) {
+  const auto flips = branch.events_of(analysis::PointMarker::PeriodDoubling);
+  if (flips.empty() || cancel.cancelled()) return;
+  analysis::PeriodDoublingSwitchOptions switching;
+  switching.continuation = options;
+  switching.continuation.hbm = branch.hbm;
+  switching.continuation.max_points = 2000;
+  analysis::PeriodDoublingSwitch doubled = analysis::switch_at_period_doubling(
+      model, branch.points[flips.front().point_index], switching, progress, cancel);
+  const bool followed = doubled.status == JobStatus::Ok || !doubled.branch.points.empty();
+  out.emplace_back(2 * period, std::move(doubled));  // `branch` may dangle from here on
+  if (followed && 2 * period < 4) {
+    follow_period_doublings(model, out.back().second.branch, options, 2 * period, progress, cancel,
+                            out);
+  }
+}
+
+}  // namespace
+
+void bind_hbm(py::module_& m) {
+  m.def(
+      "hbm_branch",
+      [](const py::object& model_arg, double freq_hz, std::pair<double, double> f0_n,
+         const std::string& well, int harmonics, int subharmonic, int samples, int floquet_steps,
+         bool stability, double max_step, const std::vector<double>& landing,
+         bool follow_period_doubling, const py::object& progress) {
+        const analysis::Model model = model_argument(model_arg);
+        if (well != "positive" && well != "negative") {
+          throw InputError("well: \"" + well + "\" is not positive or negative");
+        }
+        analysis::ContinuationOptions options;
+        options.start = f0_n.first;
+        options.end = f0_n.second;
+        options.freq_hz = freq_hz;
+        options.positive_well = well == "positive";
+        options.hbm.harmonics = harmonics;
+        options.hbm.subharmonic = subharmonic;
+        options.hbm.samples = samples;
+        options.floquet.steps_per_forcing_period = floquet_steps;
+        options.stability = stability;
+        options.max_step = max_step;
+        options.initial_step = std::min(options.initial_step, max_step);
+        options.landing = landing;
+        if (follow_period_doubling && !stability) {
+          throw InputError(
+              "follow_period_doubling: period doublings are found from the Floquet multipliers; "
+              "drop stability=False");
+        }
+        analysis::Branch branch;
+        std::vector<std::pair<int, analysis::PeriodDoublingSwitch>> doubled;
+        run_job(
+            [&](const ReportFn& report, const CancelToken& cancel) {
+              branch = analysis::continue_branch(model, options, fraction_reporter(report), cancel);
+              if (follow_period_doubling) {
+                follow_period_doublings(model, branch, options, subharmonic,
+                                        fraction_reporter(report), cancel, doubled);
+              }
+            },
+            progress);
+        py::dict d = branch_dict(branch);
+        d["period"] = subharmonic;
+        if (follow_period_doubling) {
+          py::list list;
+          for (const auto& [period, s] : doubled) {
+            py::dict b = branch_dict(s.branch);
+            b["period"] = period;
+            b["status"] = job_status_name(s.status);
+            b["message"] = s.message;
+            b["f0_flip_n"] = s.f0_flip_n;
+            b["f0_pitchfork_n"] = s.f0_pitchfork_n;
+            list.append(b);
+          }
+          d["period_doubled"] = list;
+        }
+        return d;
+      },
+      py::arg("model") = "paper", py::kw_only(), py::arg("freq_hz") = 9.0,
+      py::arg("f0_n") = std::pair<double, double>(0.1, 3.7), py::arg("well") = "positive",
+      py::arg("harmonics") = 7, py::arg("subharmonic") = 1, py::arg("samples") = 0,
+      py::arg("floquet_steps") = 1024, py::arg("stability") = true, py::arg("max_step") = 0.1,
+      py::arg("landing") = std::vector<double>{}, py::arg("follow_period_doubling") = false,
+      py::arg("progress") = py::none(),
+      R"doc(Harmonic balance with pseudo-arclength continuation in the forcing amplitude
+(`oscilab-cli hbm`): the periodic response of the model at freq_hz [Hz] from f0_n[0] to f0_n[1]
+[N], growing from the stable equilibrium of `well`, folds followed, not jumped.
+
+harmonics: H; subharmonic: ν (period-νT ansatz); samples: AFT samples per period (0: default);
+floquet_steps: RK4 steps per forcing period of the monodromy; stability: Floquet multipliers;
+max_step: largest scaled arc-length step; landing: f0 values [N] to land on exactly.
+Returns a dict of arrays in continuation order named like the branch CSV: f0_n, amp_m, z1_abs_m,
+phase_rad, edc_j, stable (1/0), freq_hz, edc_dissipation_j, mu1_abs, mu2_abs, mu1_re, mu1_im,
+mu2_re, mu2_im (NaN without stability), marker, newton_iterations; and z_mean_m, coefficients
+(points × [a0, a1, b1, …]), folds, period_doublings, branch_points ({f0_n, amp_m, point_index}
+arrays), events, status, message, well, harmonics, subharmonic, samples, steps_accepted,
+steps_rejected, period (1 for ν = 1). A continuation that stops early is status != 'ok' with the
+points so far. follow_period_doubling: at the first period doubling switch onto the period-2
+branch and continue it over the f0 range (and once more at its first period doubling: period 4),
+as `hbm --follow-period-doubling`; the result then has period_doubled, a list of such dicts with
+period (in forcing periods), f0_flip_n and f0_pitchfork_n [N].)doc");
+}
+
+}  // namespace oscilab::python

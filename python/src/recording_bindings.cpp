@@ -1,0 +1,247 @@
+// Recordings: read any format read_recording knows (libsndfile containers, CSV and the readers
+// behind daq/recording/format_reader.h), build one from arrays and a sidecar, write it.
+#include <string>
+
+#include "analysis/common/input_error.h"
+#include "bindings.h"
+#include "daq/recording/recording.h"
+#include "daq/recording/recording_summary.h"
+#include "daq/recording/sidecar.h"
+
+namespace oscilab::python {
+namespace {
+
+using daq::Recording;
+
+daq::Sidecar sidecar_argument(const py::handle& object) {
+  return daq::parse_sidecar(json_argument(object, "sidecar"), "sidecar");
+}
+
+Recording make_recording(const py::handle& sidecar_object, const py::handle& samples) {
+  Recording recording;
+  recording.sidecar = sidecar_argument(sidecar_object);
+  const auto& channels = recording.sidecar.channels;
+  const auto n_channels = static_cast<Eigen::Index>(channels.size());
+  if (py::isinstance<py::dict>(samples)) {
+    const py::dict by_name = samples.cast<py::dict>();
+    Eigen::Index rows = -1;
+    for (Eigen::Index c = 0; c < n_channels; ++c) {
+      const std::string& name = channels[static_cast<std::size_t>(c)].name;
+      if (!by_name.contains(name)) {
+        throw InputError("samples: no array for the sidecar's channel \"" + name + "\"");
+      }
+      const Eigen::VectorXd column = to_vector(by_name[py::str(name)], "samples[\"" + name + "\"]");
+      if (rows < 0) {
+        rows = column.size();
+        recording.samples_si.resize(rows, n_channels);
+      } else if (column.size() != rows) {
+        throw InputError("samples[\"" + name + "\"]: " + std::to_string(column.size()) +
+                         " samples, the first channel has " + std::to_string(rows));
+      }
+      recording.samples_si.col(c) = column;
+    }
+    if (by_name.size() != channels.size()) {
+      throw InputError("samples: " + std::to_string(by_name.size()) + " arrays for " +
+                       std::to_string(channels.size()) + " sidecar channels");
+    }
+    return recording;
+  }
+  py::array_t<double, py::array::c_style | py::array::forcecast> array;
+  try {
+    array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(samples);
+  } catch (const py::error_already_set&) {
+    throw InputError("samples: not an array of numbers");
+  }
+  if (!array || array.ndim() != 2) {
+    throw InputError("samples: must be a 2-D array (samples × channels) or a dict of arrays");
+  }
+  if (array.shape(1) != n_channels) {
+    throw InputError("samples: " + std::to_string(array.shape(1)) + " columns for " +
+                     std::to_string(n_channels) + " sidecar channels");
+  }
+  const auto view = array.unchecked<2>();
+  recording.samples_si.resize(array.shape(0), n_channels);
+  for (py::ssize_t r = 0; r < array.shape(0); ++r) {
+    for (py::ssize_t c = 0; c < n_channels; ++c) recording.samples_si(r, c) = view(r, c);
+  }
+  return recording;
+}
+
+daq::ChannelRole parse_role(const std::string& role) {
+  for (daq::ChannelRole r : {daq::ChannelRole::Base, daq::ChannelRole::Mass,
+                             daq::ChannelRole::Relative, daq::ChannelRole::Force}) {
+    if (daq::to_string(r) == role) return r;
+  }
+  throw InputError("role: unknown role \"" + role + "\" (base, mass, relative, force)");
+}
+
+}  // namespace
+
+void bind_recording(py::module_& m) {
+  py::class_<Recording>(m, "Recording", R"doc(
+A recording in memory: the sidecar (contract §1) and the samples in SI units (m/s², m/s, m, N),
+one column per sidecar channel, one row per sample at ``sample_rate_hz``.
+
+``Recording(sidecar, samples)`` builds one: ``sidecar`` is a dict (or JSON text) in the sidecar
+format of docs/contracts.md §1 (``sample_rate_hz``, ``mass_kg``, ``channels`` with ``name``,
+``role``, ``quantity``, ``unit``, ``scale`` ...), ``samples`` a 2-D array (samples × channels) in
+SI or a dict channel name → 1-D array. Stored value = (SI / unit factor − offset) / scale when
+written. Raises ValueError with the reader's message for an invalid sidecar.
+)doc")
+      .def(py::init([](const py::object& sidecar, const py::object& samples) {
+             return make_recording(sidecar, samples);
+           }),
+           py::arg("sidecar"), py::arg("samples"))
+      .def_property(
+          "sidecar", [](const Recording& r) { return to_python(daq::sidecar_to_json(r.sidecar)); },
+          [](Recording& r, const py::object& sidecar) {
+            daq::Sidecar parsed = sidecar_argument(sidecar);
+            if (parsed.channels.size() != static_cast<std::size_t>(r.samples_si.cols())) {
+              throw InputError("sidecar: " + std::to_string(parsed.channels.size()) +
+                               " channels for " + std::to_string(r.samples_si.cols()) +
+                               " sample columns");
+            }
+            r.sidecar = std::move(parsed);
+          },
+          "The sidecar as a dict (contract §1 keys); assign a dict to replace it.")
+      .def_property_readonly(
+          "sample_rate_hz", [](const Recording& r) { return r.sidecar.sample_rate_hz; },
+          "Sample rate [Hz].")
+      .def_property_readonly(
+          "mass_kg",
+          [](const Recording& r) -> py::object {
+            return r.sidecar.mass_kg ? py::object(py::float_(*r.sidecar.mass_kg))
+                                     : py::object(py::none());
+          },
+          "Mass of the oscillator [kg], or None when the sidecar does not give it.")
+      .def_property_readonly(
+          "channel_names",
+          [](const Recording& r) {
+            py::list names;
+            for (const auto& c : r.sidecar.channels) names.append(c.name);
+            return names;
+          },
+          "Channel names in column order.")
+      .def_property_readonly(
+          "channels",
+          [](const Recording& r) { return to_python(daq::sidecar_to_json(r.sidecar)["channels"]); },
+          "The sidecar's channel descriptions (list of dicts: name, role, quantity, unit, scale, "
+          "offset, sensor ...).")
+      .def_property_readonly(
+          "samples", [](const Recording& r) { return to_array(r.samples_si); },
+          "Samples in SI units, 2-D array (samples × channels), a copy.")
+      .def_property_readonly(
+          "samples_stored",
+          [](const Recording& r) -> py::object {
+            if (r.samples_stored.size() == 0) return py::none();
+            return to_array(r.samples_stored);
+          },
+          "The values exactly as the file stores them (before calibration), or None for a "
+          "recording made in memory.")
+      .def_property_readonly(
+          "t_s",
+          [](const Recording& r) {
+            Eigen::VectorXd t(r.sample_count());
+            for (Eigen::Index i = 0; i < t.size(); ++i) {
+              t[i] = static_cast<double>(i) / r.sidecar.sample_rate_hz;
+            }
+            return to_array(t);
+          },
+          "Sample times t = i / sample_rate_hz [s].")
+      .def_property_readonly(
+          "source_path", [](const Recording& r) { return r.source_path; },
+          "Where it was read from ('' when made in memory).")
+      .def_property_readonly(
+          "container", [](const Recording& r) { return r.container; },
+          "The file's container as the reader saw it, e.g. 'FLAC ...' or 'CSV'.")
+      .def_property_readonly("duration_s", &Recording::duration_s, "Duration [s].")
+      .def_property_readonly("sample_count", &Recording::sample_count, "Samples per channel.")
+      .def(
+          "channel",
+          [](const Recording& r, const std::string& name) {
+            const int index = r.channel_index(name);
+            if (index < 0) throw InputError("channel: no channel named \"" + name + "\"");
+            return to_array(Eigen::VectorXd(r.samples_si.col(index)));
+          },
+          py::arg("name"), "The SI samples of the channel named `name` (1-D array).")
+      .def(
+          "channel_by_role",
+          [](const Recording& r, const std::string& role) {
+            const int index = r.channel_index(parse_role(role));
+            if (index < 0)
+              throw InputError("channel_by_role: no channel with role \"" + role + "\"");
+            return to_array(Eigen::VectorXd(r.samples_si.col(index)));
+          },
+          py::arg("role"),
+          "The SI samples of the first channel with `role` (base, mass, relative, force).")
+      .def(
+          "__getitem__",
+          [](const Recording& r, const std::string& name) {
+            const int index = r.channel_index(name);
+            if (index < 0) throw py::key_error(name);
+            return to_array(Eigen::VectorXd(r.samples_si.col(index)));
+          },
+          py::arg("name"), "recording['y']: the SI samples of channel 'y'.")
+      .def(
+          "write",
+          [](const Recording& r, const py::object& path) {
+            const std::string p = path_string(path);
+            py::gil_scoped_release release;
+            daq::write_recording(r, p);
+          },
+          py::arg("path"),
+          "Writes samples and sidecar (same stem, .json); the container follows the extension "
+          "(.wav .flac .w64 .rf64 .aiff .caf .csv). Same as write_recording(recording, path).")
+      .def("describe", &daq::describe_recording,
+           "What the recording holds, as text: the output of `oscilab-cli info`.")
+      .def("__repr__", [](const Recording& r) {
+        return "<oscilab.Recording " + std::to_string(r.samples_si.cols()) + " channels, " +
+               std::to_string(r.sample_count()) + " samples at " +
+               std::to_string(r.sidecar.sample_rate_hz) + " Hz" +
+               (r.source_path.empty() ? std::string() : ", " + r.source_path) + ">";
+      });
+
+  m.def(
+      "read_recording",
+      [](const py::object& path, const py::object& sidecar) {
+        const std::string p = path_string(path);
+        if (sidecar.is_none()) {
+          py::gil_scoped_release release;
+          return daq::read_recording(p);
+        }
+        const daq::Sidecar given = sidecar_argument(sidecar);
+        py::gil_scoped_release release;
+        return daq::read_recording(p, given);
+      },
+      py::arg("path"), py::arg("sidecar") = py::none(),
+      R"doc(Reads a recording with its JSON sidecar of the same stem: any container the core reads
+(WAV, FLAC, W64, RF64, AIFF, CAF, CSV, and the other formats behind its readers). With
+``sidecar`` (a dict), that sidecar describes the file instead of the one beside it. Samples come
+back in SI units (calibration and unit conversion applied).
+
+Raises FileNotFoundError / OSError when the file cannot be found or opened, ValueError with the
+reader's one-line message (the CLI's) for anything it cannot trust.)doc");
+  m.def(
+      "write_recording",
+      [](const Recording& recording, const py::object& path) {
+        const std::string p = path_string(path);
+        py::gil_scoped_release release;
+        daq::write_recording(recording, p);
+      },
+      py::arg("recording"), py::arg("path"),
+      "Writes a recording and its sidecar (same stem, .json); the container follows the "
+      "extension. Both files are renamed into place, so a failure leaves no half-written "
+      "recording. Raises OSError when the file cannot be written.");
+  m.def(
+      "describe_recording",
+      [](const py::object& path) {
+        const std::string p = path_string(path);
+        py::gil_scoped_release release;
+        return daq::describe_recording(daq::read_recording(p));
+      },
+      py::arg("path"),
+      "The text `oscilab-cli info PATH` prints: channels, units, rate, "
+      "duration, excitation.");
+}
+
+}  // namespace oscilab::python

@@ -1,0 +1,99 @@
+"""Harmonic balance: hbm_branch() equals oscilab-cli hbm's branch CSV (printed to 10 digits)."""
+
+import math
+
+import numpy as np
+import pytest
+
+import oscilab
+from conftest import read_csv, run_cli
+
+COLUMNS = ["f0_n", "amp_m", "z1_abs_m", "phase_rad", "edc_j", "stable", "freq_hz",
+           "edc_dissipation_j", "mu1_abs", "mu2_abs", "mu1_re", "mu1_im", "mu2_re", "mu2_im",
+           "marker", "newton_iterations"]
+
+
+def cxx_print(value):
+    """What an ostream with precision(10) writes for a double (the branch CSV)."""
+    text = "%.10g" % value
+    return text
+
+
+@pytest.fixture(scope="module")
+def branches(tmp_path_factory):
+    out = tmp_path_factory.mktemp("hbm") / "branch.csv"
+    run_cli("hbm", "--model", "paper", "--freq", 9, "--f0", "0.1:2.0", "--well", "positive",
+            "--harmonics", 5, "--out", out)
+    return read_csv(out), oscilab.hbm_branch("paper", freq_hz=9.0, f0_n=(0.1, 2.0),
+                                             well="positive", harmonics=5)
+
+
+def test_branch_equals_cli_csv(branches):
+    rows, branch = branches
+    assert list(rows[0].keys()) == COLUMNS
+    assert len(branch["f0_n"]) == len(rows)
+    for name in COLUMNS:
+        for i, row in enumerate(rows):
+            value = branch[name][i]
+            if name in ("stable", "newton_iterations"):
+                assert str(int(value)) == row[name], (name, i)
+            elif name == "marker":
+                assert value == row[name]
+            elif math.isnan(value):
+                assert row[name] == ""
+            else:
+                assert cxx_print(value) == row[name], (name, i, value, row[name])
+
+
+def test_folds_and_stability_as_arrays(branches):
+    _, branch = branches
+    assert branch["status"] == "ok"
+    folds = branch["folds"]
+    assert len(folds["f0_n"]) == len(folds["point_index"])
+    for k, i in enumerate(folds["point_index"]):
+        assert branch["marker"][i] == "fold"
+        assert branch["f0_n"][i] == pytest.approx(folds["f0_n"][k])
+    # Stable points: every Floquet multiplier inside the unit circle.
+    stable = branch["stable"] == 1
+    assert np.all(branch["mu1_abs"][stable] < 1.0)
+    assert branch["coefficients"].shape == (len(branch["f0_n"]), 2 * 5 + 1)
+    assert branch["marker"][0] == "start" and branch["marker"][-1] == "end"
+
+
+def test_bad_options_raise_value_error():
+    with pytest.raises(ValueError, match="well"):
+        oscilab.hbm_branch(well="both")
+    with pytest.raises(ValueError):
+        oscilab.hbm_branch(harmonics=0)
+
+
+def assert_branch_prints_as(branch, rows):
+    assert len(branch["f0_n"]) == len(rows)
+    for name in COLUMNS:
+        for i, row in enumerate(rows):
+            value = branch[name][i]
+            if name in ("stable", "newton_iterations"):
+                assert str(int(value)) == row[name], (name, i)
+            elif name == "marker":
+                assert value == row[name]
+            elif math.isnan(value):
+                assert row[name] == ""
+            else:
+                assert cxx_print(value) == row[name], (name, i, value, row[name])
+
+
+def test_period_doubled_branches_equal_cli_follow_period_doubling(tmp_path):
+    out = tmp_path / "pd.csv"
+    run_cli("hbm", "--f0", "3.0:3.7", "--well", "positive", "--follow-period-doubling",
+            "--out", out)
+    rows = read_csv(out)
+    branch = oscilab.hbm_branch("paper", f0_n=(3.0, 3.7), follow_period_doubling=True)
+    assert len(branch["period_doublings"]["f0_n"]) >= 1
+    assert_branch_prints_as(branch, [r for r in rows if r["period"] == "1"])
+    followed = [b for b in branch["period_doubled"] if len(b["f0_n"]) > 0]
+    assert followed and followed[0]["period"] == 2
+    assert followed[0]["f0_pitchfork_n"] < followed[0]["f0_flip_n"]
+    for b in followed:
+        assert_branch_prints_as(b, [r for r in rows if r["period"] == str(b["period"])])
+    with pytest.raises(ValueError, match="follow_period_doubling"):
+        oscilab.hbm_branch(follow_period_doubling=True, stability=False)
