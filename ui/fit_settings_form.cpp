@@ -87,12 +87,12 @@ analysis::FitSetup FitSettingsForm::fit_setup() const {
   setup.stiffness = stiffness_box_->currentData().toString() == "rfs"
                         ? analysis::StiffnessSource::Rfs
                         : analysis::StiffnessSource::Model;
-  setup.cost.hbm.harmonics = harmonics_box_->value();
-  setup.cost.max_harmonics = std::max(setup.cost.max_harmonics, setup.cost.hbm.harmonics);
   // The spin box's minimum reads "σ budget" (a negative floor, as --model-error takes it).
-  setup.cost.model_error_rel = model_error_box_->value() <= model_error_box_->minimum()
-                                   ? -1.0
-                                   : 0.01 * model_error_box_->value();
+  setup.cost = analysis::cost_settings(
+      harmonics_box_->value(), analysis::EdcCostSettings().max_harmonics,
+      model_error_box_->value() <= model_error_box_->minimum() ? -1.0
+                                                               : 0.01 * model_error_box_->value(),
+      "Harmonics (H)", "reference H");
   return setup;
 }
 

@@ -261,4 +261,30 @@ PeriodDoublingSwitch switch_at_period_doubling(const Model& model, const BranchP
   return out;
 }
 
+std::vector<PeriodDoublingSwitch> follow_period_doublings(const Model& model, const Branch& branch,
+                                                          const ContinuationOptions& options,
+                                                          const ProgressFn& progress,
+                                                          const CancelToken& cancel) {
+  constexpr int kMaxSubharmonic = 4;  // period 4T at most
+  constexpr int kMaxPoints = 2000;
+  std::vector<PeriodDoublingSwitch> out;
+  out.reserve(kMaxSubharmonic);  // `from` points into `out`: no reallocation
+  const Branch* from = &branch;
+  for (;;) {
+    const auto flips = from->events_of(PointMarker::PeriodDoubling);
+    if (flips.empty() || cancel.cancelled()) break;
+    PeriodDoublingSwitchOptions switching;
+    switching.continuation = options;
+    switching.continuation.hbm = from->hbm;
+    switching.continuation.max_points = kMaxPoints;
+    out.push_back(switch_at_period_doubling(model, from->points[flips.front().point_index],
+                                            switching, progress, cancel));
+    const PeriodDoublingSwitch& doubled = out.back();
+    const bool followed = doubled.status == JobStatus::Ok || !doubled.branch.points.empty();
+    if (!followed || doubled.subharmonic >= kMaxSubharmonic) break;
+    from = &out.back().branch;
+  }
+  return out;
+}
+
 }  // namespace oscilab::analysis

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -89,6 +90,18 @@ PeriodDoublingSwitch switch_at_period_doubling(const Model& model, const BranchP
                                                const PeriodDoublingSwitchOptions& options,
                                                const ProgressFn& progress = {},
                                                const CancelToken& cancel = {});
+
+/// The period-doubling cascade after `branch` (`hbm --follow-period-doubling`, the app and the
+/// Python module): a switch at the first period doubling of `branch`, then once more at the first
+/// one of the new branch, up to the period-4T branch. Each new branch is continued with
+/// `options` (its f0 range, frequency, well, steps) to at most 2000 points: a truncated balance
+/// can make a period-4T branch wind back and forth (docs/hbm.md). The switches are returned in
+/// order, each with its status: one that found no branch (status not Ok, no points) ends the
+/// cascade. Empty when `branch` has no period doubling.
+std::vector<PeriodDoublingSwitch> follow_period_doublings(const Model& model, const Branch& branch,
+                                                          const ContinuationOptions& options,
+                                                          const ProgressFn& progress = {},
+                                                          const CancelToken& cancel = {});
 
 /// The coefficients of a ν-ansatz orbit in the 2ν ansatz: base harmonic k becomes 2k, the odd
 /// ones are zero. Same orbit, described over twice its period.

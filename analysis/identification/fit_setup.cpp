@@ -4,9 +4,22 @@
 #include <cmath>
 #include <cstdio>
 
+#include "analysis/common/input_error.h"
 #include "analysis/identification/edc_dataset.h"
 
 namespace oscilab::analysis {
+
+EdcCostSettings cost_settings(int harmonics, int max_harmonics, double model_error_rel,
+                              const std::string& harmonics_name,
+                              const std::string& max_harmonics_name) {
+  if (harmonics < 1) throw InputError(harmonics_name + ": must be at least 1");
+  if (max_harmonics < 1) throw InputError(max_harmonics_name + ": must be at least 1");
+  EdcCostSettings cost;
+  cost.hbm.harmonics = harmonics;
+  cost.max_harmonics = std::max(max_harmonics, harmonics);
+  cost.model_error_rel = model_error_rel;
+  return cost;
+}
 
 ModelForm fit_form(const CampaignAnalysis& campaign, const FitSetup& setup,
                    std::vector<std::string>& notes) {

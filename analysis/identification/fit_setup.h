@@ -24,6 +24,16 @@ struct FitSetup {
   EdcCostSettings cost;
 };
 
+/// How a fit weighs the levels, from a user's three choices (the CLI's --harmonics,
+/// --max-harmonics and --model-error, the app's form, Python's keywords): H of the model's
+/// harmonic balance in every evaluation, the largest reference H of the σ budget's defect
+/// correction (at least H), and a fixed relative model-error floor (negative: the σ budget).
+/// The messages name the first two choices as the front end spells them ("--harmonics",
+/// "--max-harmonics" on the command line). Throws InputError naming the choice for an H below 1.
+EdcCostSettings cost_settings(int harmonics, int max_harmonics, double model_error_rel,
+                              const std::string& harmonics_name,
+                              const std::string& max_harmonics_name);
+
 /// A fit's problem, ready to search: the objective over the campaign's levels and what was
 /// changed on the way (campaign_model's notes: the recordings' mass, the RFS stiffness).
 struct PreparedFit {

@@ -1,8 +1,6 @@
 #include "app/cli/cost_options.h"
 
-#include <algorithm>
-
-#include "analysis/common/input_error.h"
+#include "analysis/identification/fit_setup.h"
 
 namespace oscilab::cli {
 
@@ -24,13 +22,8 @@ void add_cost_options(CLI::App* command, CostOptions& options) {
 }
 
 analysis::EdcCostSettings cost_settings(const CostOptions& options) {
-  if (options.harmonics < 1) throw InputError("--harmonics: must be at least 1");
-  if (options.max_harmonics < 1) throw InputError("--max-harmonics: must be at least 1");
-  analysis::EdcCostSettings cost;
-  cost.hbm.harmonics = options.harmonics;
-  cost.max_harmonics = std::max(options.max_harmonics, options.harmonics);
-  cost.model_error_rel = options.model_error;
-  return cost;
+  return analysis::cost_settings(options.harmonics, options.max_harmonics, options.model_error,
+                                 "--harmonics", "--max-harmonics");
 }
 
 }  // namespace oscilab::cli

@@ -46,31 +46,21 @@ struct HbmCommandOptions {
 using figures::CsvBranch;
 using figures::NamedBranch;
 
-// Switches onto the period-doubled branch at the first period doubling of `branch` (ansatz ν)
-// and, once more, at the first one of the new branch (period 4T at most), appending them to `out`.
+// Follows the period-doubling cascade of `branch` (analysis::follow_period_doublings), says what
+// each switch found, and appends the new branches to `out` and `csv`.
 void follow_period_doublings(const analysis::Model& model, const analysis::Branch& branch,
                              const analysis::ContinuationOptions& options, const std::string& well,
                              std::vector<std::unique_ptr<analysis::Branch>>& out,
                              std::vector<CsvBranch>& csv) {
-  const auto flips = branch.events_of(analysis::PointMarker::PeriodDoubling);
-  if (flips.empty()) return;
-  const analysis::BranchEvent& event = flips.front();
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<analysis::PeriodDoublingSwitch> switches;
   {
-    analysis::PeriodDoublingSwitchOptions switching;
-    switching.continuation = options;
-    switching.continuation.hbm = branch.hbm;
-    // A truncated balance can make a period-4T branch wind back and forth (H = 7: docs/hbm.md);
-    // bound the work instead of running to the default 20000 points.
-    switching.continuation.max_points = 2000;
-    const auto start = std::chrono::steady_clock::now();
-    analysis::PeriodDoublingSwitch doubled;
-    {
-      ProgressBar bar("period " + std::to_string(2 * branch.hbm.subharmonic) + " " + well);
-      doubled = analysis::switch_at_period_doubling(model, branch.points[event.point_index],
-                                                    switching, bar.callback());
-    }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ProgressBar bar("period doublings " + well);
+    switches = analysis::follow_period_doublings(model, branch, options, bar.callback());
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (analysis::PeriodDoublingSwitch& doubled : switches) {
     const int period = doubled.subharmonic;
     if (doubled.status != JobStatus::Ok && doubled.branch.points.empty()) {
       std::printf("period-%d branch (%s well): not followed: %s\n", period, well.c_str(),
@@ -79,9 +69,9 @@ void follow_period_doublings(const analysis::Model& model, const analysis::Branc
     }
     std::printf(
         "period-%d branch (%s well): starts at f0 = %.6f N (harmonic-balance pitchfork; "
-        "Floquet flip at %.6f N), %zu points to f0 = %.6f N, %.1f ms\n",
+        "Floquet flip at %.6f N), %zu points to f0 = %.6f N\n",
         period, well.c_str(), doubled.f0_pitchfork_n, doubled.f0_flip_n,
-        doubled.branch.points.size(), doubled.branch.points.back().f0_n, seconds * 1e3);
+        doubled.branch.points.size(), doubled.branch.points.back().f0_n);
     for (const analysis::BranchEvent& e : doubled.branch.events) {
       if (e.point_index == 0) continue;  // the start itself
       std::printf("  %-16s f0 = %.6f N  amp = %.6g m\n", analysis::marker_name(e.kind), e.f0_n,
@@ -92,8 +82,8 @@ void follow_period_doublings(const analysis::Model& model, const analysis::Branc
     }
     out.push_back(std::make_unique<analysis::Branch>(std::move(doubled.branch)));
     csv.push_back({out.back().get(), well, period});
-    if (period < 4) follow_period_doublings(model, *out.back(), options, well, out, csv);
   }
+  if (!switches.empty()) std::printf("period doublings followed in %.1f ms\n", seconds * 1e3);
 }
 
 void run(const HbmCommandOptions& o) {

@@ -20,18 +20,6 @@
 namespace oscilab::python {
 namespace {
 
-// The cost options shared by fit and diagnose (the CLI's --harmonics, --max-harmonics,
-// --model-error, checked as cost_settings checks them).
-analysis::EdcCostSettings cost_arguments(int harmonics, int max_harmonics, double model_error) {
-  if (harmonics < 1) throw InputError("harmonics: must be at least 1");
-  if (max_harmonics < 1) throw InputError("max_harmonics: must be at least 1");
-  analysis::EdcCostSettings cost;
-  cost.hbm.harmonics = harmonics;
-  cost.max_harmonics = std::max(max_harmonics, harmonics);
-  cost.model_error_rel = model_error;
-  return cost;
-}
-
 // Recordings (paths, Recording objects) or an Analysis → the analysis, and the names the JSON
 // lists as records (the paths as given, else the records' names).
 std::shared_ptr<const analysis::CampaignAnalysis> campaign_of(const py::object& recordings,
@@ -77,7 +65,8 @@ FitProblem make_problem(const py::object& recordings, const py::object& model,
   setup.base_model = model_argument(model);
   setup.stiffness =
       stiffness == "rfs" ? analysis::StiffnessSource::Rfs : analysis::StiffnessSource::Model;
-  setup.cost = cost_arguments(harmonics, max_harmonics, model_error);
+  setup.cost =
+      analysis::cost_settings(harmonics, max_harmonics, model_error, "harmonics", "max_harmonics");
   // The σ budget's calibration (harmonic balance sweeps) polls the cost's token: Ctrl-C stops it.
   run_job(
       [&](const ReportFn&, const CancelToken& cancel) {
@@ -283,7 +272,8 @@ status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
         const auto campaign = campaign_of(recordings, py::none(), py::none(), records);
         analysis::FitSetup setup;
         setup.base_model = model_argument(model);
-        setup.cost = cost_arguments(harmonics, max_harmonics, model_error);
+        setup.cost = analysis::cost_settings(harmonics, max_harmonics, model_error, "harmonics",
+                                             "max_harmonics");
         std::vector<std::string> notes;
         std::optional<analysis::ModelForm> form;
         {

@@ -117,29 +117,6 @@ py::dict branch_dict(const analysis::Branch& branch) {
   return d;
 }
 
-// The period-doubled branches after `branch`, as `oscilab-cli hbm --follow-period-doubling`
-// follows them: a switch at the first period doubling (switch_at_period_doubling, at most 2000
-// points), and once more at the first one of the new branch (period 4T at most).
-void follow_period_doublings(const analysis::Model& model, const analysis::Branch& branch,
-                             const analysis::ContinuationOptions& options, int period,
-                             const ProgressFn& progress, const CancelToken& cancel,
-                             std::vector<std::pair<int, analysis::PeriodDoublingSwitch>>& out) {
-  const auto flips = branch.events_of(analysis::PointMarker::PeriodDoubling);
-  if (flips.empty() || cancel.cancelled()) return;
-  analysis::PeriodDoublingSwitchOptions switching;
-  switching.continuation = options;
-  switching.continuation.hbm = branch.hbm;
-  switching.continuation.max_points = 2000;
-  analysis::PeriodDoublingSwitch doubled = analysis::switch_at_period_doubling(
-      model, branch.points[flips.front().point_index], switching, progress, cancel);
-  const bool followed = doubled.status == JobStatus::Ok || !doubled.branch.points.empty();
-  out.emplace_back(2 * period, std::move(doubled));  // `branch` may dangle from here on
-  if (followed && 2 * period < 4) {
-    follow_period_doublings(model, out.back().second.branch, options, 2 * period, progress, cancel,
-                            out);
-  }
-}
-
 }  // namespace
 
 void bind_hbm(py::module_& m) {
@@ -172,13 +149,13 @@ void bind_hbm(py::module_& m) {
               "drop stability=False");
         }
         analysis::Branch branch;
-        std::vector<std::pair<int, analysis::PeriodDoublingSwitch>> doubled;
+        std::vector<analysis::PeriodDoublingSwitch> doubled;
         run_job(
             [&](const ReportFn& report, const CancelToken& cancel) {
               branch = analysis::continue_branch(model, options, fraction_reporter(report), cancel);
               if (follow_period_doubling) {
-                follow_period_doublings(model, branch, options, subharmonic,
-                                        fraction_reporter(report), cancel, doubled);
+                doubled = analysis::follow_period_doublings(model, branch, options,
+                                                            fraction_reporter(report), cancel);
               }
             },
             progress);
@@ -186,9 +163,9 @@ void bind_hbm(py::module_& m) {
         d["period"] = subharmonic;
         if (follow_period_doubling) {
           py::list list;
-          for (const auto& [period, s] : doubled) {
+          for (const analysis::PeriodDoublingSwitch& s : doubled) {
             py::dict b = branch_dict(s.branch);
-            b["period"] = period;
+            b["period"] = s.subharmonic;
             b["status"] = job_status_name(s.status);
             b["message"] = s.message;
             b["f0_flip_n"] = s.f0_flip_n;

@@ -159,6 +159,40 @@ TEST(BranchSwitching, PeriodTwoOrbitMatchesTheTimeSimulationBifurcationMap) {
   }
 }
 
+// The cascade starts with the same switch as switch_at_period_doubling from the branch's first
+// flip, each further branch starts at a flip of the one before at twice its sub-harmonic, and it
+// ends at period 4T; a branch without a period doubling has no cascade.
+TEST(BranchSwitching, TheCascadeFollowsEachFlipToPeriodFourAtMost) {
+  const PeriodTwo& two = period_two();
+  ASSERT_EQ(two.doubled.status, JobStatus::Ok) << two.doubled.message;
+  ContinuationOptions options;
+  options.freq_hz = 9.0;
+  options.start = 3.3;
+  options.end = 3.7;
+  const std::vector<PeriodDoublingSwitch> cascade =
+      follow_period_doublings(paper_model(), two.period_one, options);
+  ASSERT_FALSE(cascade.empty());
+  ASSERT_LE(cascade.size(), 2u);
+  EXPECT_EQ(cascade[0].subharmonic, 2);
+  EXPECT_EQ(cascade[0].f0_flip_n, two.doubled.f0_flip_n);
+  EXPECT_NEAR(cascade[0].f0_pitchfork_n, two.doubled.f0_pitchfork_n, 1e-9);
+  if (cascade.size() == 2) {
+    EXPECT_EQ(cascade[1].subharmonic, 4);
+    const auto flips = cascade[0].branch.events_of(PointMarker::PeriodDoubling);
+    ASSERT_FALSE(flips.empty());
+    EXPECT_EQ(cascade[1].f0_flip_n, cascade[0].branch.points[flips.front().point_index].f0_n);
+    EXPECT_LE(cascade[1].branch.points.size(), 2000u);
+  }
+
+  ContinuationOptions low = options;
+  low.start = 0.2;
+  low.end = 0.6;
+  low.hbm.harmonics = 7;
+  const Branch small = continue_branch(paper_model(), low);
+  ASSERT_TRUE(small.events_of(PointMarker::PeriodDoubling).empty());
+  EXPECT_TRUE(follow_period_doublings(paper_model(), small, low).empty());
+}
+
 TEST(BranchSwitching, EmbeddingKeepsTheOrbitAndZeroesTheOddHarmonics) {
   Eigen::VectorXd x(5);
   x << 0.01, 1e-3, -2e-3, 3e-4, 4e-4;  // a0, a1, b1, a2, b2

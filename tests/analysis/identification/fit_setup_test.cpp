@@ -1,0 +1,52 @@
+// The fit's set-up that the CLI, the app and the Python module share: the cost settings from the
+// user's three choices, the GA's default elite and the progress budget, checked against the
+// rules their documentation states.
+#include "analysis/identification/fit_setup.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/input_error_of.h"
+
+namespace oscilab::analysis {
+namespace {
+
+using oscilab::testing::input_error_of;
+
+TEST(FitSetup, CostSettingsKeepTheChoicesAndNeverCorrectBelowTheFittedHarmonics) {
+  const EdcCostSettings cost = cost_settings(7, 63, -1.0, "--harmonics", "--max-harmonics");
+  EXPECT_EQ(cost.hbm.harmonics, 7);
+  EXPECT_EQ(cost.max_harmonics, 63);
+  EXPECT_EQ(cost.model_error_rel, -1.0);  // the σ budget
+  // A reference below H would correct towards a coarser balance: it is raised to H.
+  const EdcCostSettings raised = cost_settings(21, 15, 0.02, "--harmonics", "--max-harmonics");
+  EXPECT_EQ(raised.max_harmonics, 21);
+  EXPECT_EQ(raised.model_error_rel, 0.02);
+}
+
+TEST(FitSetup, CostSettingsNameTheChoiceAsTheFrontEndSpellsIt) {
+  EXPECT_EQ(input_error_of([] { cost_settings(0, 63, -1.0, "--harmonics", "--max-harmonics"); }),
+            "--harmonics: must be at least 1");
+  EXPECT_EQ(input_error_of([] { cost_settings(7, 0, -1.0, "harmonics", "max_harmonics"); }),
+            "max_harmonics: must be at least 1");
+}
+
+TEST(FitSetup, TheElitesIsFivePercentOfThePopulationAndAtLeastOne) {
+  EXPECT_EQ(default_elite(100), 5);  // the paper's population
+  EXPECT_EQ(default_elite(30), 2);   // 1.5 rounds to 2
+  EXPECT_EQ(default_elite(10), 1);   // 0.5 rounds away from zero
+  EXPECT_EQ(default_elite(4), 1);    // 0.2: at least one
+}
+
+TEST(FitSetup, TheProgressBudgetIsEveryGenerationOfTheGaOrTheEvaluationLimit) {
+  FitOptions options;
+  options.method = FitMethod::Genetic;
+  options.genetic.population = 100;
+  options.genetic.generations = 20;
+  EXPECT_EQ(evaluation_budget(options), 2100);  // the initial population and 20 generations
+  options.method = FitMethod::Cmaes;
+  options.max_evaluations = 2000;
+  EXPECT_EQ(evaluation_budget(options), 2000);
+}
+
+}  // namespace
+}  // namespace oscilab::analysis
