@@ -1,6 +1,7 @@
 // The measurement analysis against the virtual rig's truth (target: every level's mean EDC within
 // 0.5 % + 5 noise-floor σ of the simulator's true dissipated energy, both wells, 0.2 to 2.7 N).
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -125,6 +126,34 @@ TEST(EdcAnalysis, VibrometerVelocityAndUnknownMassStillGiveTheEnergy) {
     EXPECT_NEAR(analysis.levels[i].edc_mean_j, truth_per_kg,
                 0.005 * truth_per_kg + 5.0 * analysis.levels[i].edc_noise_floor_j);
   }
+}
+
+// Without a position the slices are against z − z̄: they exist, say so, and their slope at
+// z − z̄ = 0 is the well's stiffness per unit mass, U''(z₊*)/m = (2π f₊)² (eq. (4)), to within what
+// the levels' offset of z̄ from z₊* moves it (measured: TBD).
+TEST(EdcAnalysis, AVelocityOnlyCampaignStillGivesTheStiffnessAboutTheMeanOfZ) {
+  SteppedSineSchedule schedule;
+  schedule.levels_n = {0.5, 1.5};
+  const daq::RigRecording rig = rig_record(true, 41, schedule);
+  MeasurementChannels channels = daq::measurement_channels(rig.recording);
+  const SteppedSineMotion motion(schedule, paper_model().mass_kg());
+  for (Eigen::Index i = 0; i < channels.mass.size(); ++i) {
+    channels.mass[i] = rig.truth.z_dot_m_s[i] + motion.at(rig.truth.t_s[i]).b_dot_m_s;
+  }
+  channels.mass_quantity = MotionQuantity::Velocity;
+  channels.mass_kg.reset();
+  channels.well_hint_positive = true;
+  const CampaignAnalysis campaign = analyze_campaign({channels}, PipelineSettings{});
+  ASSERT_TRUE(campaign.stiffness.has_value()) << campaign.rfs_message;
+  EXPECT_TRUE(campaign.z_about_mean);
+  double omega2 = 0.0;
+  for (const Equilibrium& e : paper_model().equilibria()) {
+    if (e.stable && e.z_m > 0) omega2 = std::pow(2 * std::numbers::pi * e.linear_frequency_hz, 2);
+  }
+  ASSERT_GT(omega2, 0.0);
+  const double slope = campaign.stiffness->fit.coefficients[1];  // dK/dz at z − z̄ = 0, per kg
+  std::printf("velocity-only slice: slope %.1f N/(kg m), (2 pi f+)^2 = %.1f\n", slope, omega2);
+  EXPECT_NEAR(slope, omega2, 0.25 * omega2);
 }
 
 TEST(EdcAnalysis, FlagsPeriodDoublingBeyondThreePointFiveNewton) {
