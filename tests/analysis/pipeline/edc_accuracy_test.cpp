@@ -1,7 +1,6 @@
 // The measurement analysis against the virtual rig's truth (target: every level's mean EDC within
 // 0.5 % + 5 noise-floor σ of the simulator's true dissipated energy, both wells, 0.2 to 2.7 N).
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -130,7 +129,8 @@ TEST(EdcAnalysis, VibrometerVelocityAndUnknownMassStillGiveTheEnergy) {
 
 // Without a position the slices are against z − z̄: they exist, say so, and their slope at
 // z − z̄ = 0 is the well's stiffness per unit mass, U''(z₊*)/m = (2π f₊)² (eq. (4)), to within what
-// the levels' offset of z̄ from z₊* moves it (measured: TBD).
+// the levels' offset of z̄ from z₊* and the cubic's curvature over their travel move it (measured
+// on this seed: 2679 against 2919 N/(kg m), 8 % low; allowed 15 %).
 TEST(EdcAnalysis, AVelocityOnlyCampaignStillGivesTheStiffnessAboutTheMeanOfZ) {
   SteppedSineSchedule schedule;
   schedule.levels_n = {0.5, 1.5};
@@ -152,8 +152,7 @@ TEST(EdcAnalysis, AVelocityOnlyCampaignStillGivesTheStiffnessAboutTheMeanOfZ) {
   }
   ASSERT_GT(omega2, 0.0);
   const double slope = campaign.stiffness->fit.coefficients[1];  // dK/dz at z − z̄ = 0, per kg
-  std::printf("velocity-only slice: slope %.1f N/(kg m), (2 pi f+)^2 = %.1f\n", slope, omega2);
-  EXPECT_NEAR(slope, omega2, 0.25 * omega2);
+  EXPECT_NEAR(slope, omega2, 0.15 * omega2);
 }
 
 TEST(EdcAnalysis, FlagsPeriodDoublingBeyondThreePointFiveNewton) {
