@@ -12,6 +12,7 @@
 #include "analysis/common/input_error.h"
 #include "daq/recording/recording.h"
 #include "daq/recording/sidecar.h"
+#include "tests/daq/recording/fuzz_mutation.h"
 #include "tests/daq/recording/recording_test_util.h"
 
 namespace oscilab::daq {
@@ -58,40 +59,28 @@ const std::vector<std::string> kGarbage = {",",
 // One random mutation of `bytes`: truncation, byte flips, inserted garbage, a deleted or a
 // repeated range.
 std::string mutate_bytes(std::string bytes, std::mt19937_64& rng) {
-  auto position = [&](std::size_t size) {
-    return std::uniform_int_distribution<std::size_t>(0, size)(rng);
-  };
   const int kind = std::uniform_int_distribution<int>(0, 5)(rng);
   switch (kind) {
-    case 0:  // truncation
-      bytes.resize(position(bytes.size()));
+    case 0:
+      testing::truncate_anywhere(bytes, rng);
       break;
-    case 1: {  // byte flips
-      const int flips = std::uniform_int_distribution<int>(1, 8)(rng);
-      for (int i = 0; i < flips && !bytes.empty(); ++i) {
-        bytes[position(bytes.size() - 1)] ^= static_cast<char>(1 << (rng() % 8));
-      }
+    case 1:
+      testing::flip_bits(bytes, std::uniform_int_distribution<int>(1, 8)(rng), rng);
       break;
-    }
-    case 2: {  // random bytes
-      const int count = std::uniform_int_distribution<int>(1, 6)(rng);
-      for (int i = 0; i < count && !bytes.empty(); ++i) {
-        bytes[position(bytes.size() - 1)] = static_cast<char>(rng() & 0xff);
-      }
+    case 2:
+      testing::overwrite_bytes(bytes, std::uniform_int_distribution<int>(1, 6)(rng), rng);
       break;
-    }
     case 3:  // inserted garbage
-      bytes.insert(position(bytes.size()), kGarbage[rng() % kGarbage.size()]);
+      bytes.insert(testing::random_position(bytes.size(), rng), kGarbage[rng() % kGarbage.size()]);
       break;
     case 4: {  // deleted range
-      const std::size_t start = position(bytes.size());
+      const std::size_t start = testing::random_position(bytes.size(), rng);
       bytes.erase(start, std::uniform_int_distribution<std::size_t>(1, 64)(rng));
       break;
     }
     default: {  // repeated range
-      const std::size_t start = position(bytes.size());
-      const std::string range = bytes.substr(start, rng() % 128);
-      bytes.insert(position(bytes.size()), range);
+      const std::size_t start = testing::random_position(bytes.size(), rng);
+      testing::repeat_range(bytes, start, rng() % 128, rng);
       break;
     }
   }

@@ -4,13 +4,12 @@
 // reproduces. The seeds are small files SciPy and h5py write.
 #include <gtest/gtest.h>
 
-#include <atomic>
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <new>
 #include <random>
 #include <string>
 #include <thread>
@@ -20,34 +19,22 @@
 #include "daq/recording/formats/formats.h"
 #include "daq/recording/recording.h"
 #include "tests/daq/recording/formats/mat_hdf5_fixture.h"
+#include "tests/daq/recording/fuzz_mutation.h"
+#include "tests/daq/recording/largest_allocation.h"
 #include "tests/daq/recording/recording_test_util.h"
 
-// The largest single allocation of a thread while its `t_tracking` is set: the bound on what a
-// file makes the parent allocate (the children's allocations are limited by their address-space
-// limit, library_process.cpp).
-namespace {
-thread_local bool t_tracking = false;
-thread_local std::size_t t_largest = 0;
-
-void* allocate(std::size_t size) {
-  if (t_tracking && size > t_largest) t_largest = size;
-  if (void* pointer = std::malloc(size == 0 ? 1 : size)) return pointer;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-void* operator new(std::size_t size) { return allocate(size); }
-void* operator new[](std::size_t size) { return allocate(size); }
-void operator delete(void* pointer) noexcept { std::free(pointer); }
-void operator delete[](void* pointer) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t) noexcept { std::free(pointer); }
-void operator delete[](void* pointer, std::size_t) noexcept { std::free(pointer); }
+// The largest allocation tracked is the parent's, per thread: the bound on what a file makes the
+// parent allocate (the children's allocations are limited by their address-space limit,
+// library_process.cpp).
 
 namespace oscilab::daq {
 namespace {
 
 using nlohmann::json;
+using testing::bits_of;
+using testing::FieldValue;
 using testing::fixture_variable;
+using testing::random_position;
 
 // Mutated files per format: 10 000 in the `slow` suite (release builds), fewer in the unit suite
 // that also runs under the sanitizers (each file costs a few forked children, ~2 ms each).
@@ -66,31 +53,31 @@ std::string bytes_of(T value) {
 
 // Values a header field or an attribute is set to: 0, -1, tiny, huge, NaN, Inf, the limits of
 // counts.
-std::vector<std::string> extremes() {
-  std::vector<std::string> values;
+std::vector<FieldValue> extremes() {
+  std::vector<FieldValue> values;
   for (const double value :
        {0.0, -1.0, 1e-300, 5e-324, 1e300, std::numeric_limits<double>::quiet_NaN(),
         std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
         1e9 /* a rate far beyond Nyquist */}) {
-    values.push_back(bytes_of(value));
+    values.push_back({bits_of(value), 8});
   }
   for (const float value : {0.0f, -1.0f, std::numeric_limits<float>::quiet_NaN(), 3e38f}) {
-    values.push_back(bytes_of(value));
+    values.push_back({bits_of(value), 4});
   }
   for (const std::uint64_t value :
        {std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(),
         std::uint64_t{std::numeric_limits<std::int64_t>::max()}, std::uint64_t{1} << 40}) {
-    values.push_back(bytes_of(value));
+    values.push_back({value, 8});
   }
   for (const std::uint32_t value : {std::uint32_t{0}, std::uint32_t{0xffffffff},
                                     std::uint32_t{0x7fffffff}, std::uint32_t{0x80000000}}) {
-    values.push_back(bytes_of(value));
+    values.push_back({value, 4});
   }
   for (const std::uint16_t value : {std::uint16_t{0}, std::uint16_t{0xffff}}) {
-    values.push_back(bytes_of(value));
+    values.push_back({value, 2});
   }
-  values.push_back(std::string(1, '\xff'));
-  values.push_back(std::string(1, '\0'));
+  values.push_back({0xff, 1});
+  values.push_back({0, 1});
   return values;
 }
 
@@ -111,43 +98,43 @@ std::vector<std::size_t> targets_in(const std::string& bytes) {
 
 std::string mutate(std::string bytes, const std::vector<std::size_t>& targets,
                    std::mt19937_64& rng) {
-  static const std::vector<std::string> kExtremes = extremes();
-  auto position = [&](std::size_t size) {
-    return std::uniform_int_distribution<std::size_t>(0, size)(rng);
-  };
+  static const std::vector<FieldValue> kExtremes = extremes();
   const int mutations = std::uniform_int_distribution<int>(1, 3)(rng);
   for (int m = 0; m < mutations && !bytes.empty(); ++m) {
     switch (std::uniform_int_distribution<int>(0, 6)(rng)) {
-      case 0:  // truncation at any byte
-        bytes.resize(position(bytes.size()));
+      case 0:
+        testing::truncate_anywhere(bytes, rng);
         break;
-      case 1:  // bit flips
-        for (int i = 0; i < 4; ++i) bytes[position(bytes.size() - 1)] ^= char(1 << (rng() % 8));
+      case 1:
+        testing::flip_bits(bytes, 4, rng);
         break;
-      case 2:  // random bytes
-        for (int i = 0; i < 4; ++i) bytes[position(bytes.size() - 1)] = char(rng() & 0xff);
+      case 2:
+        testing::overwrite_bytes(bytes, 4, rng);
         break;
-      case 3: {  // inserted range
-        std::string insert(std::uniform_int_distribution<std::size_t>(1, 64)(rng), '\0');
-        for (char& c : insert) c = char(rng() & 0xff);
-        bytes.insert(position(bytes.size()), insert);
+      case 3: {  // inserted random range
+        const std::string inserted =
+            testing::random_bytes(std::uniform_int_distribution<std::size_t>(1, 64)(rng), rng);
+        bytes.insert(random_position(bytes.size(), rng), inserted);
         break;
       }
       case 4: {  // deleted range
-        const std::size_t at = position(bytes.size() - 1);
+        const std::size_t at = random_position(bytes.size() - 1, rng);
         bytes.erase(at, std::uniform_int_distribution<std::size_t>(1, 64)(rng));
         break;
       }
       case 5:    // an extreme at a known field (dimensions, rates, times)
       case 6: {  // an extreme at any aligned place (header fields, sizes, addresses)
-        const std::string& value = kExtremes[rng() % kExtremes.size()];
+        const FieldValue& value = kExtremes[rng() % kExtremes.size()];
         std::size_t at = 0;
         if (m % 2 == 0 && !targets.empty()) {
           at = targets[rng() % targets.size()];
         } else {
-          at = position(bytes.size() - 1) & ~std::size_t{3};
+          at = random_position(bytes.size() - 1, rng) & ~std::size_t{3};
         }
-        if (at + value.size() <= bytes.size()) bytes.replace(at, value.size(), value);
+        if (at + value.width <= bytes.size()) {  // in the host's byte order, as the seed's values
+          testing::put_field(bytes, at, value.value, value.width,
+                             std::endian::native == std::endian::big);
+        }
         break;
       }
     }
@@ -176,8 +163,7 @@ FuzzStats fuzz(const FormatReader& format, const std::vector<std::string>& seeds
     const std::string bytes = mutate(seeds[which], targets[which], rng);
     const std::string path = dir.file("f" + std::to_string(i % 8) + extension);
     testing::write_file(path, bytes);
-    t_largest = 0;
-    t_tracking = true;
+    testing::start_tracking_allocations();
     try {
       format.describe(path);
       read_recording(path, sidecar);
@@ -194,12 +180,12 @@ FuzzStats fuzz(const FormatReader& format, const std::vector<std::string>& seeds
     } catch (...) {
       ADD_FAILURE() << "seed " << seed << ", iteration " << i << ": unknown exception";
     }
-    t_tracking = false;
-    const std::size_t ratio = t_largest / std::max<std::size_t>(bytes.size(), 1);
+    const std::size_t largest = testing::stop_tracking_allocations();
+    const std::size_t ratio = largest / std::max<std::size_t>(bytes.size(), 1);
     stats.largest_ratio = std::max(stats.largest_ratio, ratio);
     // 1 MiB for the description's text, then 8 bytes per value, at most 1032 values per byte
     // of a compressed file (deflate's ratio): the reply the parent holds.
-    EXPECT_LE(t_largest, (std::size_t{1} << 20) + 8 * 1032 * bytes.size())
+    EXPECT_LE(largest, (std::size_t{1} << 20) + 8 * 1032 * bytes.size())
         << "seed " << seed << ", iteration " << i;
   }
   return stats;

@@ -4,11 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
 #include <exception>
 #include <limits>
-#include <new>
 #include <random>
 #include <string>
 #include <typeinfo>
@@ -18,30 +15,14 @@
 #include "daq/recording/formats/formats.h"
 #include "daq/recording/recording.h"
 #include "tests/daq/recording/formats/tdms_test_bytes.h"
+#include "tests/daq/recording/fuzz_mutation.h"
+#include "tests/daq/recording/largest_allocation.h"
 #include "tests/daq/recording/recording_test_util.h"
-
-// The largest single request to operator new while `g_track` is set.
-namespace {
-bool g_track = false;
-std::size_t g_largest_bytes = 0;
-}  // namespace
-
-// malloc and free behind new and delete, on purpose: GCC's check that they match does not apply.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  if (g_track && size > g_largest_bytes) g_largest_bytes = size;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace oscilab::daq {
 namespace {
 
-using namespace testing;  // the TDMS building blocks of tdms_test_bytes.h
+using namespace testing;  // the TDMS building blocks of tdms_test_bytes.h, the mutations
 using testing::channel;
 using testing::TempDir;
 
@@ -170,29 +151,10 @@ Seed digital_seed() {
           "dio/l0", "dio/l9"};
 }
 
-// Writes `value` (its low `width` bytes) at `position` in the given byte order.
-void put(std::string& bytes, std::size_t position, std::uint64_t value, std::size_t width,
-         bool big_endian) {
-  for (std::size_t i = 0; i < width && position + i < bytes.size(); ++i) {
-    const std::size_t shift = 8 * (big_endian ? width - 1 - i : i);
-    bytes[position + i] = static_cast<char>((value >> shift) & 0xff);
-  }
-}
-
-std::uint64_t bits_of(double value) {
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
-
 // Values every numeric field is set to: counts, lengths, offsets, types and flags at their
 // extremes, and floats (rates, scales) that are not numbers, infinite, tiny (a rate far beyond
 // Nyquist) or huge.
-struct Extreme {
-  std::uint64_t value;
-  std::size_t width;
-};
-const std::vector<Extreme> kExtremes = {
+const std::vector<FieldValue> kExtremes = {
     {0, 4},
     {0xFFFFFFFF, 4},
     {0x7FFFFFFF, 4},
@@ -209,41 +171,33 @@ const std::vector<Extreme> kExtremes = {
 };
 
 std::string mutate(std::string bytes, bool big_endian, std::mt19937_64& rng) {
-  auto position = [&](std::size_t size) {
-    return std::uniform_int_distribution<std::size_t>(0, size)(rng);
-  };
   switch (std::uniform_int_distribution<int>(0, 5)(rng)) {
-    case 0:  // truncation at any byte
-      bytes.resize(position(bytes.size()));
+    case 0:
+      truncate_anywhere(bytes, rng);
       break;
-    case 1:  // bit flips
-      for (int i = 0, n = 1 + static_cast<int>(rng() % 8); i < n && !bytes.empty(); ++i) {
-        bytes[position(bytes.size() - 1)] ^= static_cast<char>(1 << (rng() % 8));
-      }
+    case 1:
+      flip_bits(bytes, 1 + static_cast<int>(rng() % 8), rng);
       break;
     case 2: {  // inserted random bytes
-      const std::size_t at = position(bytes.size());
-      std::string inserted(1 + rng() % 16, '\0');
-      for (char& c : inserted) c = static_cast<char>(rng() & 0xff);
-      bytes.insert(at, inserted);
+      const std::size_t at = random_position(bytes.size(), rng);
+      bytes.insert(at, random_bytes(1 + rng() % 16, rng));
       break;
     }
     case 3: {  // deleted range
-      const std::size_t at = position(bytes.size());
+      const std::size_t at = random_position(bytes.size(), rng);
       bytes.erase(at, 1 + rng() % 32);
       break;
     }
     case 4: {  // a repeated range (a duplicated segment or field)
-      const std::size_t at = position(bytes.size());
-      const std::string copy = bytes.substr(at, 1 + rng() % 64);
-      bytes.insert(position(bytes.size()), copy);
+      const std::size_t at = random_position(bytes.size(), rng);
+      repeat_range(bytes, at, 1 + rng() % 64, rng);
       break;
     }
-    default: {  // a field set to an extreme
-      const Extreme& extreme = kExtremes[rng() % kExtremes.size()];
+    default: {  // a field set to an extreme, in the file's byte order three times in four
+      const FieldValue& extreme = kExtremes[rng() % kExtremes.size()];
       if (!bytes.empty()) {
-        put(bytes, position(bytes.size() - 1), extreme.value, extreme.width,
-            (rng() % 4 == 0) != big_endian);
+        put_field(bytes, random_position(bytes.size() - 1, rng), extreme.value, extreme.width,
+                  (rng() % 4 == 0) != big_endian);
       }
       break;
     }
@@ -257,7 +211,8 @@ void read_every_way(const std::string& path, const Seed& seed) {
   try {
     const FileContents contents = format.describe(path);
     (void)contents.properties.dump();
-    for (const FileSignal& signal : contents.file_signals) (void)format.read_signal(path, signal, -1);
+    for (const FileSignal& signal : contents.file_signals)
+      (void)format.read_signal(path, signal, -1);
   } catch (const InputError&) {
   }
   Sidecar sidecar;
@@ -282,20 +237,19 @@ std::size_t allocation_bound(std::size_t size) { return 32 * size + 65536; }
 void run_case(const std::string& path, const std::string& bytes, const Seed& seed,
               const std::string& what) {
   testing::write_file(path, bytes);
-  g_largest_bytes = 0;
-  g_track = true;
+  start_tracking_allocations();
   try {
     read_every_way(path, seed);
   } catch (const std::exception& error) {
-    g_track = false;
+    stop_tracking_allocations();
     FAIL() << what << ": " << typeid(error).name() << ": " << error.what();
   } catch (...) {
-    g_track = false;
+    stop_tracking_allocations();
     FAIL() << what << ": a non-standard exception";
   }
-  g_track = false;
-  EXPECT_LE(g_largest_bytes, allocation_bound(bytes.size()))
-      << what << ": " << g_largest_bytes << " bytes for a file of " << bytes.size();
+  const std::size_t largest_bytes = stop_tracking_allocations();
+  EXPECT_LE(largest_bytes, allocation_bound(bytes.size()))
+      << what << ": " << largest_bytes << " bytes for a file of " << bytes.size();
 }
 
 std::vector<Seed> seeds() {
@@ -322,9 +276,9 @@ TEST(TdmsFuzz, EveryFieldAtItsExtremesGivesAnInputErrorOrARecording) {
   int cases = 0;
   for (const Seed& seed : seeds()) {
     for (std::size_t at = 0; at < seed.bytes.size(); ++at) {
-      for (const Extreme& extreme : kExtremes) {
+      for (const FieldValue& extreme : kExtremes) {
         std::string bytes = seed.bytes;
-        put(bytes, at, extreme.value, extreme.width, seed.big_endian);
+        put_field(bytes, at, extreme.value, extreme.width, seed.big_endian);
         run_case(path, bytes, seed,
                  seed.first + " seed, byte " + std::to_string(at) + " = " +
                      std::to_string(extreme.value));

@@ -3,42 +3,22 @@
 // Fixed seeds, so a failure reproduces from its iteration.
 #include <gtest/gtest.h>
 
-#include <atomic>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <new>
 #include <random>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/common/input_error.h"
 #include "daq/recording/formats/formats.h"
 #include "daq/recording/recording.h"
 #include "tests/daq/recording/formats/uff_test_files.h"
+#include "tests/daq/recording/fuzz_mutation.h"
+#include "tests/daq/recording/largest_allocation.h"
 #include "tests/daq/recording/recording_test_util.h"
-
-// The largest single request to operator new while `g_track_allocations` is set. Replacing the
-// global operator new applies to the whole test executable; outside the tracked calls it only
-// forwards to malloc.
-namespace {
-std::atomic<bool> g_track_allocations{false};
-std::atomic<std::size_t> g_largest_allocation{0};
-}  // namespace
-
-// noinline: GCC would otherwise see free() meet a pointer from operator new once both are inlined
-// (-Wmismatched-new-delete), although this pair allocates with malloc.
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  if (g_track_allocations.load(std::memory_order_relaxed)) {
-    std::size_t largest = g_largest_allocation.load(std::memory_order_relaxed);
-    while (size > largest && !g_largest_allocation.compare_exchange_weak(largest, size)) {
-    }
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::noinline]] void operator delete(void* p, std::size_t /*size*/) noexcept { std::free(p); }
 
 namespace oscilab::daq {
 namespace {
@@ -161,41 +141,29 @@ std::vector<Base> bases() {
 }
 
 std::string mutate(std::string bytes, std::mt19937_64& rng) {
-  auto position = [&](std::size_t size) {
-    return std::uniform_int_distribution<std::size_t>(0, size)(rng);
-  };
   switch (std::uniform_int_distribution<int>(0, 4)(rng)) {
-    case 0:  // truncation at any byte
-      bytes.resize(position(bytes.size()));
+    case 0:
+      testing::truncate_anywhere(bytes, rng);
       break;
-    case 1: {  // bit flips
-      const int flips = std::uniform_int_distribution<int>(1, 8)(rng);
-      for (int i = 0; i < flips && !bytes.empty(); ++i) {
-        bytes[position(bytes.size() - 1)] ^= static_cast<char>(1 << (rng() % 8));
-      }
+    case 1:
+      testing::flip_bits(bytes, std::uniform_int_distribution<int>(1, 8)(rng), rng);
       break;
-    }
     case 2: {  // random bytes, newlines and minus signs among them
-      static const std::string kSpecial = "\n\r -+.E0123456789b";
-      const int count = std::uniform_int_distribution<int>(1, 6)(rng);
-      for (int i = 0; i < count && !bytes.empty(); ++i) {
-        const bool special = rng() % 2 == 0;
-        bytes[position(bytes.size() - 1)] =
-            special ? kSpecial[rng() % kSpecial.size()] : static_cast<char>(rng() & 0xff);
-      }
+      constexpr std::string_view kSpecial = "\n\r -+.E0123456789b";
+      testing::overwrite_bytes(bytes, std::uniform_int_distribution<int>(1, 6)(rng), rng, kSpecial);
       break;
     }
     case 3: {  // deleted range
-      const std::size_t start = position(bytes.size());
+      const std::size_t start = testing::random_position(bytes.size(), rng);
       const std::size_t length = std::uniform_int_distribution<std::size_t>(1, 200)(rng);
       bytes.erase(start, length);
       break;
     }
     default: {  // inserted range: a copy of another part of the file
       if (bytes.empty()) break;
-      const std::size_t from = position(bytes.size() - 1);
+      const std::size_t from = testing::random_position(bytes.size() - 1, rng);
       const std::size_t length = std::uniform_int_distribution<std::size_t>(1, 200)(rng);
-      bytes.insert(position(bytes.size()), bytes.substr(from, length));
+      testing::repeat_range(bytes, from, length, rng);
       break;
     }
   }
@@ -248,13 +216,11 @@ TEST(UffFormatFuzz, OnlyInputErrorFromTenThousandMutatedFiles) {
   auto run = [&](const std::string& bytes, const std::string& what) {
     testing::write_file(path, bytes);
     std::string failure;
-    g_largest_allocation = 0;
-    g_track_allocations = true;
+    testing::start_tracking_allocations();
     const bool ok = survives(path, failure, recordings);
-    g_track_allocations = false;
+    const std::size_t largest = testing::stop_tracking_allocations();
     ++files;
     ASSERT_TRUE(ok) << what << ": " << failure;
-    const std::size_t largest = g_largest_allocation;
     ASSERT_LE(largest, kAllocationFactor * bytes.size() + kAllocationSlack)
         << what << ": file of " << bytes.size() << " bytes";
     worst_ratio_bytes = std::max(worst_ratio_bytes, largest);
