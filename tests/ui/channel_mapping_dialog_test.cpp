@@ -32,7 +32,7 @@ FileContents logger_contents() {
   FileContents contents;
   contents.container = "test";
   contents.file_signals = {FileSignal{"logger/laser", 400, 1, "mm/s", 200.0, "float64", {}},
-                      FileSignal{"logger/table", 400, 1, "m/s\u00b2", 200.0, "float32", {}}};
+                           FileSignal{"logger/table", 400, 1, "m/s\u00b2", 200.0, "float32", {}}};
   return contents;
 }
 
