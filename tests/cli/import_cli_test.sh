@@ -57,6 +57,27 @@ grep -q "No sidecar" "$work/info.log" && grep -q '"sample_rate_hz": 512.0' "$wor
   grep -q "Recording: .*raw.flac" "$work/info2.log" && pass "the drafted sidecar reads" ||
   fail "drafted sidecar: $(cat "$work/info2.log")"
 
+# One file per excitation level, as many labs record: the files make one EDC table, one row
+# per file, and fit together like one stepped-sine record.
+for f0 in 0.5 1.0 1.5; do
+  "$cli" simulate --levels "$f0" --hold 8 --lead-in 1 --seed 3 --out "$work/level_$f0.flac" > /dev/null 2>&1 ||
+    fail "simulate level $f0"
+done
+levels=("$work"/level_0.5.flac "$work"/level_1.0.flac "$work"/level_1.5.flac)
+if "$cli" analyze "${levels[@]}" --edc "$work/levels.csv" > "$work/levels.log" 2>&1; then
+  rows=$(tail -n +2 "$work/levels.csv" | awk -F, '{ printf "%.1f/%s ", $2, $6 }')
+  [ "$rows" = "0.5/level_0.5.flac 1.0/level_1.0.flac 1.5/level_1.5.flac " ] &&
+    pass "three level files make one EDC table, a row each" || fail "level rows: $rows"
+else
+  fail "analyze of level files: $(tail -3 "$work/levels.log")"
+fi
+if "$cli" fit "${levels[@]}" --evaluations 60 --out "$work/levels_fit.json" > "$work/fit.log" 2>&1 &&
+  grep -q '"levels"' "$work/levels_fit.json"; then
+  pass "the level files fit together"
+else
+  fail "fit of level files: $(tail -3 "$work/fit.log")"
+fi
+
 # Errors: one line, exit 2, nothing written.
 expect_error() {  # name, expected text, command...
   local name=$1 text=$2
