@@ -426,7 +426,7 @@ std::vector<EdcTableRow> edc_rows() {
     level.start_s = 3.0 + 10.0 * i;
     level.end_s = 12.5 + 10.0 * i;
     level.period1 = i != 1;  // the middle level is not period-1: unusable
-    rows.push_back({i == 2 ? "neg.flac" : "pos.flac", level});
+    rows.push_back({i == 2 ? "neg.flac" : "pos.flac", level, level.flags()});
   }
   return rows;
 }
