@@ -37,6 +37,7 @@
 #include "analysis/signal/amplitude_spectrum.h"
 #include "daq/live/net_source.h"
 #include "daq/live/replay_source.h"
+#include "daq/live/source_factory.h"
 #include "ui/background_job.h"
 #include "ui/plot_helpers.h"
 #include "ui/well_colours.h"
@@ -872,41 +873,35 @@ bool LiveMonitor::start() {
   daq::ReplaySource* replay = nullptr;
   daq::NetSource* net = nullptr;
   try {
+    // One factory for the CLI and the app (daq/live/source_factory.h).
+    daq::SourceOptions o;
+    o.what = "source";
+    o.positive_well = s.rig_positive_well;
+    o.frequency_hz = s.rig_frequency_hz;
+    o.speed = s.speed;
+    o.schedule = rig_schedule_;
+    o.duration_s = rig_duration_s_;
+    o.loop = s.replay_loop;
+    std::string spec;
     switch (s.source) {
-      case LiveSourceKind::Rig: {
-        daq::RigSource::Options o;
-        o.rig.positive_well = s.rig_positive_well;
-        o.frequency_hz = s.rig_frequency_hz;
-        o.speed = s.speed;
-        o.schedule = rig_schedule_;
-        o.duration_s = rig_duration_s_;
-        auto made = std::make_unique<daq::RigSource>(analysis::paper_model(), o);
-        if (rig_schedule_.empty() && s.rig_f0_n > 0) {
-          made->set_excitation(s.rig_f0_n, s.rig_frequency_hz);
-        }
-        rig = made.get();
-        source = std::move(made);
+      case LiveSourceKind::Rig:
+        spec = "rig";
         break;
-      }
-      case LiveSourceKind::Replay: {
+      case LiveSourceKind::Replay:
         if (s.replay_path.empty())
           throw InputError("replay: choose a recording to replay (\u2026)");
-        daq::ReplaySource::Options o;
-        o.speed = s.speed;
-        o.loop = s.replay_loop;
-        auto made = std::make_unique<daq::ReplaySource>(s.replay_path, o);
-        replay = made.get();
-        source = std::move(made);
+        spec = "file:" + s.replay_path;
         break;
-      }
-      case LiveSourceKind::Network: {
-        daq::NetSource::Options o;
-        o.port = static_cast<std::uint16_t>(s.port);
-        auto made = std::make_unique<daq::NetSource>(o);
-        net = made.get();
-        source = std::move(made);
+      case LiveSourceKind::Network:
+        spec = "net:127.0.0.1:" + std::to_string(s.port);
         break;
-      }
+    }
+    source = daq::make_source(spec, o);
+    rig = dynamic_cast<daq::RigSource*>(source.get());
+    replay = dynamic_cast<daq::ReplaySource*>(source.get());
+    net = dynamic_cast<daq::NetSource*>(source.get());
+    if (rig != nullptr && rig_schedule_.empty() && s.rig_f0_n > 0) {
+      rig->set_excitation(s.rig_f0_n, s.rig_frequency_hz);
     }
     daq::AcquisitionOptions options;
     options.alarms = s.alarms;

@@ -1,4 +1,5 @@
-// `oscilab-cli record --source rig|net:HOST:PORT|file:REC --out REC [--duration S]` (contract §2):
+// `oscilab-cli record --source rig|net:HOST:PORT|jack:PORT,PORT|file:REC --out REC [--duration S]`
+// (contract §2):
 // records a live source as it arrives, with its sidecar and event log, and prints the live EDC.
 #include <atomic>
 #include <chrono>
@@ -122,7 +123,8 @@ void add_record_command(CLI::App& app) {
   command
       ->add_option("--source", o->source,
                    "rig (the virtual rig in real time) | net:HOST:PORT (listen for a sender; "
-                   "HOST 127.0.0.1 keeps it local) | file:REC (replay a recording)")
+                   "HOST 127.0.0.1 keeps it local) | jack:PORT_BASE,PORT_MASS[,...] (JACK "
+                   "capture ports, one per --sidecar channel) | file:REC (replay a recording)")
       ->capture_default_str();
   command->add_option("--out", o->out, "recording to write: .wav, .w64 or .rf64")->required();
   command->add_option("--duration", o->live.duration_s,
