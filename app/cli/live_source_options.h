@@ -24,9 +24,9 @@ struct LiveSourceOptions {
   double speed = 1.0;   // × real time; 0: as fast as possible
   std::string sidecar;  // net: the layout to expect; jack: the calibration (a sidecar JSON)
   std::optional<double> duration_s;
-  std::string jack_server;               // empty: the default server
-  std::string jack_client = "oscilab";   // the JACK client name asked for
-  std::optional<double> rate_hz;         // jack: the analysis rate (default: the sidecar's)
+  std::string jack_server;              // empty: the default server
+  std::string jack_client = "oscilab";  // the JACK client name asked for
+  std::optional<double> rate_hz;        // jack: the analysis rate (default: the sidecar's)
 };
 
 /// Adds the options above to a command (`--sidecar` and the JACK options only where a network or

@@ -384,7 +384,8 @@ bool Acquisition::Impl::setup_layout() {
     } else if (layout.excitation && layout.excitation->frequency_hz) {
       freq_hz = *layout.excitation->frequency_hz;
     }
-    for (const auto& [cal, inverse] : {std::pair{&base_cal, &base_ac}, std::pair{&mass_cal, &mass_ac}}) {
+    for (const auto& [cal, inverse] :
+         {std::pair{&base_cal, &base_ac}, std::pair{&mass_cal, &mass_ac}}) {
       const ChannelInfo& channel = layout.channels[static_cast<std::size_t>(cal->index)];
       if (!channel.ac_coupling_hz) continue;
       inverse->emplace(*channel.ac_coupling_hz, rate_hz, "stream channel \"" + channel.name + "\"");

@@ -25,7 +25,7 @@ constexpr std::size_t kMaxWithheld = 256;  // pending withheld intervals (merged
 
 // One period (or part of one) as the process callback saw it.
 struct Slot {
-  std::uint32_t frame_time = 0;    // the server's frame clock at the slot's first frame
+  std::uint32_t frame_time = 0;  // the server's frame clock at the slot's first frame
   std::uint32_t frames = 0;
   std::uint32_t disconnected = 0;  // bit c: channel c's port had no connection
   std::vector<float> data;         // frames × channels, interleaved; capacity fixed
@@ -254,8 +254,7 @@ void connect_callback(jack_port_id_t, jack_port_id_t, int, void* arg) {
   static_cast<JackSource::Impl*>(arg)->connections_changed.store(true, std::memory_order_release);
 }
 void freewheel_callback(int starting, void* arg) {
-  static_cast<JackSource::Impl*>(arg)->freewheeling.store(starting != 0,
-                                                          std::memory_order_release);
+  static_cast<JackSource::Impl*>(arg)->freewheeling.store(starting != 0, std::memory_order_release);
 }
 
 }  // namespace
@@ -309,7 +308,8 @@ std::string JackSource::Impl::open() {
   for (const std::string& name : options.ports) {
     jack_port_t* port = jack_port_by_name(client, name.c_str());
     if (port == nullptr) {
-      const std::string why = "port \"" + name + "\" does not exist on " + server_text(options.server);
+      const std::string why =
+          "port \"" + name + "\" does not exist on " + server_text(options.server);
       close();
       return why;
     }
@@ -346,11 +346,11 @@ std::string JackSource::Impl::open() {
   ring.allocate(slots, slot_frames, channels);
   buffers.assign(channels, nullptr);
   zeros.assign(slot_frames * channels, 0.0f);
-  out.assign((static_cast<std::size_t>(std::ceil(static_cast<double>(slot_frames) * rate_out /
-                                                 rate_in)) +
-              4096) *
-                 channels,
-             0.0);
+  out.assign(
+      (static_cast<std::size_t>(std::ceil(static_cast<double>(slot_frames) * rate_out / rate_in)) +
+       4096) *
+          channels,
+      0.0);
   staging.assign(static_cast<std::size_t>(options.block_rows) * channels, 0.0);
   std::string error;
   if (resampler != nullptr) soxr_delete(resampler);
@@ -439,8 +439,8 @@ void JackSource::Impl::flush_staging(bool wait_for_room) {
   if (staged_rows == 0) return;
   RawBlock* block = owner.begin_block(wait_for_room);
   if (block != nullptr) {
-    std::copy_n(staging.begin(), static_cast<std::ptrdiff_t>(staged_rows) *
-                                     static_cast<std::ptrdiff_t>(channels),
+    std::copy_n(staging.begin(),
+                static_cast<std::ptrdiff_t>(staged_rows) * static_cast<std::ptrdiff_t>(channels),
                 block->values.begin());
     block->sequence = sequence;
     block->first_sample = staged_first;
@@ -550,8 +550,8 @@ void JackSource::Impl::check_clipping(const Slot& slot) {
   }
   owner.clipped_samples_.fetch_add(clipped, std::memory_order_relaxed);
   const auto r = static_cast<std::uint64_t>(reach);
-  const std::uint64_t out_from = out_index(from) > segment_base + r ? out_index(from) - r
-                                                                    : segment_base;
+  const std::uint64_t out_from =
+      out_index(from) > segment_base + r ? out_index(from) - r : segment_base;
   const std::uint64_t out_to = out_index(to) + r;
   if (!clip_open) {
     clip_open = true;
@@ -565,12 +565,11 @@ void JackSource::Impl::check_clipping(const Slot& slot) {
 void JackSource::Impl::close_clip_run() {
   if (!clip_open) return;
   clip_open = false;
-  owner.post_event({time_of(clip_from),
-                    "clipped",
-                    std::to_string(clip_samples) + " input sample(s) at full scale",
-                    {{"samples", clip_samples},
-                     {"from_s", time_of(clip_from)},
-                     {"to_s", time_of(clip_to)}}});
+  owner.post_event(
+      {time_of(clip_from),
+       "clipped",
+       std::to_string(clip_samples) + " input sample(s) at full scale",
+       {{"samples", clip_samples}, {"from_s", time_of(clip_from)}, {"to_s", time_of(clip_to)}}});
 }
 
 void JackSource::Impl::handle_xruns() {
@@ -585,12 +584,15 @@ void JackSource::Impl::handle_xruns() {
   if (segment_open && have_first_frame) {
     const auto behind = static_cast<std::int32_t>(next_frame - at);  // frames since the xrun
     const std::int64_t frame = static_cast<std::int64_t>(segment_in) - behind;
-    const std::int64_t from = std::max<std::int64_t>(0, frame - 2 * static_cast<std::int64_t>(period));
+    const std::int64_t from =
+        std::max<std::int64_t>(0, frame - 2 * static_cast<std::int64_t>(period));
     const std::int64_t to = std::max<std::int64_t>(from, frame + static_cast<std::int64_t>(period));
     withhold_frames(static_cast<std::uint64_t>(from), static_cast<std::uint64_t>(to));
     t_s = time_of(out_index(static_cast<std::uint64_t>(std::max<std::int64_t>(0, frame))));
   }
-  owner.post_event({t_s, "xrun", "the JACK server reported " + std::to_string(fresh) + " xrun(s)",
+  owner.post_event({t_s,
+                    "xrun",
+                    "the JACK server reported " + std::to_string(fresh) + " xrun(s)",
                     {{"xruns", fresh}}});
 }
 
@@ -636,12 +638,14 @@ void JackSource::Impl::drain(bool wait_for_room) {
       const std::string& channel = options.calibration.channels[c].name;
       if ((lost >> c) & 1u) {
         owner.port_disconnections_.fetch_add(1, std::memory_order_relaxed);
-        owner.post_event({time_of(out_index(segment_in)), "port-disconnected",
+        owner.post_event({time_of(out_index(segment_in)),
+                          "port-disconnected",
                           "\"" + options.ports[c] + "\" (" + channel + ") is not connected",
                           {{"port", options.ports[c]}, {"channel", channel}}});
       }
       if ((back >> c) & 1u) {
-        owner.post_event({time_of(out_index(segment_in)), "port-connected",
+        owner.post_event({time_of(out_index(segment_in)),
+                          "port-connected",
                           "\"" + options.ports[c] + "\" (" + channel + ") is connected again",
                           {{"port", options.ports[c]}, {"channel", channel}}});
       }
@@ -660,8 +664,8 @@ JackSource::JackSource(Options options) : options_(std::move(options)) {
   const std::string where = "jack source";
   if (options_.ports.empty()) throw InputError(where + ": no capture port given");
   if (options_.ports.size() > kMaxChannels) {
-    throw InputError(where + ": " + std::to_string(options_.ports.size()) +
-                     " ports, at most " + std::to_string(kMaxChannels));
+    throw InputError(where + ": " + std::to_string(options_.ports.size()) + " ports, at most " +
+                     std::to_string(kMaxChannels));
   }
   if (options_.ports.size() != options_.calibration.channels.size()) {
     throw InputError(where + ": " + std::to_string(options_.ports.size()) +
@@ -792,7 +796,8 @@ void JackSource::run() {
                   server_text(options_.server) + " shut down; reconnecting"});
     } else {
       rate_changes_.fetch_add(1, std::memory_order_relaxed);
-      post_event({m.time_of(end), "rate-changed",
+      post_event({m.time_of(end),
+                  "rate-changed",
                   server_text(options_.server) + " changed its rate from " +
                       std::to_string(m.rate_in) + " to " + std::to_string(new_rate) + " Hz",
                   {{"from_hz", m.rate_in}, {"to_hz", new_rate}}});
@@ -813,12 +818,14 @@ void JackSource::run() {
     reach_.store(m.reach);
     reconnections_.fetch_add(1, std::memory_order_relaxed);
     // The stream clock runs on by the time away: the next samples follow a gap.
-    resume_at = end + 1 + static_cast<std::uint64_t>(std::llround(away_s * options_.analysis_rate_hz));
+    resume_at =
+        end + 1 + static_cast<std::uint64_t>(std::llround(away_s * options_.analysis_rate_hz));
     m.begin_segment(resume_at);
-    post_event({m.time_of(resume_at), "reconnected",
-                server_text(options_.server) + " answers again after " + std::to_string(away_s) +
-                    " s",
-                {{"away_s", away_s}, {"server_rate_hz", m.rate_in}}});
+    post_event(
+        {m.time_of(resume_at),
+         "reconnected",
+         server_text(options_.server) + " answers again after " + std::to_string(away_s) + " s",
+         {{"away_s", away_s}, {"server_rate_hz", m.rate_in}}});
   }
   // Stopped: what the ring holds, then the filter's tail.
   m.deactivate();

@@ -65,7 +65,7 @@ class JackSource final : public SampleSource {
   static constexpr double kClipLevel = 0.9999;
 
   struct Options {
-    std::string server;                 // empty: the default server
+    std::string server;  // empty: the default server
     std::string client_name = "oscilab";
     std::vector<std::string> ports;     // capture port of each calibration channel, in order
     Sidecar calibration;                // channels, mass, excitation; rate replaced (below)

@@ -19,12 +19,12 @@ namespace oscilab::daq {
 struct SourceCounters {
   std::uint64_t blocks_delivered = 0;
   std::uint64_t samples_delivered = 0;
-  std::uint64_t blocks_overflowed = 0;  // dropped because the queue was full
-  std::uint64_t connections = 0;        // network: senders accepted
-  std::uint64_t malformed_frames = 0;   // network: frames rejected
-  std::uint64_t layout_mismatches = 0;  // network: senders refused for their layout
-  std::uint64_t xruns = 0;              // JACK: xruns the server reported
-  std::uint64_t server_losses = 0;      // JACK: the server shut down (or dropped the client)
+  std::uint64_t blocks_overflowed = 0;    // dropped because the queue was full
+  std::uint64_t connections = 0;          // network: senders accepted
+  std::uint64_t malformed_frames = 0;     // network: frames rejected
+  std::uint64_t layout_mismatches = 0;    // network: senders refused for their layout
+  std::uint64_t xruns = 0;                // JACK: xruns the server reported
+  std::uint64_t server_losses = 0;        // JACK: the server shut down (or dropped the client)
   std::uint64_t port_disconnections = 0;  // JACK: a capture port lost its connection
   std::uint64_t rate_changes = 0;         // JACK: the server's sample rate changed
   std::uint64_t dropped_frames = 0;       // JACK: frames the ring had no room for

@@ -28,10 +28,10 @@ struct SourceOptions {
   // Network receiver: the layout to expect (senders that differ are refused).
   std::optional<Sidecar> expected;
   // JACK.
-  std::string jack_server;                // empty: the default server ($JACK_DEFAULT_SERVER)
-  std::string jack_client = "oscilab";    // the client name asked for
-  std::optional<Sidecar> calibration;     // required: one channel per port, in port order
-  std::optional<double> analysis_rate_hz; // none: the calibration's sample_rate_hz
+  std::string jack_server;                 // empty: the default server ($JACK_DEFAULT_SERVER)
+  std::string jack_client = "oscilab";     // the client name asked for
+  std::optional<Sidecar> calibration;      // required: one channel per port, in port order
+  std::optional<double> analysis_rate_hz;  // none: the calibration's sample_rate_hz
   /// The word option messages name ("--source" on the command line, "source" in the app).
   std::string what = "--source";
 };

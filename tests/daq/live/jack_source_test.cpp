@@ -103,8 +103,9 @@ TEST(JackSource, AnalysisSamplesSitOnTheServerClockWithTheSameDelayOnEveryChanne
       const JackTestPlayer::Sine& s = c == 0 ? a : b;
       const double expected = kFullScaleV * s.amplitude *
                               std::sin(2 * std::numbers::pi * s.frequency_hz * t_s + s.phase_rad);
-      worst = std::max(worst, std::abs(drain.values[2 * i + static_cast<std::size_t>(c)] -
-                                       expected) / kFullScaleV);
+      worst =
+          std::max(worst, std::abs(drain.values[2 * i + static_cast<std::size_t>(c)] - expected) /
+                              kFullScaleV);
     }
   }
   EXPECT_LT(worst, 2e-6);
@@ -199,8 +200,8 @@ TEST(JackSource, LiveEdcOfTheRigThroughJackMatchesTheSameSignalsAt512Hz) {
   for (std::size_t i = 0; i < measured.size(); ++i) {
     const auto& m = measured[i];
     const auto& e = expected[i];
-    const double sigma = std::sqrt(m.edc_std_j * m.edc_std_j / m.cycles +
-                                   e.edc_std_j * e.edc_std_j / e.cycles);
+    const double sigma =
+        std::sqrt(m.edc_std_j * m.edc_std_j / m.cycles + e.edc_std_j * e.edc_std_j / e.cycles);
     EXPECT_NEAR(m.edc_mean_j, e.edc_mean_j, 0.005 * std::abs(e.edc_mean_j) + 5 * sigma)
         << "level " << i << " f0 " << e.f0_n << " N, " << m.cycles << " vs " << e.cycles
         << " cycles";
@@ -325,8 +326,8 @@ TEST(JackSource, ClippedInputIsCountedAndRecordedAsInvalid) {
   auto made = std::make_unique<JackSource>(jack_options(server, player));
   JackSource* source = made.get();
   Acquisition live(std::move(made), {});
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("oscilab_jack_clip_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("oscilab_jack_clip_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   live.start_recording((dir / "clip.wav").string());
   live.start();
@@ -366,20 +367,25 @@ TEST(JackSource, RefusesWhatItCannotUseNamingTheServerOrThePort) {
   {
     JackSource::Options bad = o;
     bad.ports[1] = "system:capture_9";
-    EXPECT_EQ(error_of(bad), "jack source: port \"system:capture_9\" does not exist on JACK "
-                             "server \"" + server.name() + "\"");
+    EXPECT_EQ(error_of(bad),
+              "jack source: port \"system:capture_9\" does not exist on JACK "
+              "server \"" +
+                  server.name() + "\"");
   }
   {
     JackSource::Options bad = o;
     bad.ports[0] = "system:playback_1";
-    EXPECT_EQ(error_of(bad), "jack source: port \"system:playback_1\" is not an audio output (a "
-                             "capture port) of JACK server \"" + server.name() + "\"");
+    EXPECT_EQ(error_of(bad),
+              "jack source: port \"system:playback_1\" is not an audio output (a "
+              "capture port) of JACK server \"" +
+                  server.name() + "\"");
   }
   {
     JackSource::Options bad = o;
     bad.ports.pop_back();
-    EXPECT_EQ(error_of(bad), "jack source: 1 port(s) for the calibration's 2 channel(s): give "
-                             "one port per channel, in the calibration's order");
+    EXPECT_EQ(error_of(bad),
+              "jack source: 1 port(s) for the calibration's 2 channel(s): give "
+              "one port per channel, in the calibration's order");
   }
   {
     JackSource::Options bad = o;
@@ -412,8 +418,9 @@ TEST(JackSource, RefusesWhatItCannotUseNamingTheServerOrThePort) {
   {
     JackSource::Options bad = o;
     bad.passband_end = 0.99;
-    EXPECT_EQ(error_of(bad), "jack source: passband end 0.990000 must be within 0.1..0.95 of the "
-                             "analysis Nyquist frequency");
+    EXPECT_EQ(error_of(bad),
+              "jack source: passband end 0.990000 must be within 0.1..0.95 of the "
+              "analysis Nyquist frequency");
   }
   {
     JackSource::Options bad = o;
@@ -429,16 +436,18 @@ TEST(JackSource, RefusesWhatItCannotUseNamingTheServerOrThePort) {
   {
     JackSource::Options bad = o;
     bad.calibration.excitation->frequency_hz = 300.0;
-    EXPECT_EQ(error_of(bad), "jack source: excitation 300.000000 Hz is not below the Nyquist "
-                             "frequency of the analysis rate 512.000000 Hz");
+    EXPECT_EQ(error_of(bad),
+              "jack source: excitation 300.000000 Hz is not below the Nyquist "
+              "frequency of the analysis rate 512.000000 Hz");
   }
   {
     JackSource::Options bad = o;
     bad.analysis_rate_hz = 100.0;
     bad.calibration.excitation.reset();
     bad.calibration.channels[1].ac_coupling_hz = 60.0;
-    EXPECT_EQ(error_of(bad), "jack source: channel \"y\": ac_coupling_hz 60.000000 Hz is not "
-                             "below the analysis Nyquist frequency");
+    EXPECT_EQ(error_of(bad),
+              "jack source: channel \"y\": ac_coupling_hz 60.000000 Hz is not "
+              "below the analysis Nyquist frequency");
   }
   EXPECT_EQ(input_error_of([] { JackSource::capture_ports("oscilab-no-such-server"); }),
             "JACK server \"oscilab-no-such-server\" is not running");

@@ -52,7 +52,8 @@ inline Sidecar calibration(double frequency_hz = 9.0) {
   return s;
 }
 
-inline JackSource::Options jack_options(const JackTestServer& server, const JackTestPlayer& player) {
+inline JackSource::Options jack_options(const JackTestServer& server,
+                                        const JackTestPlayer& player) {
   JackSource::Options o;
   o.server = server.name();
   o.ports = {player.port(0), player.port(1)};

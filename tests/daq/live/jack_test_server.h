@@ -3,8 +3,8 @@
 // Test fixtures for the JACK source: a real jackd with the dummy backend (no sound hardware) and
 // a test client in the test process that plays signals into its output ports.
 
-#include <jack/jack.h>
 #include <fcntl.h>
+#include <jack/jack.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -54,8 +54,8 @@ class JackTestServer {
 
   void start() {
     const std::string rate = std::to_string(rate_hz_), period = std::to_string(period_);
-    std::vector<std::string> args = {"/usr/bin/jackd", "--no-realtime", "-n", name_, "-d",
-                                     "dummy", "-r", rate, "-p", period};
+    std::vector<std::string> args = {
+        "/usr/bin/jackd", "--no-realtime", "-n", name_, "-d", "dummy", "-r", rate, "-p", period};
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -89,8 +89,8 @@ class JackTestServer {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     stop(SIGKILL);
-    throw std::runtime_error("jackd " + name_ + " did not accept a client within 10 s: " +
-                             log_text());
+    throw std::runtime_error("jackd " + name_ +
+                             " did not accept a client within 10 s: " + log_text());
   }
 
   /// Stops the server with `signal` and waits for it (SIGKILL after 5 s).
