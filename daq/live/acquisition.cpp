@@ -209,7 +209,8 @@ void Acquisition::start_recording(const std::string& path) {
     return;
   }
   // Open now so that a bad path fails here, in the caller's thread, with its message.
-  impl_->recorder = std::make_unique<LiveRecorder>(path, *layout, impl_->history.end);
+  impl_->recorder = std::make_unique<LiveRecorder>(path, *layout, impl_->history.end,
+                                                   impl_->options.recorder_sync_interval);
   if (impl_->last_level) {  // the level running now, from where the recording starts
     const StreamEvent& level = *impl_->last_level;
     const double layout_freq_hz =
@@ -821,7 +822,8 @@ void Acquisition::Impl::open_pending_recording() {
   if (pending_recording.empty() || !layout_copy) return;
   const std::string path = std::exchange(pending_recording, std::string());
   try {
-    recorder = std::make_unique<LiveRecorder>(path, *layout_copy, history.end);
+    recorder = std::make_unique<LiveRecorder>(path, *layout_copy, history.end,
+                                              options.recorder_sync_interval);
     status.recording = true;
     StreamEvent started(time_of(history.end), "recording-started", path);
     started.wall = utc_now_iso8601();

@@ -38,6 +38,8 @@ struct AcquisitionOptions {
   bool derived_signals = true;
   double derived_latency_s = 2.0;
   std::optional<double> excitation_freq_hz;  // overrides the layout's; none there: EDC off
+  /// How often at most a recording's samples and event log go to the disk (LiveRecorder).
+  std::chrono::milliseconds recorder_sync_interval{1000};
   AlarmLimits alarms;
 };
 
