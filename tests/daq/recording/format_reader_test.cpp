@@ -171,8 +171,8 @@ TEST(FormatForFile, ChoosesBySignatureBeforeExtensionAndNamesTheFormatsItKnows) 
 TEST(SidecarDraft, GuessesRolesFromUnitsAndSpellsThemTheSidecarsWay) {
   FileContents contents;
   contents.file_signals = {FileSignal{"logger/time", 400, 1, "s", 200.0, "float64", {}},
-                      FileSignal{"logger/laser", 400, 1, "mm/s", 200.0, "float64", {}},
-                      FileSignal{"logger/table", 400, 1, "m/s\u00b2", 200.0, "float32", {}}};
+                           FileSignal{"logger/laser", 400, 1, "mm/s", 200.0, "float64", {}},
+                           FileSignal{"logger/table", 400, 1, "m/s\u00b2", 200.0, "float32", {}}};
   const SidecarDraft draft = draft_sidecar(contents);
   EXPECT_TRUE(draft.complete);
   const Sidecar sidecar = parse_sidecar(nlohmann::json(draft.sidecar), "draft");
@@ -191,7 +191,7 @@ TEST(SidecarDraft, GuessesRolesFromUnitsAndSpellsThemTheSidecarsWay) {
 TEST(SidecarDraft, SaysWhatIsMissingWhenTheFileStatesNeitherUnitsNorRate) {
   FileContents contents;
   contents.file_signals = {FileSignal{"V1", 131072, 1, "", std::nullopt, "float64", {}},
-                      FileSignal{"V2", 131072, 1, "", std::nullopt, "float64", {}}};
+                           FileSignal{"V2", 131072, 1, "", std::nullopt, "float64", {}}};
   const SidecarDraft draft = draft_sidecar(contents);
   EXPECT_FALSE(draft.complete);
   EXPECT_TRUE(draft.sidecar["sample_rate_hz"].is_null());
