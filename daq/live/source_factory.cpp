@@ -49,7 +49,12 @@ std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceO
     }
     case SourceKind::Network: {
       NetSource::Options net;
-      parse_host_port(spec.substr(4), o.what, net.host, net.port);
+      const std::string address = spec.substr(4);
+      if (address.size() > 2 && address.compare(address.size() - 2, 2, ":0") == 0) {
+        net.host = address.substr(0, address.size() - 2);  // port 0: any free port
+      } else {
+        parse_host_port(address, o.what, net.host, net.port);
+      }
       net.expected = o.expected;
       return std::make_unique<NetSource>(net);
     }

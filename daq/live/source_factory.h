@@ -47,7 +47,8 @@ SourceKind source_kind(const std::string& spec);
 /// - "rig": the virtual rig in real time (options: model, well, frequency, schedule, duration,
 ///   speed);
 /// - "file:REC" or REC: a replay of the recording (speed, loop);
-/// - "net:HOST:PORT": a receiver of the stream protocol listening there (expected);
+/// - "net:HOST:PORT": a receiver of the stream protocol listening there (expected); PORT 0:
+///   any free port (NetSource::port() tells which);
 /// - "jack:PORT_BASE,PORT_MASS[,...]": the JACK capture ports, one per channel of the
 ///   calibration sidecar, in its order (jack_server, jack_client, calibration,
 ///   analysis_rate_hz).
