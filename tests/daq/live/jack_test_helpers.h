@@ -1,7 +1,7 @@
 #pragma once
 
 // What the JACK source's tests share: the rig's calibration as a lab would wire it, waiting,
-// and the freewheeling soak (a unit test runs it for 10 minutes of signal, a `slow` one for an
+// and the freewheeling soak (a unit test runs it for 5 minutes of signal, a `slow` one for an
 // hour).
 
 #include <cmath>
