@@ -199,7 +199,10 @@ struct JackSource::Impl {
     }
     withheld.reserve(kMaxWithheld);
   }
-  ~Impl() { close(); }
+  ~Impl() {
+    close();
+    if (resampler != nullptr) soxr_delete(resampler);
+  }
 
   // JACK's callbacks (static trampolines below).
   int process(jack_nframes_t frames);

@@ -144,6 +144,7 @@ class JackTestPlayer {
                                           JACK_DEFAULT_AUDIO_TYPE, JackPortIsOutput, 0));
     }
     rate_hz_ = jack_get_sample_rate(client_);
+    out_.assign(static_cast<std::size_t>(channels), nullptr);
     jack_set_process_callback(client_, &JackTestPlayer::process_callback, this);
     jack_on_info_shutdown(
         client_,
@@ -197,7 +198,7 @@ class JackTestPlayer {
     if (const int ms = stall_ms_.exchange(0); ms > 0) {
       std::this_thread::sleep_for(std::chrono::milliseconds(ms));
     }
-    std::vector<float*> out(static_cast<std::size_t>(channels_));
+    std::vector<float*>& out = out_;  // sized once: the callback does not allocate
     for (int c = 0; c < channels_; ++c) {
       out[static_cast<std::size_t>(c)] =
           static_cast<float*>(jack_port_get_buffer(ports_[static_cast<std::size_t>(c)], frames));
@@ -234,6 +235,7 @@ class JackTestPlayer {
   int channels_;
   jack_client_t* client_ = nullptr;
   std::vector<jack_port_t*> ports_;
+  std::vector<float*> out_;
   double rate_hz_ = 48000.0;
   std::atomic<int> mode_{kSilence};
   std::vector<float> buffer_;
