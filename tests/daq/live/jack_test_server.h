@@ -45,6 +45,14 @@ class JackTestServer {
   ~JackTestServer() {
     stop(SIGTERM);
     std::filesystem::remove(log_);
+    // A server killed with SIGKILL leaves its clients' semaphores behind: this server's only.
+    std::error_code ignored;
+    for (const auto& entry : std::filesystem::directory_iterator("/dev/shm", ignored)) {
+      const std::string file = entry.path().filename().string();
+      if (file.rfind("jack_sem.", 0) == 0 && file.find("_" + name_ + "_") != std::string::npos) {
+        std::filesystem::remove(entry.path(), ignored);
+      }
+    }
   }
   JackTestServer(const JackTestServer&) = delete;
   JackTestServer& operator=(const JackTestServer&) = delete;
