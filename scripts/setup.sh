@@ -17,6 +17,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libfftw3-dev libsndfile1-dev libboost-dev
+  jackd2 libjack-jackd2-dev libsoxr-dev
   nlohmann-json3-dev libcli11-dev
   libpagmo-dev libnlopt-cxx-dev libmatio-dev libhdf5-dev libcairo2-dev parallel
   python3-numpy python3-scipy python3-h5py python3-pytest python3-dev pybind11-dev

@@ -18,6 +18,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QLineEdit>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QScrollArea>
 #include <QScrollBar>
@@ -35,8 +36,10 @@
 #include "analysis/hbm/level_response.h"
 #include "analysis/model/reference_models.h"
 #include "analysis/signal/amplitude_spectrum.h"
+#include "daq/live/jack_source.h"
 #include "daq/live/net_source.h"
 #include "daq/live/replay_source.h"
+#include "daq/live/source_factory.h"
 #include "ui/background_job.h"
 #include "ui/plot_helpers.h"
 #include "ui/well_colours.h"
@@ -387,6 +390,7 @@ void LiveMonitor::build_controls(QWidget* panel) {
   source_box_->addItem(tr("Virtual rig (paper model)"));
   source_box_->addItem(tr("Replay a file\u2026"));
   source_box_->addItem(tr("Network: listen on 127.0.0.1"));
+  source_box_->addItem(tr("JACK (sound card)"));
   replay_path_edit_ = new QLineEdit;
   replay_path_edit_->setObjectName("replay_path");
   replay_path_edit_->setPlaceholderText(tr("recording to replay"));
@@ -410,6 +414,35 @@ void LiveMonitor::build_controls(QWidget* panel) {
   port_box_->setValue(5025);
   port_box_->setSpecialValueText(tr("any free port"));
   port_box_->setToolTip(tr("Network: the TCP port to listen on (127.0.0.1 only)"));
+  // JACK: the server, a capture port per channel (listed from the server, or typed), the
+  // calibration sidecar, and a level meter per channel.
+  jack_server_edit_ = new QLineEdit;
+  jack_server_edit_->setObjectName("jack_server");
+  jack_server_edit_->setPlaceholderText(tr("default server"));
+  jack_server_edit_->setToolTip(tr("JACK: the server's name (empty: the default server)"));
+  jack_list_button_ = new QPushButton(tr("List ports"));
+  jack_list_button_->setToolTip(tr("JACK: list the server's capture ports"));
+  connect(jack_list_button_, &QPushButton::clicked, this, [this] { list_jack_ports(); });
+  auto* jack_server_row = new QHBoxLayout;
+  jack_server_row->addWidget(jack_server_edit_, 1);
+  jack_server_row->addWidget(jack_list_button_);
+  const char* jack_roles[2] = {"jack_base_port", "jack_mass_port"};
+  for (int c = 0; c < 2; ++c) {
+    jack_port_boxes_[c] = new QComboBox;
+    jack_port_boxes_[c]->setObjectName(jack_roles[c]);
+    jack_port_boxes_[c]->setEditable(true);
+    jack_meters_[c] = new QProgressBar;
+    jack_meters_[c]->setRange(0, 100);
+    jack_meters_[c]->setValue(0);
+    jack_meters_[c]->setFormat(tr("%p % of full scale"));
+    jack_meters_[c]->setToolTip(tr("Peak since the last refresh, in % of the input's full scale"));
+  }
+  jack_calibration_edit_ = new QLineEdit;
+  jack_calibration_edit_->setObjectName("jack_calibration");
+  jack_calibration_edit_->setPlaceholderText(tr("calibration sidecar (base, mass)"));
+  jack_calibration_edit_->setToolTip(
+      tr("JACK: a sidecar with the base and the mass channel, in that order: unit V, scale "
+         "(sensitivity), full_scale_v, ac_coupling_hz (docs/live.md)"));
   speed_box_ = new QComboBox;
   speed_box_->setObjectName("speed");
   speed_box_->addItem(tr("1\u00d7 (real time)"), 1.0);
@@ -434,6 +467,12 @@ void LiveMonitor::build_controls(QWidget* panel) {
   source_form->addRow(tr("File"), path_row);
   source_form->addRow(QString(), loop_box_);
   source_form->addRow(tr("Port"), port_box_);
+  source_form->addRow(tr("JACK server"), jack_server_row);
+  source_form->addRow(tr("Base port"), jack_port_boxes_[0]);
+  source_form->addRow(QString(), jack_meters_[0]);
+  source_form->addRow(tr("Mass port"), jack_port_boxes_[1]);
+  source_form->addRow(QString(), jack_meters_[1]);
+  source_form->addRow(tr("Calibration"), jack_calibration_edit_);
   source_form->addRow(tr("Speed"), speed_box_);
   source_form->addRow(run_row);
   connect(source_box_, &QComboBox::currentIndexChanged, this, [this] {
@@ -448,6 +487,12 @@ void LiveMonitor::build_controls(QWidget* panel) {
   connect(replay_path_edit_, &QLineEdit::textChanged, this, &LiveMonitor::emit_settings);
   connect(loop_box_, &QCheckBox::toggled, this, &LiveMonitor::emit_settings);
   connect(port_box_, &QSpinBox::valueChanged, this, &LiveMonitor::emit_settings);
+  for (QLineEdit* edit : {jack_server_edit_, jack_calibration_edit_}) {
+    connect(edit, &QLineEdit::textChanged, this, &LiveMonitor::emit_settings);
+  }
+  for (QComboBox* box : jack_port_boxes_) {
+    connect(box, &QComboBox::currentTextChanged, this, &LiveMonitor::emit_settings);
+  }
 
   // The rig.
   auto* rig_group = new QGroupBox(tr("Virtual rig"));
@@ -757,7 +802,12 @@ LiveSettings LiveMonitor::settings() const {
   const int source = source_box_->currentIndex();
   s.source = source == 1   ? LiveSourceKind::Replay
              : source == 2 ? LiveSourceKind::Network
+             : source == 3 ? LiveSourceKind::Jack
                            : LiveSourceKind::Rig;
+  s.jack_server = jack_server_edit_->text().toStdString();
+  s.jack_base_port = jack_port_boxes_[0]->currentText().toStdString();
+  s.jack_mass_port = jack_port_boxes_[1]->currentText().toStdString();
+  s.jack_calibration = jack_calibration_edit_->text().toStdString();
   s.replay_path = replay_path_edit_->text().toStdString();
   s.replay_loop = loop_box_->isChecked();
   s.port = port_box_->value();
@@ -786,7 +836,12 @@ void LiveMonitor::set_controls(const LiveSettings& s) {
   applying_settings_ = true;
   source_box_->setCurrentIndex(s.source == LiveSourceKind::Replay    ? 1
                                : s.source == LiveSourceKind::Network ? 2
+                               : s.source == LiveSourceKind::Jack    ? 3
                                                                      : 0);
+  jack_server_edit_->setText(qs(s.jack_server));
+  jack_port_boxes_[0]->setCurrentText(qs(s.jack_base_port));
+  jack_port_boxes_[1]->setCurrentText(qs(s.jack_mass_port));
+  jack_calibration_edit_->setText(qs(s.jack_calibration));
   replay_path_edit_->setText(qs(s.replay_path));
   loop_box_->setChecked(s.replay_loop);
   port_box_->setValue(s.port);
@@ -831,7 +886,13 @@ void LiveMonitor::update_source_controls() {
   browse_button_->setEnabled(source == 1);
   loop_box_->setEnabled(source == 1);
   port_box_->setEnabled(source == 2);
-  speed_box_->setEnabled(source != 2);
+  for (QWidget* w :
+       {static_cast<QWidget*>(jack_server_edit_), static_cast<QWidget*>(jack_list_button_),
+        static_cast<QWidget*>(jack_port_boxes_[0]), static_cast<QWidget*>(jack_port_boxes_[1]),
+        static_cast<QWidget*>(jack_calibration_edit_)}) {
+    w->setEnabled(source == 3);
+  }
+  speed_box_->setEnabled(source != 2 && source != 3);
   const bool live = acquisition_ != nullptr && running();
   rig_group_->setEnabled(source == 0 || rig_ != nullptr);
   set_button_->setEnabled(rig_ != nullptr && live);
@@ -871,42 +932,46 @@ bool LiveMonitor::start() {
   daq::RigSource* rig = nullptr;
   daq::ReplaySource* replay = nullptr;
   daq::NetSource* net = nullptr;
+  daq::JackSource* jack = nullptr;
   try {
+    // One factory for the CLI and the app (daq/live/source_factory.h).
+    daq::SourceOptions o;
+    o.what = "source";
+    o.positive_well = s.rig_positive_well;
+    o.frequency_hz = s.rig_frequency_hz;
+    o.speed = s.speed;
+    o.schedule = rig_schedule_;
+    o.duration_s = rig_duration_s_;
+    o.loop = s.replay_loop;
+    std::string spec;
     switch (s.source) {
-      case LiveSourceKind::Rig: {
-        daq::RigSource::Options o;
-        o.rig.positive_well = s.rig_positive_well;
-        o.frequency_hz = s.rig_frequency_hz;
-        o.speed = s.speed;
-        o.schedule = rig_schedule_;
-        o.duration_s = rig_duration_s_;
-        auto made = std::make_unique<daq::RigSource>(analysis::paper_model(), o);
-        if (rig_schedule_.empty() && s.rig_f0_n > 0) {
-          made->set_excitation(s.rig_f0_n, s.rig_frequency_hz);
-        }
-        rig = made.get();
-        source = std::move(made);
+      case LiveSourceKind::Rig:
+        spec = "rig";
         break;
-      }
-      case LiveSourceKind::Replay: {
+      case LiveSourceKind::Replay:
         if (s.replay_path.empty())
           throw InputError("replay: choose a recording to replay (\u2026)");
-        daq::ReplaySource::Options o;
-        o.speed = s.speed;
-        o.loop = s.replay_loop;
-        auto made = std::make_unique<daq::ReplaySource>(s.replay_path, o);
-        replay = made.get();
-        source = std::move(made);
+        spec = "file:" + s.replay_path;
         break;
-      }
-      case LiveSourceKind::Network: {
-        daq::NetSource::Options o;
-        o.port = static_cast<std::uint16_t>(s.port);
-        auto made = std::make_unique<daq::NetSource>(o);
-        net = made.get();
-        source = std::move(made);
+      case LiveSourceKind::Network:
+        spec = "net:127.0.0.1:" + std::to_string(s.port);
         break;
-      }
+      case LiveSourceKind::Jack:
+        if (s.jack_calibration.empty()) {
+          throw InputError("JACK: choose the calibration sidecar (base and mass channels)");
+        }
+        spec = "jack:" + s.jack_base_port + "," + s.jack_mass_port;
+        o.jack_server = s.jack_server;
+        o.calibration = daq::read_sidecar(s.jack_calibration);
+        break;
+    }
+    source = daq::make_source(spec, o);
+    rig = dynamic_cast<daq::RigSource*>(source.get());
+    replay = dynamic_cast<daq::ReplaySource*>(source.get());
+    net = dynamic_cast<daq::NetSource*>(source.get());
+    jack = dynamic_cast<daq::JackSource*>(source.get());
+    if (rig != nullptr && rig_schedule_.empty() && s.rig_f0_n > 0) {
+      rig->set_excitation(s.rig_f0_n, s.rig_frequency_hz);
     }
     daq::AcquisitionOptions options;
     options.alarms = s.alarms;
@@ -921,6 +986,7 @@ bool LiveMonitor::start() {
   rig_ = rig;
   replay_ = replay;
   net_ = net;
+  jack_ = jack;
   layout_ = acquisition_->source().layout();  // rig, replay: known now; network: once sent
 
   // A fresh view of the new stream.
@@ -1191,7 +1257,34 @@ void LiveMonitor::refresh_traces() {
   trace_plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 
+bool LiveMonitor::list_jack_ports() {
+  try {
+    const std::vector<std::string> ports =
+        daq::JackSource::capture_ports(jack_server_edit_->text().toStdString());
+    for (QComboBox* box : jack_port_boxes_) {
+      const QString chosen = box->currentText();
+      const QSignalBlocker block(box);
+      box->clear();
+      for (const std::string& port : ports) box->addItem(qs(port));
+      box->setCurrentText(chosen);
+    }
+    show_message(
+        tr("%n capture port(s) on the JACK server.", nullptr, static_cast<int>(ports.size())),
+        false);
+    return true;
+  } catch (const std::exception& error) {
+    show_message(tr("Cannot list JACK ports: %1").arg(error.what()), true);
+    return false;
+  }
+}
+
 void LiveMonitor::refresh_status() {
+  if (jack_ != nullptr && running()) {
+    const std::vector<double> peaks = jack_->peaks();
+    for (std::size_t c = 0; c < 2 && c < peaks.size(); ++c) {
+      jack_meters_[c]->setValue(static_cast<int>(std::lround(std::min(peaks[c], 100.0))));
+    }
+  }
   if (!acquisition_) {
     for (const auto& [key, label] : status_labels_) label->setText(qs(key));
     warning_label_->setText(tr("No source running."));

@@ -27,6 +27,7 @@ class QDoubleSpinBox;
 class QElapsedTimer;
 class QLabel;
 class QLineEdit;
+class QProgressBar;
 class QPushButton;
 class QScrollBar;
 class QSlider;
@@ -35,6 +36,7 @@ class QTableWidget;
 class QTimer;
 
 namespace oscilab::daq {
+class JackSource;
 class NetSource;
 class ReplaySource;
 }  // namespace oscilab::daq
@@ -84,6 +86,15 @@ class LiveMonitor : public QWidget {
   daq::RigSource* rig() const { return rig_; }
   daq::ReplaySource* replay() const { return replay_; }
   daq::NetSource* net() const { return net_; }
+  daq::JackSource* jack() const { return jack_; }
+
+  /// Fills the JACK port choices with the capture ports of the server named in the controls;
+  /// false and a message when no server answers.
+  bool list_jack_ports();
+  /// The level meters of a JACK source: peak of the base (0) and mass (1) channel since the last
+  /// refresh, in % of the interface's full scale.
+  QProgressBar* jack_meter(int channel) const { return jack_meters_[channel == 0 ? 0 : 1]; }
+  QComboBox* jack_port_box(int channel) const { return jack_port_boxes_[channel == 0 ? 0 : 1]; }
 
   /// The settings of the controls (MainWindow stores them in the session).
   LiveSettings settings() const;
@@ -191,6 +202,7 @@ class LiveMonitor : public QWidget {
   daq::RigSource* rig_ = nullptr;
   daq::ReplaySource* replay_ = nullptr;
   daq::NetSource* net_ = nullptr;
+  daq::JackSource* jack_ = nullptr;
   std::optional<daq::Sidecar> layout_;  // of the stream shown, once known
   std::vector<daq::ExcitationStep> rig_schedule_;
   std::optional<double> rig_duration_s_;
@@ -226,6 +238,11 @@ class LiveMonitor : public QWidget {
   std::vector<std::pair<std::string, QLabel*>> status_labels_;
   QTableWidget* event_log_ = nullptr;
 
+  QLineEdit* jack_server_edit_ = nullptr;
+  QLineEdit* jack_calibration_edit_ = nullptr;
+  QComboBox* jack_port_boxes_[2] = {nullptr, nullptr};
+  QPushButton* jack_list_button_ = nullptr;
+  QProgressBar* jack_meters_[2] = {nullptr, nullptr};
   QComboBox* source_box_ = nullptr;
   QLineEdit* replay_path_edit_ = nullptr;
   QPushButton* browse_button_ = nullptr;

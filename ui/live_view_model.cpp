@@ -58,6 +58,8 @@ std::string to_string(LiveSourceKind kind) {
       return "replay";
     case LiveSourceKind::Network:
       return "network";
+    case LiveSourceKind::Jack:
+      return "jack";
     default:
       return "rig";
   }
@@ -73,6 +75,11 @@ nlohmann::json LiveSettings::to_json() const {
           {"replay_path", replay_path},
           {"replay_loop", replay_loop},
           {"port", port},
+          {"jack",
+           {{"server", jack_server},
+            {"base_port", jack_base_port},
+            {"mass_port", jack_mass_port},
+            {"calibration", jack_calibration}}},
           {"rig",
            {{"f0_n", rig_f0_n},
             {"frequency_hz", rig_frequency_hz},
@@ -99,8 +106,11 @@ LiveSettings LiveSettings::from_json(const nlohmann::json& json) {
       s.source = LiveSourceKind::Replay;
     } else if (name == "network") {
       s.source = LiveSourceKind::Network;
+    } else if (name == "jack") {
+      s.source = LiveSourceKind::Jack;
     } else {
-      throw InputError("live.source: unknown source \"" + name + "\" (rig, replay or network)");
+      throw InputError("live.source: unknown source \"" + name +
+                       "\" (rig, replay, network or jack)");
     }
   }
   if (json.contains("replay_path")) {
@@ -120,6 +130,22 @@ LiveSettings LiveSettings::from_json(const nlohmann::json& json) {
     require(*port >= 0 && *port <= 65535 && *port == std::floor(*port), "live.port", *port,
             "a TCP port, 0 to 65535");
     s.port = static_cast<int>(*port);
+  }
+  if (json.contains("jack")) {
+    const nlohmann::json& jack = json.at("jack");
+    if (!jack.is_object()) throw InputError("live.jack: expected an object, got " + jack.dump());
+    const std::pair<const char*, std::string*> fields[] = {{"server", &s.jack_server},
+                                                           {"base_port", &s.jack_base_port},
+                                                           {"mass_port", &s.jack_mass_port},
+                                                           {"calibration", &s.jack_calibration}};
+    for (const auto& [name, field] : fields) {
+      if (!jack.contains(name)) continue;
+      if (!jack.at(name).is_string()) {
+        throw InputError(std::string("live.jack.") + name + ": expected a string, got " +
+                         jack.at(name).dump());
+      }
+      *field = jack.at(name).get<std::string>();
+    }
   }
   if (json.contains("rig")) {
     const nlohmann::json& rig = json.at("rig");

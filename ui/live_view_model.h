@@ -25,9 +25,9 @@
 namespace oscilab::ui {
 
 /// Where the live monitor's samples come from.
-enum class LiveSourceKind { Rig, Replay, Network };
+enum class LiveSourceKind { Rig, Replay, Network, Jack };
 
-/// "rig" | "replay" | "network".
+/// "rig" | "replay" | "network" | "jack".
 std::string to_string(LiveSourceKind kind);
 
 /// What the live monitor keeps in a session (MainWindow::live_settings), SI inside.
@@ -36,7 +36,13 @@ struct LiveSettings {
   std::string replay_path;
   bool replay_loop = false;  // start the file again at its end
   int port = 5025;           // network: listen on 127.0.0.1:port (0: any free port)
-  double rig_f0_n = 0.5;     // the excitation "Set" applies
+  // JACK (sound card): the server (empty: the default), the capture ports of the base and the
+  // mass channels, and the calibration sidecar (one channel per port, in that order).
+  std::string jack_server;
+  std::string jack_base_port = "system:capture_1";
+  std::string jack_mass_port = "system:capture_2";
+  std::string jack_calibration;
+  double rig_f0_n = 0.5;  // the excitation "Set" applies
   double rig_frequency_hz = 9.0;
   double rig_step_n = 0.1;  // "Step +ΔN"
   bool rig_positive_well = true;

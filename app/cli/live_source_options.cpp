@@ -1,12 +1,9 @@
 #include "app/cli/live_source_options.h"
 
 #include "analysis/common/input_error.h"
-#include "analysis/model/model_json.h"
 #include "app/cli/option_parsing.h"
-#include "daq/live/net_source.h"
-#include "daq/live/replay_source.h"
 #include "daq/live/rig_source.h"
-#include "daq/live/tcp_socket.h"
+#include "daq/live/source_factory.h"
 
 namespace oscilab::cli {
 
@@ -31,39 +28,52 @@ void add_live_source_options(CLI::App& command, LiveSourceOptions& o, bool net) 
       ->capture_default_str();
   if (!net) return;
   command.add_option("--sidecar", o.sidecar,
-                     "net: the layout to expect (a sidecar JSON); senders that differ are refused");
+                     "net: the layout to expect (a sidecar JSON); senders that differ are refused. "
+                     "jack: the calibration, one channel per port in port order (unit, scale, "
+                     "full_scale_v, ac_coupling_hz, range)");
+  command.add_option("--jack-server", o.jack_server,
+                     "jack: the JACK server's name (default: the default server)");
+  command.add_option("--jack-client", o.jack_client, "jack: the client name to register")
+      ->capture_default_str();
+  command.add_option("--rate", o.rate_hz,
+                     "jack: the analysis rate [Hz] the sound card's samples are resampled to "
+                     "(default: the sidecar's sample_rate_hz)");
 }
 
 std::unique_ptr<daq::SampleSource> make_live_source(const std::string& spec,
                                                     const LiveSourceOptions& o, bool allow_net) {
-  if (spec == "rig") {
-    daq::RigSource::Options rig;
-    rig.rig.positive_well = o.well == "positive";
-    rig.rig.seed = o.seed;
-    rig.frequency_hz = o.freq_hz;
-    rig.speed = o.speed;
-    rig.duration_s = o.duration_s;
-    if (!o.levels.empty()) {
-      const std::vector<double> levels = parse_levels(o.levels, "--levels");
-      if (!(o.hold_s > 0) || !(o.lead_in_s >= 0)) {
-        throw InputError("--hold must be positive and --lead-in >= 0");
-      }
-      rig.schedule = daq::rig_schedule(levels, o.hold_s, o.lead_in_s, o.freq_hz);
+  const daq::SourceKind kind = daq::source_kind(spec);
+  if (!allow_net && (kind == daq::SourceKind::Network || kind == daq::SourceKind::Jack)) {
+    throw InputError("--source " + spec.substr(0, spec.find(':') + 1) +
+                     " is for record; stream sends to one");
+  }
+  daq::SourceOptions source;
+  source.model = o.model;
+  source.positive_well = o.well == "positive";
+  source.frequency_hz = o.freq_hz;
+  source.speed = o.speed;
+  source.duration_s = o.duration_s;
+  if (kind == daq::SourceKind::Rig && !o.levels.empty()) {
+    const std::vector<double> levels = parse_levels(o.levels, "--levels");
+    if (!(o.hold_s > 0) || !(o.lead_in_s >= 0)) {
+      throw InputError("--hold must be positive and --lead-in >= 0");
     }
-    return std::make_unique<daq::RigSource>(analysis::model_from_spec(o.model), rig);
+    source.schedule = daq::rig_schedule(levels, o.hold_s, o.lead_in_s, o.freq_hz);
   }
-  if (spec.rfind("net:", 0) == 0) {
-    if (!allow_net) throw InputError("--source net: is for record; stream sends to one");
-    daq::NetSource::Options net;
-    daq::parse_host_port(spec.substr(4), "--source", net.host, net.port);
-    if (!o.sidecar.empty()) net.expected = daq::read_sidecar(o.sidecar);
-    return std::make_unique<daq::NetSource>(net);
+  if (kind == daq::SourceKind::Network && !o.sidecar.empty()) {
+    source.expected = daq::read_sidecar(o.sidecar);
   }
-  const std::string path = spec.rfind("file:", 0) == 0 ? spec.substr(5) : spec;
-  if (path.empty()) throw InputError("--source file: needs a recording path");
-  daq::ReplaySource::Options replay;
-  replay.speed = o.speed;
-  return std::make_unique<daq::ReplaySource>(path, replay);
+  if (kind == daq::SourceKind::Jack) {
+    if (o.sidecar.empty()) {
+      throw InputError("--source " + spec +
+                       ": give the calibration with --sidecar CAL.json (one channel per port)");
+    }
+    source.calibration = daq::read_sidecar(o.sidecar);
+    source.jack_server = o.jack_server;
+    source.jack_client = o.jack_client;
+    source.analysis_rate_hz = o.rate_hz;
+  }
+  return daq::make_source(spec, source);
 }
 
 }  // namespace oscilab::cli

@@ -1,4 +1,5 @@
-// `oscilab-cli record --source rig|net:HOST:PORT|file:REC --out REC [--duration S]` (contract §2):
+// `oscilab-cli record --source rig|net:HOST:PORT|jack:PORT,PORT|file:REC --out REC [--duration S]`
+// (contract §2):
 // records a live source as it arrives, with its sidecar and event log, and prints the live EDC.
 #include <atomic>
 #include <chrono>
@@ -29,6 +30,7 @@ struct RecordOptions {
   std::string edc;
   LiveSourceOptions live;
   double wait_s = 0.0;  // net: give up when no sender came within this (0: wait forever)
+  int sync_ms = 1000;   // the recording goes to the disk at most this often
 };
 
 void print_status(const daq::AcquisitionStatus& s, bool final_line) {
@@ -62,6 +64,8 @@ void run(const RecordOptions& o) {
   std::signal(SIGINT, on_signal);  // first: a signal while setting up still ends cleanly
   std::signal(SIGTERM, on_signal);
   daq::AcquisitionOptions acquisition_options;
+  if (o.sync_ms < 0) throw InputError("--sync-ms " + std::to_string(o.sync_ms) + ": must be >= 0");
+  acquisition_options.recorder_sync_interval = std::chrono::milliseconds(o.sync_ms);
   auto acquisition = std::make_unique<daq::Acquisition>(make_live_source(o.source, o.live, true),
                                                         acquisition_options);
   // Recorded from the stream's first sample: at once for the rig and a replay, from the first
@@ -122,7 +126,8 @@ void add_record_command(CLI::App& app) {
   command
       ->add_option("--source", o->source,
                    "rig (the virtual rig in real time) | net:HOST:PORT (listen for a sender; "
-                   "HOST 127.0.0.1 keeps it local) | file:REC (replay a recording)")
+                   "HOST 127.0.0.1 keeps it local) | jack:PORT_BASE,PORT_MASS[,...] (JACK "
+                   "capture ports, one per --sidecar channel) | file:REC (replay a recording)")
       ->capture_default_str();
   command->add_option("--out", o->out, "recording to write: .wav, .w64 or .rf64")->required();
   command->add_option("--duration", o->live.duration_s,
@@ -130,6 +135,11 @@ void add_record_command(CLI::App& app) {
                       "on SIGINT/SIGTERM)");
   command->add_option("--edc", o->edc, "write the live EDC table (CSV) here");
   command->add_option("--wait", o->wait_s, "net: fail when no sender came within S seconds");
+  command
+      ->add_option("--sync-ms", o->sync_ms,
+                   "hand the samples and the event log to the disk (fdatasync) at most every N "
+                   "ms; 0: after every block")
+      ->capture_default_str();
   add_live_source_options(*command, o->live, true);
   command->callback([o] { run(*o); });
 }

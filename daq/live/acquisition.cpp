@@ -8,6 +8,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/pipeline/measurement_pipeline.h"
+#include "analysis/signal/ac_coupling.h"
 #include "analysis/signal/streaming_integrator.h"
 #include "daq/live/live_recorder.h"
 #include "daq/live/stream_monitor.h"
@@ -18,6 +19,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kMaxLatencies = 10000;
 constexpr auto kIdleWait = std::chrono::milliseconds(2);  // queue empty: look again after this
+constexpr double kAcCouplingWarnFactor = 10.0;  // warn when f < this × the AC-coupling corner
 
 analysis::MotionQuantity motion_quantity(Quantity quantity) {
   switch (quantity) {
@@ -105,6 +107,9 @@ struct Acquisition::Impl {
   double pipeline_freq_hz = 0.0;
   std::size_t pipeline_cycles_seen = 0;
   std::vector<double> base_si, mass_si;  // one block, calibrated
+  // The AC-coupling high-pass of a channel, undone after calibration (sidecar ac_coupling_hz).
+  std::optional<analysis::AcCouplingInverse> base_ac, mass_ac;
+  std::vector<std::string> setup_warnings;  // logged once the chain starts
   std::vector<BadRun> non_finite_runs, saturated_runs;
   // b, ḃ, ẏ, ÿ, y from the calibrated channels; null where the channel is that quantity already.
   std::vector<std::unique_ptr<analysis::StreamingIntegrator>> filters;
@@ -204,7 +209,8 @@ void Acquisition::start_recording(const std::string& path) {
     return;
   }
   // Open now so that a bad path fails here, in the caller's thread, with its message.
-  impl_->recorder = std::make_unique<LiveRecorder>(path, *layout, impl_->history.end);
+  impl_->recorder = std::make_unique<LiveRecorder>(path, *layout, impl_->history.end,
+                                                   impl_->options.recorder_sync_interval);
   if (impl_->last_level) {  // the level running now, from where the recording starts
     const StreamEvent& level = *impl_->last_level;
     const double layout_freq_hz =
@@ -243,6 +249,13 @@ AcquisitionStatus Acquisition::status() const {
   s.malformed_frames = c.malformed_frames;
   s.layout_mismatches = c.layout_mismatches;
   s.connections = c.connections;
+  s.xruns = c.xruns;
+  s.server_losses = c.server_losses;
+  s.port_disconnections = c.port_disconnections;
+  s.rate_changes = c.rate_changes;
+  s.dropped_frames = c.dropped_frames;
+  s.clipped_samples = c.clipped_samples;
+  s.reconnections = c.reconnections;
   s.finished = finished();
   if (!impl_->latencies_s.empty()) {
     std::vector<double> sorted = impl_->latencies_s;
@@ -365,11 +378,32 @@ bool Acquisition::Impl::setup_layout() {
   if (motion_ok) {
     base_cal = all_cal[static_cast<std::size_t>(base)];
     mass_cal = all_cal[static_cast<std::size_t>(mass)];
-    const std::optional<double> freq = options.excitation_freq_hz ? options.excitation_freq_hz
-                                       : layout.excitation        ? layout.excitation->frequency_hz
-                                                                  : std::nullopt;
-    if (freq) {
-      make_pipeline(*freq, 0.0);
+    // The excitation frequency (0: not known), the option's before the stream's.
+    double freq_hz = 0.0;
+    if (options.excitation_freq_hz) {
+      freq_hz = *options.excitation_freq_hz;
+    } else if (layout.excitation && layout.excitation->frequency_hz) {
+      freq_hz = *layout.excitation->frequency_hz;
+    }
+    for (const auto& [cal, inverse] :
+         {std::pair{&base_cal, &base_ac}, std::pair{&mass_cal, &mass_ac}}) {
+      const ChannelInfo& channel = layout.channels[static_cast<std::size_t>(cal->index)];
+      if (!channel.ac_coupling_hz) continue;
+      inverse->emplace(*channel.ac_coupling_hz, rate_hz, "stream channel \"" + channel.name + "\"");
+      // A first-order high-pass leads by atan(fc / f): 0.0997 rad at f = 10 fc. Corrected, a
+      // corner known to ±10 % still leaves up to 0.01 rad there, a large error in the loop's
+      // area, so an excitation within 10× of the corner is worth a warning (docs/live.md).
+      if (freq_hz > 0 && freq_hz < kAcCouplingWarnFactor * *channel.ac_coupling_hz) {
+        setup_warnings.push_back(
+            "channel \"" + channel.name + "\": the excitation " + std::to_string(freq_hz) +
+            " Hz is within " + std::to_string(static_cast<int>(kAcCouplingWarnFactor)) +
+            "x of its AC-coupling corner " + std::to_string(*channel.ac_coupling_hz) +
+            " Hz; its phase is corrected, but the EDC now depends on how well the corner is "
+            "known: a DC-coupled input is better");
+      }
+    }
+    if (freq_hz > 0) {
+      make_pipeline(freq_hz, 0.0);
     } else {
       edc_message = "live EDC off: the stream does not say the excitation frequency";
     }
@@ -469,8 +503,9 @@ void Acquisition::Impl::handle_event(StreamEvent event) {
     const std::lock_guard lock(mutex);
     last_level = event;
     if (recorder) recorder->add_level(f0, freq, change_s, from_s, to_s);
-  } else if (event.kind == "invalid") {
-    // A replayed recording's own invalid stretch: the same treatment as a fault seen here.
+  } else if (event.kind == "invalid" || event.kind == "clipped") {
+    // A replayed recording's own invalid stretch, or input a source saw clipped before it
+    // resampled it: the same treatment as a fault seen here.
     const double from_s = event.data.value("from_s", event.t_s);
     const double to_s = event.data.value("to_s", event.t_s);
     if (pipeline) pipeline->exclude(from_s, to_s);
@@ -478,7 +513,8 @@ void Acquisition::Impl::handle_event(StreamEvent event) {
     if (recorder) {
       recorder->mark_invalid(
           static_cast<std::uint64_t>(std::max(0.0, std::floor(from_s * rate_hz))),
-          static_cast<std::uint64_t>(std::max(0.0, std::ceil(to_s * rate_hz))), "replayed");
+          static_cast<std::uint64_t>(std::max(0.0, std::ceil(to_s * rate_hz))),
+          event.kind == "clipped" ? "clipped" : "replayed");
     }
   } else if (event.kind == "discontinuity" && std::isfinite(event.t_s)) {
     // The samples on either side of the jump do not belong to one motion.
@@ -606,8 +642,10 @@ void Acquisition::Impl::on_block(const RawBlock& block, std::uint64_t first_samp
   if (analysed) {
     for (int r = 0; r < rows; ++r) {
       const double b = block.value(r, base_cal.index), y = block.value(r, mass_cal.index);
-      const double b_si = (base_cal.scale * b + base_cal.offset) * base_cal.factor;
-      const double y_si = (mass_cal.scale * y + mass_cal.offset) * mass_cal.factor;
+      double b_si = (base_cal.scale * b + base_cal.offset) * base_cal.factor;
+      double y_si = (mass_cal.scale * y + mass_cal.offset) * mass_cal.factor;
+      if (base_ac) b_si = base_ac->push(b_si);
+      if (mass_ac) y_si = mass_ac->push(y_si);
       // Bad samples are excluded above; zeros keep the filters and fits finite meanwhile.
       base_si[static_cast<std::size_t>(r)] = std::isfinite(b_si) ? b_si : 0.0;
       mass_si[static_cast<std::size_t>(r)] = std::isfinite(y_si) ? y_si : 0.0;
@@ -784,7 +822,8 @@ void Acquisition::Impl::open_pending_recording() {
   if (pending_recording.empty() || !layout_copy) return;
   const std::string path = std::exchange(pending_recording, std::string());
   try {
-    recorder = std::make_unique<LiveRecorder>(path, *layout_copy, history.end);
+    recorder = std::make_unique<LiveRecorder>(path, *layout_copy, history.end,
+                                              options.recorder_sync_interval);
     status.recording = true;
     StreamEvent started(time_of(history.end), "recording-started", path);
     started.wall = utc_now_iso8601();
@@ -827,6 +866,7 @@ void Acquisition::Impl::run(Acquisition& owner) {
   }
   open_pending_recording();
   log({0.0, "start", source->describe()});
+  for (const std::string& warning : setup_warnings) log({0.0, "warning", warning});
   bool source_done = false;
   while (status.layout_known) {
     // The block first, then the events: a source posts an event before it publishes the block

@@ -38,6 +38,8 @@ struct AcquisitionOptions {
   bool derived_signals = true;
   double derived_latency_s = 2.0;
   std::optional<double> excitation_freq_hz;  // overrides the layout's; none there: EDC off
+  /// How often at most a recording's samples and event log go to the disk (LiveRecorder).
+  std::chrono::milliseconds recorder_sync_interval{1000};
   AlarmLimits alarms;
 };
 
@@ -54,6 +56,9 @@ struct AcquisitionStatus {
                 discontinuities = 0;
   std::uint64_t non_finite_samples = 0, saturated_samples = 0;
   std::uint64_t overflowed_blocks = 0, malformed_frames = 0, layout_mismatches = 0, connections = 0;
+  // Sound-card (JACK) sources: SourceCounters of the same names.
+  std::uint64_t xruns = 0, server_losses = 0, port_disconnections = 0, rate_changes = 0,
+                dropped_frames = 0, clipped_samples = 0, reconnections = 0;
   std::size_t queue_fill = 0, queue_capacity = 0;
   bool recording = false;
   std::string recording_path;

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "analysis/common/input_error.h"
+#include "daq/recording/temporary_file.h"
 
 namespace oscilab::daq {
 namespace {
@@ -33,13 +34,14 @@ constexpr std::size_t kGapChunkRows = 4096;
 }  // namespace
 
 LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
-                           std::uint64_t first_sample)
+                           std::uint64_t first_sample, std::chrono::milliseconds sync_interval)
     : path_(path),
       sidecar_path_(sidecar_path_for(path)),
       sidecar_(layout),
       first_sample_(first_sample),
       rate_hz_(layout.sample_rate_hz),
-      channels_(static_cast<int>(layout.channels.size())) {
+      channels_(static_cast<int>(layout.channels.size())),
+      sync_interval_(sync_interval) {
   const int format = live_format_for(path);
   events_path_ =
       (std::filesystem::path(path).parent_path() / std::filesystem::path(path).stem()).string() +
@@ -59,8 +61,15 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
     throw InputError(path + ": cannot record " + std::to_string(channels_) + " channels at " +
                      std::to_string(rate_hz_) + " Hz in this container");
   }
-  file_ = sf_open(path.c_str(), SFM_WRITE, &info);
-  if (file_ == nullptr) throw InputError(path + ": cannot write: " + sf_strerror(nullptr));
+  // Opened here, so that its descriptor can be synced; libsndfile closes it.
+  file_fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (file_fd_ < 0) throw InputError(path + ": cannot write: " + std::strerror(errno));
+  file_ = sf_open_fd(file_fd_, SFM_WRITE, &info, SF_TRUE);
+  if (file_ == nullptr) {
+    ::close(file_fd_);
+    throw InputError(path + ": cannot write: " + sf_strerror(nullptr));
+  }
+  last_sync_ = std::chrono::steady_clock::now();
   sf_command(file_, SFC_SET_UPDATE_HEADER_AUTO, nullptr, SF_TRUE);
   // No destructor runs when a constructor throws: what is open is closed before rethrowing.
   try {
@@ -79,6 +88,7 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
   } catch (...) {
     if (events_fd_ >= 0) ::close(events_fd_);
     sf_close(file_);
+    file_ = nullptr;
     throw;
   }
   nan_rows_.assign(kGapChunkRows * static_cast<std::size_t>(channels_),
@@ -106,7 +116,21 @@ bool LiveRecorder::write(const RawBlock& block) {
     return false;
   }
   samples_written_ += static_cast<std::uint64_t>(block.rows);
+  maybe_sync(false);
   return true;
+}
+
+void LiveRecorder::maybe_sync(bool force) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!force && now - last_sync_ < sync_interval_) return;
+  last_sync_ = now;
+  // The header is current (SFC_SET_UPDATE_HEADER_AUTO); fdatasync makes samples and header
+  // durable together with what the file's size needs.
+  if (file_fd_ >= 0 && ::fdatasync(file_fd_) != 0 && error_.empty()) {
+    error_ = path_ + ": cannot sync to disk: " + std::strerror(errno);
+  }
+  if (events_fd_ >= 0) ::fdatasync(events_fd_);
+  syncs_ += 1;
 }
 
 bool LiveRecorder::write_gap(std::uint64_t samples) {
@@ -123,6 +147,7 @@ bool LiveRecorder::write_gap(std::uint64_t samples) {
     left -= static_cast<std::uint64_t>(rows);
     samples_written_ += static_cast<std::uint64_t>(rows);
   }
+  maybe_sync(false);
   return true;
 }
 
@@ -209,12 +234,66 @@ void LiveRecorder::write_sidecar_now() {
 
 void LiveRecorder::close() {
   if (file_ == nullptr) return;
+  maybe_sync(true);
   const int closed = sf_close(file_);
+  file_fd_ = -1;
   file_ = nullptr;
   if (closed != 0 && error_.empty()) error_ = path_ + ": close failed: " + sf_error_number(closed);
   if (events_fd_ >= 0) ::close(events_fd_);
   events_fd_ = -1;
   write_sidecar_now();
+}
+
+std::int64_t recover_live_recording(const std::string& path) {
+  SF_INFO info{};
+  SNDFILE* in = sf_open(path.c_str(), SFM_READ, &info);
+  if (in == nullptr) {
+    throw InputError(path + ": cannot recover: not even its header can be read (" +
+                     sf_strerror(nullptr) + ")");
+  }
+  // Every whole frame the file holds (libsndfile stops at the end of the data it finds).
+  std::vector<double> samples;
+  std::vector<double> chunk(static_cast<std::size_t>(4096 * info.channels));
+  sf_count_t frames = 0;
+  for (;;) {
+    const sf_count_t got = sf_readf_double(in, chunk.data(), 4096);
+    if (got <= 0) break;
+    samples.insert(samples.end(), chunk.begin(), chunk.begin() + got * info.channels);
+    frames += got;
+  }
+  sf_close(in);
+  if (frames == 0) throw InputError(path + ": cannot recover: no whole sample before the cut");
+  TemporaryFile out_file(path);
+  SF_INFO out_info{};
+  out_info.samplerate = info.samplerate;
+  out_info.channels = info.channels;
+  out_info.format = info.format;
+  SNDFILE* out = sf_open(out_file.path().c_str(), SFM_WRITE, &out_info);
+  if (out == nullptr) throw InputError(path + ": cannot recover: " + sf_strerror(nullptr));
+  const bool written = sf_writef_double(out, samples.data(), frames) == frames;
+  if (sf_close(out) != 0 || !written) throw InputError(path + ": cannot recover: write failed");
+  out_file.commit();
+  // The sidecar: levels and invalid intervals no later than what is left.
+  const std::string sidecar_path = sidecar_path_for(path);
+  if (std::filesystem::exists(sidecar_path)) {
+    Sidecar sidecar = read_sidecar(sidecar_path);
+    const double end_s = static_cast<double>(frames) / sidecar.sample_rate_hz;
+    if (sidecar.excitation) {
+      auto& levels = sidecar.excitation->levels;
+      levels.erase(std::remove_if(levels.begin(), levels.end(),
+                                  [&](const ExcitationLevel& l) { return l.start_s >= end_s; }),
+                   levels.end());
+      for (ExcitationLevel& level : levels) level.end_s = std::min(level.end_s, end_s);
+    }
+    auto& intervals = sidecar.invalid_intervals;
+    intervals.erase(std::remove_if(intervals.begin(), intervals.end(),
+                                   [&](const InvalidInterval& i) { return i.start_s > end_s; }),
+                    intervals.end());
+    for (InvalidInterval& interval : intervals) interval.end_s = std::min(interval.end_s, end_s);
+    sidecar.extra["recovered"] = {{"samples", frames}, {"at", utc_now_iso8601()}};
+    write_sidecar(sidecar, sidecar_path);
+  }
+  return frames;
 }
 
 }  // namespace oscilab::daq

@@ -26,13 +26,22 @@ namespace oscilab::daq {
 /// A SIGKILL loses at most the block being written and the last second of sidecar changes:
 /// the test kills a recording process and reads what it left.
 ///
+/// Durability (a power cut, not just a crash): the samples and the event log are handed to the
+/// disk (fdatasync) at most every `sync_interval` on the writer's thread, once a second by
+/// default, and at close; the sidecar is rewritten at most once a second. A power cut loses at
+/// most the last interval; a file cut anywhere in its samples is repaired by
+/// recover_live_recording, which keeps every whole sample before the cut.
+///
 /// Times are recording time: stream time − the stream time of the first sample recorded.
 /// Not thread-safe: the acquisition thread owns it.
 class LiveRecorder {
  public:
   /// Opens the files (throws InputError naming the path: unknown container, cannot write).
   /// `layout` says what the samples mean; `first_sample` is the stream sample recorded first.
-  LiveRecorder(const std::string& path, const Sidecar& layout, std::uint64_t first_sample);
+  /// `sync_interval`: how often at most the data goes to the disk (fdatasync); 0: every write.
+  LiveRecorder(const std::string& path, const Sidecar& layout, std::uint64_t first_sample,
+               std::chrono::milliseconds sync_interval = kDefaultSyncInterval);
+  static constexpr std::chrono::milliseconds kDefaultSyncInterval{1000};
   ~LiveRecorder();
   /// Throws InputError unless `path` names a container a live recording can be (see above).
   static void check_path(const std::string& path);
@@ -60,8 +69,12 @@ class LiveRecorder {
   const std::string& path() const { return path_; }
   std::uint64_t samples_written() const { return samples_written_; }
   const std::string& error() const { return error_; }
+  /// fdatasync calls so far (samples and event log each count once).
+  std::uint64_t syncs() const { return syncs_; }
 
  private:
+  /// Hands what was written to the disk when sync_interval has passed (or `force`).
+  void maybe_sync(bool force);
   double recording_time_s(std::uint64_t stream_sample) const;
   double first_time_s() const { return static_cast<double>(first_sample_) / rate_hz_; }
   void write_sidecar_now();
@@ -72,7 +85,11 @@ class LiveRecorder {
   double rate_hz_;
   int channels_;
   SNDFILE* file_ = nullptr;
+  int file_fd_ = -1;  // the samples' descriptor, owned by libsndfile (sf_open_fd, closed by it)
   int events_fd_ = -1;
+  std::chrono::milliseconds sync_interval_;
+  std::chrono::steady_clock::time_point last_sync_;
+  std::uint64_t syncs_ = 0;
   std::uint64_t samples_written_ = 0;
   std::vector<double> nan_rows_;  // one block of NaN rows for gaps
   bool sidecar_dirty_ = false;
@@ -80,5 +97,12 @@ class LiveRecorder {
   bool level_open_ = false;  // the last level in sidecar_ has no end yet
   std::string error_;
 };
+
+/// Repairs a live recording cut anywhere (a power cut before the header was rewritten, a disk
+/// that filled, a copy stopped short): every whole sample the file holds is kept, the header
+/// made to match, and the sidecar's levels and invalid intervals clipped to what is left. The
+/// file is replaced atomically (write beside it and rename). Returns the samples kept per
+/// channel. Throws InputError naming the file when not even its header can be read.
+std::int64_t recover_live_recording(const std::string& path);
 
 }  // namespace oscilab::daq

@@ -19,10 +19,17 @@ namespace oscilab::daq {
 struct SourceCounters {
   std::uint64_t blocks_delivered = 0;
   std::uint64_t samples_delivered = 0;
-  std::uint64_t blocks_overflowed = 0;  // dropped because the queue was full
-  std::uint64_t connections = 0;        // network: senders accepted
-  std::uint64_t malformed_frames = 0;   // network: frames rejected
-  std::uint64_t layout_mismatches = 0;  // network: senders refused for their layout
+  std::uint64_t blocks_overflowed = 0;    // dropped because the queue was full
+  std::uint64_t connections = 0;          // network: senders accepted
+  std::uint64_t malformed_frames = 0;     // network: frames rejected
+  std::uint64_t layout_mismatches = 0;    // network: senders refused for their layout
+  std::uint64_t xruns = 0;                // JACK: xruns the server reported
+  std::uint64_t server_losses = 0;        // JACK: the server shut down (or dropped the client)
+  std::uint64_t port_disconnections = 0;  // JACK: a capture port lost its connection
+  std::uint64_t rate_changes = 0;         // JACK: the server's sample rate changed
+  std::uint64_t dropped_frames = 0;       // JACK: frames the ring had no room for
+  std::uint64_t clipped_samples = 0;      // JACK: input samples at the interface's full scale
+  std::uint64_t reconnections = 0;        // JACK: the server came back and the source with it
 };
 
 /// One live source of samples (virtual rig, file replay, network stream), running on its own
@@ -82,6 +89,8 @@ class SampleSource {
   void count_overflow(std::uint64_t first_sample);
 
   std::atomic<std::uint64_t> connections_{0}, malformed_frames_{0}, layout_mismatches_{0};
+  std::atomic<std::uint64_t> xruns_{0}, server_losses_{0}, port_disconnections_{0},
+      rate_changes_{0}, dropped_frames_{0}, clipped_samples_{0}, reconnections_{0};
 
  private:
   void thread_main();

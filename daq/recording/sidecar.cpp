@@ -212,10 +212,16 @@ ChannelInfo parse_channel(const json& value, const Field& field) {
     if (!(lo < hi)) here.fail("min must be below max, got " + show(*range));
     channel.range = std::make_pair(lo, hi);
   }
+  if (const json* corner = find(object, "ac_coupling_hz"); corner && !corner->is_null()) {
+    channel.ac_coupling_hz = positive_number(*corner, field / "ac_coupling_hz");
+  }
+  if (const json* full_scale = find(object, "full_scale_v"); full_scale && !full_scale->is_null()) {
+    channel.full_scale_v = positive_number(*full_scale, field / "full_scale_v");
+  }
   for (const auto& [key, item] : object.items()) {
     if (key != "name" && key != "role" && key != "quantity" && key != "unit" && key != "scale" &&
         key != "offset" && key != "sensor" && key != "source" && key != "column" &&
-        key != "range") {
+        key != "range" && key != "ac_coupling_hz" && key != "full_scale_v") {
       channel.extra[key] = item;
     }
   }
@@ -382,6 +388,8 @@ ordered_json channel_to_json(const ChannelInfo& channel) {
   if (!channel.source.empty()) out["source"] = channel.source;
   if (channel.column >= 0) out["column"] = channel.column;
   if (channel.range) out["range"] = {channel.range->first, channel.range->second};
+  if (channel.ac_coupling_hz) out["ac_coupling_hz"] = *channel.ac_coupling_hz;
+  if (channel.full_scale_v) out["full_scale_v"] = *channel.full_scale_v;
   if (channel.extra.is_object()) {
     for (const auto& [key, item] : channel.extra.items()) {
       if (!out.contains(key)) out[key] = item;
@@ -563,6 +571,12 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
       (here / "name")
           .fail("duplicate name " + in_quotes(channel.name) + " (also channels[" +
                 std::to_string(it->second) + "])");
+    }
+    if (channel.ac_coupling_hz && *channel.ac_coupling_hz >= 0.5 * sidecar.sample_rate_hz) {
+      (here / "ac_coupling_hz")
+          .fail(format_number(*channel.ac_coupling_hz) +
+                " Hz is not below the Nyquist frequency, " +
+                format_number(0.5 * sidecar.sample_rate_hz) + " Hz");
     }
     sidecar.channels.push_back(std::move(channel));
   }

@@ -44,6 +44,15 @@ struct ChannelInfo {
   /// The sensor's or the ADC's full scale in `unit` (sidecar "range": [min, max]); a sample at
   /// or beyond either end is saturated. Unknown: no saturation check.
   std::optional<std::pair<double, double>> range;
+  /// The corner of the first-order high-pass an AC-coupled input puts in front of the samples
+  /// (sidecar "ac_coupling_hz", Hz, below the Nyquist frequency): a sound card's input
+  /// capacitor. The analysis undoes its phase and gain (analysis/signal/ac_coupling.h). None:
+  /// a DC-coupled input.
+  std::optional<double> ac_coupling_hz;
+  /// Volts at the full scale of a sound-card input (sidecar "full_scale_v"): a JACK source
+  /// stores sample × full_scale_v, so that with unit "V" `scale` is the sensor's sensitivity.
+  /// None: the stored value is the fraction of full scale the interface gives.
+  std::optional<double> full_scale_v;
   nlohmann::json extra = nlohmann::json::object();  // other keys, kept as they are
 };
 

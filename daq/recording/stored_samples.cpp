@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "analysis/common/input_error.h"
+#include "analysis/signal/ac_coupling.h"
 
 namespace oscilab::daq {
 namespace fs = std::filesystem;
@@ -75,7 +76,14 @@ Eigen::MatrixXd calibrate(const StoredSamples& stored, const Sidecar& sidecar,
         ++bad_count;
       }
     }
-    if (first_bad < 0) continue;
+    if (first_bad < 0) {
+      if (channel.ac_coupling_hz) {  // the input's high-pass undone, as the live chain does
+        analysis::AcCouplingInverse inverse(*channel.ac_coupling_hz, sidecar.sample_rate_hz,
+                                            path + ": channel " + in_quotes(channel.name));
+        for (Eigen::Index r = 0; r < rows; ++r) samples(r, c) = inverse.push(samples(r, c));
+      }
+      continue;
+    }
     const double value = stored.values[first_bad * channels + c];
     std::string problem = std::isnan(value) ? "is NaN"
                           : std::isinf(value)

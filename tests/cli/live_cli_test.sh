@@ -84,6 +84,17 @@ expect_error "nobody listening" "connect to 127.0.0.1:1" \
   "$cli" stream "$pos" --to 127.0.0.1:1
 expect_error "no sender within --wait" "no sender connected within" \
   "$cli" record --source "net:127.0.0.1:$((port + 1))" --wait 0.5 --out "$work/z.wav"
+expect_error "a JACK source needs its calibration" "give the calibration with --sidecar" \
+  "$cli" record --source jack:system:capture_1,system:capture_2 --out "$work/j.wav"
+echo '{"sample_rate_hz": 512, "channels": [
+  {"name": "b", "role": "base", "quantity": "acceleration", "unit": "V", "scale": 9.80665},
+  {"name": "y", "role": "mass", "quantity": "displacement", "unit": "V", "scale": 0.1}]}' \
+  > "$work/cal.json"
+expect_error "no JACK server of that name" "JACK server \"oscilab-cli-test-none\" is not running" \
+  "$cli" record --source jack:system:capture_1,system:capture_2 --jack-server oscilab-cli-test-none \
+  --sidecar "$work/cal.json" --out "$work/j.wav"
+expect_error "stream does not take a JACK source" "jack: is for record" \
+  "$cli" stream jack:system:capture_1,system:capture_2 --to 127.0.0.1:1
 [ ! -e "$work/x.flac" ] && pass "nothing written for the refused FLAC" || fail "x.flac written"
 
 echo "$passes passed, $failures failed"

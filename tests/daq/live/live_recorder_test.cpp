@@ -355,3 +355,78 @@ TEST(LiveRecorder, ThrowsInputErrorNamingAnUnusablePath) {
 
 }  // namespace
 }  // namespace oscilab::daq
+
+namespace oscilab::daq {
+namespace {
+
+TEST(LiveRecorder, HandsTheDataToTheDiskAtMostOncePerIntervalAndAtClose) {
+  // The policy: fdatasync at most every sync_interval on the writer's thread, and at close.
+  const TempDir dir;
+  std::mt19937_64 rng(11);
+  {
+    LiveRecorder recorder(dir.file("slow.wav"), layout(), 0, std::chrono::hours(1));
+    for (int i = 0; i < 20; ++i) ASSERT_TRUE(recorder.write(block(i, 16 * i, 16, rng)));
+    EXPECT_EQ(recorder.syncs(), 0u) << "an hour has not passed";
+    recorder.close();
+    EXPECT_EQ(recorder.syncs(), 1u) << "the close syncs";
+  }
+  LiveRecorder every(dir.file("every.wav"), layout(), 0, std::chrono::milliseconds(0));
+  for (int i = 0; i < 20; ++i) ASSERT_TRUE(every.write(block(i, 16 * i, 16, rng)));
+  EXPECT_EQ(every.syncs(), 20u) << "interval 0: every block";
+  EXPECT_EQ(LiveRecorder::kDefaultSyncInterval, std::chrono::milliseconds(1000));
+}
+
+TEST(LiveRecorder, ARecordingCutAnywhereInItsLastSecondKeepsEverythingBeforeTheCut) {
+  // 10 s of 3 float64 channels (24 bytes per sample time), a level and an invalid interval
+  // reaching into the last second. A copy cut at every 29th byte of the last second (29 is prime
+  // to 24 and 8: every position within a sample and within a value is hit) is repaired by
+  // recover_live_recording and then opens with read_recording, holding exactly the whole
+  // samples before the cut, bit for bit.
+  const TempDir dir;
+  const std::string path = dir.file("whole.wav");
+  std::mt19937_64 rng(12);
+  {
+    LiveRecorder recorder(path, layout(), 0);
+    recorder.add_level(0.5, 9.0, 1.0, 1.5, 9.8);
+    recorder.mark_invalid(4900, 5000, "gap");
+    for (int i = 0; i < 320; ++i) ASSERT_TRUE(recorder.write(block(i, 16 * i, 16, rng)));
+    recorder.close();
+  }
+  const Recording whole = read_recording(path);
+  ASSERT_EQ(whole.sample_count(), 5120);
+  const auto size = static_cast<std::int64_t>(std::filesystem::file_size(path));
+  const std::int64_t frame_bytes = 24, data_begin = size - 5120 * frame_bytes;
+  const std::string cut = dir.file("cut.wav");
+  int cuts = 0;
+  for (std::int64_t at = size - 512 * frame_bytes; at < size; at += 29) {
+    std::filesystem::copy_file(path, cut, std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(sidecar_path_for(path), sidecar_path_for(cut),
+                               std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::resize_file(cut, static_cast<std::uintmax_t>(at));
+    const std::int64_t expected = (at - data_begin) / frame_bytes;
+    ASSERT_EQ(recover_live_recording(cut), expected) << "cut at byte " << at;
+    const Recording kept = read_recording(cut);
+    ASSERT_EQ(kept.sample_count(), expected);
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      ASSERT_TRUE(
+          same_bits(kept.samples_stored(expected - 1, c), whole.samples_stored(expected - 1, c)))
+          << "cut at byte " << at;
+    }
+    ASSERT_TRUE(kept.samples_stored == whole.samples_stored.topRows(expected));
+    const double end_s = static_cast<double>(expected) / kRateHz;
+    ASSERT_TRUE(kept.sidecar.excitation && !kept.sidecar.excitation->levels.empty());
+    ASSERT_LE(kept.sidecar.excitation->levels.back().end_s, end_s);
+    // The interval from sample 4900 on is kept, clipped to the cut, once the cut passes it.
+    ASSERT_EQ(kept.sidecar.invalid_intervals.size(), expected >= 4900 ? 1u : 0u);
+    if (expected >= 4900) {
+      ASSERT_LE(kept.sidecar.invalid_intervals.back().end_s, end_s);
+    }
+    ++cuts;
+  }
+  EXPECT_EQ(cuts, 424);
+  std::filesystem::resize_file(cut, 10);
+  EXPECT_EQ(input_error_of([&] { recover_live_recording(cut); }).rfind(cut, 0), 0u);
+}
+
+}  // namespace
+}  // namespace oscilab::daq

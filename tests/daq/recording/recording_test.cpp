@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/signal/ac_coupling.h"
 #include "tests/daq/recording/recording_test_util.h"
 
 namespace oscilab::daq {
@@ -276,6 +277,32 @@ TEST(RecordingWriter, ThrowsInputErrorForUnknownContainerOrMismatchedShape) {
                 ": the recording holds 3 sample columns, its sidecar lists 2 "
                 "channels");
   EXPECT_EQ(files_in(dir), 0u);
+}
+
+}  // namespace
+}  // namespace oscilab::daq
+
+namespace oscilab::daq {
+namespace {
+
+TEST(RecordingReader, UndoesTheAcCouplingOfAChannelThatStatesIt) {
+  // A channel with ac_coupling_hz is calibrated, then passed through the inverse of its input's
+  // high-pass (analysis/signal/ac_coupling.h, tested against the closed form there), sample by
+  // sample as the live chain does; the other channels are left as they are.
+  const testing::TempDir dir;
+  Recording recording = testing::sine_recording(
+      512.0, 4096,
+      {testing::channel("b", ChannelRole::Base, Quantity::Acceleration, "m/s^2"),
+       testing::channel("y", ChannelRole::Mass, Quantity::Displacement, "m")});
+  recording.sidecar.channels[1].ac_coupling_hz = 2.0;
+  const std::string path = dir.file("ac.wav");
+  write_recording(recording, path);
+  const Recording read = read_recording(path);
+  analysis::AcCouplingInverse inverse(2.0, 512.0, "test");
+  for (Eigen::Index r = 0; r < 4096; ++r) {
+    ASSERT_EQ(read.samples_si(r, 0), recording.samples_si(r, 0));
+    ASSERT_NEAR(read.samples_si(r, 1), inverse.push(recording.samples_si(r, 1)), 1e-12);
+  }
 }
 
 }  // namespace

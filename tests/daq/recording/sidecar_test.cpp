@@ -92,6 +92,22 @@ TEST(SidecarReader, RoundTripKeepsUnknownKeysAtEveryLevel) {
   EXPECT_EQ(sidecar_to_json(parse_sidecar(sidecar_to_json(sidecar), "run1.json")), value);
 }
 
+TEST(SidecarReader, KeepsTheSoundCardKeysOfAChannel) {
+  // ac_coupling_hz and full_scale_v (docs/contracts.md §1) are read and written back.
+  json value = contract_example();
+  value["channels"][1]["ac_coupling_hz"] = 2.2;
+  value["channels"][1]["full_scale_v"] = 7.75;
+  const Sidecar sidecar = parse_sidecar(value, "run1.json");
+  EXPECT_EQ(sidecar.channels[1].ac_coupling_hz, 2.2);
+  EXPECT_EQ(sidecar.channels[1].full_scale_v, 7.75);
+  EXPECT_FALSE(sidecar.channels[0].ac_coupling_hz);
+  EXPECT_TRUE(sidecar.channels[1].extra.empty());
+  const json back = sidecar_to_json(sidecar);
+  EXPECT_EQ(back["channels"][1]["ac_coupling_hz"], 2.2);
+  EXPECT_EQ(back["channels"][1]["full_scale_v"], 7.75);
+  EXPECT_FALSE(back["channels"][0].contains("ac_coupling_hz"));
+}
+
 TEST(SidecarReader, ThrowsInputErrorWhenRateIsMissing) {
   json value = contract_example();
   value.erase("sample_rate_hz");
@@ -173,6 +189,15 @@ TEST(SidecarReader, ThrowsInputErrorNamingTheFieldForEachInvalidValue) {
        "run1.json: channels[0].unit: expected a string, got 1"},
       {[](json& v) { v["channels"][0]["scale"] = 0; },
        "run1.json: channels[0].scale: must not be zero"},
+      {[](json& v) { v["channels"][1]["ac_coupling_hz"] = 0.0; },
+       "run1.json: channels[1].ac_coupling_hz: expected a positive number, got 0.0"},
+      {[](json& v) { v["channels"][1]["ac_coupling_hz"] = "2 Hz"; },
+       "run1.json: channels[1].ac_coupling_hz: expected a number, got \"2 Hz\""},
+      {[](json& v) { v["channels"][1]["ac_coupling_hz"] = 256.0; },
+       "run1.json: channels[1].ac_coupling_hz: 256 Hz is not below the Nyquist frequency, 256 "
+       "Hz"},
+      {[](json& v) { v["channels"][0]["full_scale_v"] = -5.0; },
+       "run1.json: channels[0].full_scale_v: expected a positive number, got -5.0"},
       {[](json& v) { v["channels"][0].erase("scale"); },
        "run1.json: channels[0].scale: missing required field"},
       {[](json& v) { v["channels"][0]["offset"] = "0"; },

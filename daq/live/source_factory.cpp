@@ -1,0 +1,92 @@
+#include "daq/live/source_factory.h"
+
+#include "analysis/common/input_error.h"
+#include "analysis/model/model_json.h"
+#include "daq/live/jack_source.h"
+#include "daq/live/net_source.h"
+#include "daq/live/replay_source.h"
+#include "daq/live/tcp_socket.h"
+
+namespace oscilab::daq {
+namespace {
+
+bool starts_with(const std::string& text, const char* prefix) { return text.rfind(prefix, 0) == 0; }
+
+// "a,b,c" → {"a", "b", "c"}, blanks around each name dropped.
+std::vector<std::string> split_ports(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', from);
+    std::string item = text.substr(from, comma == std::string::npos ? comma : comma - from);
+    const std::size_t first = item.find_first_not_of(" \t");
+    const std::size_t last = item.find_last_not_of(" \t");
+    out.push_back(first == std::string::npos ? "" : item.substr(first, last - first + 1));
+    if (comma == std::string::npos) return out;
+    from = comma + 1;
+  }
+}
+
+}  // namespace
+
+SourceKind source_kind(const std::string& spec) {
+  if (spec == "rig") return SourceKind::Rig;
+  if (starts_with(spec, "net:")) return SourceKind::Network;
+  if (starts_with(spec, "jack:")) return SourceKind::Jack;
+  return SourceKind::Replay;
+}
+
+std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceOptions& o) {
+  switch (source_kind(spec)) {
+    case SourceKind::Rig: {
+      RigSource::Options rig;
+      rig.rig.positive_well = o.positive_well;
+      rig.frequency_hz = o.frequency_hz;
+      rig.speed = o.speed;
+      rig.schedule = o.schedule;
+      rig.duration_s = o.duration_s;
+      return std::make_unique<RigSource>(analysis::model_from_spec(o.model), rig);
+    }
+    case SourceKind::Network: {
+      NetSource::Options net;
+      const std::string address = spec.substr(4);
+      if (address.size() > 2 && address.compare(address.size() - 2, 2, ":0") == 0) {
+        net.host = address.substr(0, address.size() - 2);  // port 0: any free port
+      } else {
+        parse_host_port(address, o.what, net.host, net.port);
+      }
+      net.expected = o.expected;
+      return std::make_unique<NetSource>(net);
+    }
+    case SourceKind::Jack: {
+      JackSource::Options jack;
+      jack.ports = split_ports(spec.substr(5));
+      for (std::size_t i = 0; i < jack.ports.size(); ++i) {
+        if (jack.ports[i].empty()) {
+          throw InputError(o.what + " " + spec + ": port " + std::to_string(i + 1) +
+                           " is empty (jack:PORT_BASE,PORT_MASS[,...])");
+        }
+      }
+      if (!o.calibration) {
+        throw InputError(o.what + " " + spec +
+                         ": a JACK source needs its calibration (a sidecar with one channel "
+                         "per port)");
+      }
+      jack.server = o.jack_server;
+      jack.client_name = o.jack_client;
+      jack.calibration = *o.calibration;
+      jack.analysis_rate_hz = o.analysis_rate_hz.value_or(o.calibration->sample_rate_hz);
+      return std::make_unique<JackSource>(jack);
+    }
+    case SourceKind::Replay:
+      break;
+  }
+  const std::string path = starts_with(spec, "file:") ? spec.substr(5) : spec;
+  if (path.empty()) throw InputError(o.what + " file: needs a recording path");
+  ReplaySource::Options replay;
+  replay.speed = o.speed;
+  replay.loop = o.loop;
+  return std::make_unique<ReplaySource>(path, replay);
+}
+
+}  // namespace oscilab::daq
