@@ -456,7 +456,9 @@ void Acquisition::Impl::make_pipeline(double freq_hz, double t0_s) {
   setup.mass_is_relative = mass_relative;
   setup.excitation_freq_hz = freq_hz;
   setup.t0_s = t0_s;
-  setup.windowed_levels = layout.excitation && layout.excitation->extra.value("levels_live", false);
+  // An excitation built in code may leave `extra` null rather than an object.
+  setup.windowed_levels = layout.excitation && layout.excitation->extra.is_object() &&
+                          layout.excitation->extra.value("levels_live", false);
   if (layout.excitation) {  // levels the stream's sidecar gives up front, in stream time
     for (const ExcitationLevel& level : layout.excitation->levels) {
       if (level.end_s > t0_s)

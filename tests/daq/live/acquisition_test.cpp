@@ -125,6 +125,28 @@ Recording clean_recording(const fs::path& dir) {
   return recording;
 }
 
+// A layout made in code may leave the excitation's `extra` null, not an empty object: the
+// acquisition reads it as "no extra keys" (it used to throw on its thread and end the process).
+TEST(Acquisition, AnExcitationWithoutExtraKeysIsAnalysedLikeOneWithThem) {
+  const fs::path dir = temp_dir("null_extra");
+  const Recording clean = clean_recording(dir);
+  Sidecar layout = clean.sidecar;
+  ASSERT_TRUE(layout.excitation.has_value());
+  layout.excitation->extra = nlohmann::json();  // null
+  Acquisition reference(
+      std::make_unique<ScriptedSource>(clean.sidecar, ScriptedSource::cut(clean, 32)), {});
+  run_to_end(reference);
+  Acquisition null_extra(std::make_unique<ScriptedSource>(layout, ScriptedSource::cut(clean, 32)),
+                         {});
+  run_to_end(null_extra);
+  ASSERT_EQ(null_extra.levels().size(), reference.levels().size());
+  ASSERT_EQ(reference.levels().size(), 2u);
+  for (std::size_t i = 0; i < reference.levels().size(); ++i) {
+    EXPECT_EQ(null_extra.levels()[i].edc_mean_j, reference.levels()[i].edc_mean_j);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Acquisition, FaultsAreCountedLoggedRecordedAndLeftOutOfTheEdc) {
   const fs::path dir = temp_dir("faults");
   const Recording clean = clean_recording(dir);
