@@ -50,6 +50,7 @@ std::unique_ptr<daq::SampleSource> make_live_source(const std::string& spec,
   daq::SourceOptions source;
   source.model = o.model;
   source.positive_well = o.well == "positive";
+  source.seed = o.seed;
   source.frequency_hz = o.freq_hz;
   source.speed = o.speed;
   source.duration_s = o.duration_s;

@@ -41,6 +41,7 @@ std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceO
     case SourceKind::Rig: {
       RigSource::Options rig;
       rig.rig.positive_well = o.positive_well;
+      rig.rig.seed = o.seed;
       rig.frequency_hz = o.frequency_hz;
       rig.speed = o.speed;
       rig.schedule = o.schedule;

@@ -22,6 +22,7 @@ struct SourceOptions {
   double frequency_hz = 9.0;             // ν until changed
   std::vector<ExcitationStep> schedule;  // an unattended stepped sine (empty: at rest)
   std::optional<double> duration_s;      // the rig ends there
+  std::uint64_t seed = 1;                // the rig's sensor noise and creep
   // Virtual rig and replay.
   double speed = 1.0;  // × real time; 0: as fast as possible
   bool loop = false;   // replay: start again at the end
