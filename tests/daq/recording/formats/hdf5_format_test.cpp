@@ -22,8 +22,7 @@ using testing::input_error_of;
 using testing::TempDir;
 using testing::varied_values;
 
-const std::string kTerra15 =
-    OSCILAB_SOURCE_DIR "/../shared/fixtures/instruments/hdf5/terra15_v5_test_file.hdf5";
+const std::string kTerra15 = OSCILAB_INSTRUMENT_FILES "/hdf5/terra15_v5_test_file.hdf5";
 
 const SignalFileReader& reader() { return dynamic_cast<const SignalFileReader&>(hdf5_format()); }
 

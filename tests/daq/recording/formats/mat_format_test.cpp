@@ -24,8 +24,7 @@ using testing::input_error_of;
 using testing::TempDir;
 using testing::varied_values;
 
-const std::string kSilverbox =
-    OSCILAB_SOURCE_DIR "/../shared/fixtures/instruments/mat/SNLS80mV.mat";
+const std::string kSilverbox = OSCILAB_INSTRUMENT_FILES "/mat/SNLS80mV.mat";
 constexpr double kSilverboxRateHz = 1e7 / 16384.0;  // 10^7 / 2^14, the benchmark's documentation
 
 const SignalFileReader& mat_reader() { return dynamic_cast<const SignalFileReader&>(mat_format()); }

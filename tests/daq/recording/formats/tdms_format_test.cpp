@@ -28,7 +28,7 @@ using testing::TdmsBytes;
 using testing::TempDir;
 using namespace testing;  // ToC flags, type codes and index headers of tdms_test_bytes.h
 
-const std::string kFixtures = OSCILAB_SOURCE_DIR "/../shared/fixtures/instruments/tdms/";
+const std::string kFixtures = OSCILAB_INSTRUMENT_FILES "/tdms/";
 
 constexpr std::uint32_t kTocFirst = kTocMetaData | kTocNewObjList | kTocRawData;
 

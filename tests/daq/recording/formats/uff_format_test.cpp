@@ -29,7 +29,7 @@ using testing::TempDir;
 using testing::Uff58Header;
 using testing::write_file;
 
-const std::string kFixtures = OSCILAB_SOURCE_DIR "/../shared/fixtures/instruments/uff/";
+const std::string kFixtures = OSCILAB_INSTRUMENT_FILES "/uff/";
 
 // A one-channel sidecar that reads `source` as volts (factor 1: samples_si = stored values).
 Sidecar volts_sidecar(double rate_hz, const std::string& source) {
