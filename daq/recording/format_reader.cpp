@@ -26,6 +26,16 @@ const FileSignal& find_signal(const FileContents& contents, const std::string& n
   const auto it = std::find_if(contents.file_signals.begin(), contents.file_signals.end(),
                                [&](const FileSignal& signal) { return signal.name == name; });
   if (it == contents.file_signals.end()) {
+    // A name the format lists as skipped (not numeric, not a vector or matrix, ...): say why.
+    if (const auto skipped = contents.properties.find("skipped");
+        skipped != contents.properties.end() && skipped->is_array()) {
+      for (const nlohmann::json& item : *skipped) {
+        if (item.is_object() && item.value("name", "") == name) {
+          throw InputError(path + ": " + what + " reads " + in_quotes(name) +
+                           ", which is not a signal: " + item.value("reason", ""));
+        }
+      }
+    }
     throw InputError(path + ": " + what + " reads " + in_quotes(name) +
                      ", which the file does not hold (it holds " + signal_list(contents) +
                      "; `oscilab-cli info` lists them)");

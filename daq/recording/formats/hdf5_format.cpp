@@ -534,17 +534,6 @@ class Hdf5Format final : public SignalFileReader {
     return contents_from_text(text, path);
   }
 
-  Recording read(const std::string& path, const Sidecar& sidecar,
-                 const std::string& sidecar_name) const override {
-    try {
-      return SignalFileReader::read(path, sidecar, sidecar_name);
-    } catch (const InputError&) {
-      // Say why a variable the sidecar names is not a signal, when that is the problem.
-      refuse_skipped_sources(describe(path), sidecar, path);
-      throw;
-    }
-  }
-
   std::vector<double> read_signal(const std::string& path, const FileSignal& signal,
                                   int column) const override {
     const std::size_t reply = static_cast<std::size_t>(signal.sample_count) * sizeof(double);

@@ -326,23 +326,4 @@ FileContents contents_from_text(const std::string& text, const std::string& path
   return contents;
 }
 
-void refuse_skipped_sources(const FileContents& contents, const Sidecar& sidecar,
-                            const std::string& path) {
-  const auto skipped = contents.properties.find("skipped");
-  if (skipped == contents.properties.end() || !skipped->is_array()) return;
-  const auto refuse = [&](const std::string& source, const std::string& what) {
-    for (const nlohmann::json& item : *skipped) {
-      if (item.value("name", "") == source) {
-        throw InputError(path + ": " + what + " reads " + in_quotes(source) +
-                         ", which is not a signal: " + item.value("reason", ""));
-      }
-    }
-  };
-  for (const ChannelInfo& channel : sidecar.channels) {
-    refuse(channel.source.empty() ? channel.name : channel.source,
-           "channel " + in_quotes(channel.name));
-  }
-  if (sidecar.time) refuse(sidecar.time->source, "the time");
-}
-
 }  // namespace oscilab::daq

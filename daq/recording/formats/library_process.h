@@ -42,12 +42,6 @@ ChildLimits child_limits_for(const std::string& path, std::size_t max_reply_byte
 std::string contents_to_text(const FileContents& contents);
 FileContents contents_from_text(const std::string& text, const std::string& path);
 
-/// Throws InputError when a channel or the time of `sidecar` names what the file holds but does
-/// not offer as a signal (listed in contents.properties["skipped"] with the reason), so that the
-/// message says why ("variable \"c\" is not a signal: it is a cell array").
-void refuse_skipped_sources(const FileContents& contents, const Sidecar& sidecar,
-                            const std::string& path);
-
 /// The maximum ratio of deflate (zlib) output to input, 1032:1: a bound on how many bytes a
 /// compressed element of a file can hold per byte of the file.
 inline constexpr std::size_t kMaxDeflateRatio = 1032;

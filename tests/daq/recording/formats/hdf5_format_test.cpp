@@ -173,9 +173,10 @@ TEST(Hdf5Format, ReadsH5pyDatasetsValueByValueWithRatesAndUnits) {
               read_recording(path, one_channel(1000.0, "/run/nope", -1));
             }).find("which the file does not hold"),
             std::string::npos);
-  EXPECT_EQ(
-      input_error_of([&] { read_recording(path, one_channel(1000.0, "/odd/string", -1)); }),
-      path + ": channel \"v\" reads \"/odd/string\", which is not a signal: not numeric: strings");
+  EXPECT_EQ(input_error_of([&] { read_recording(path, one_channel(1000.0, "/odd/string", -1)); }),
+            path +
+                ": channel \"v\" of the sidecar given reads \"/odd/string\", which is not a "
+                "signal: not numeric: strings");
   EXPECT_NE(input_error_of([&] {
               read_recording(path, one_channel(990.0, "/run/be", -1));
             }).find("is sampled at 1000 Hz"),

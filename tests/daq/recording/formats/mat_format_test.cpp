@@ -284,9 +284,10 @@ TEST(MatFormat, RefusesMissingNonNumericAndEmptyVariables) {
   EXPECT_EQ(error_for("x"), "");
   EXPECT_NE(error_for("y").find("which the file does not hold (it holds \"x\""), std::string::npos)
       << error_for("y");
-  EXPECT_EQ(error_for("text"), path +
-                                   ": channel \"ch0\" reads \"text\", which is not a signal: "
-                                   "it is a char array, not a numeric matrix");
+  EXPECT_EQ(error_for("text"),
+            path +
+                ": channel \"ch0\" of the sidecar given reads \"text\", which is not a signal: "
+                "it is a char array, not a numeric matrix");
   EXPECT_NE(error_for("nothing").find("\"nothing\" holds no samples"), std::string::npos);
 }
 
