@@ -6,7 +6,8 @@
 #                                the bundled sample (headless: print the analysis of it instead)
 #   bash scripts/setup.sh test   install, build and run every test: clang-format check, release
 #                                build with -Werror (unit, integration, GUI offscreen, benchmarks
-#                                printed), then the headless tests again under ASan + UBSan
+#                                printed), then the headless tests again under ASan + UBSan, and the
+#                                live chain's tests under ThreadSanitizer
 #   bash scripts/setup.sh deps   only install the Debian packages
 #   bash scripts/setup.sh build  only configure and build (release, ./build)
 #
@@ -117,6 +118,14 @@ run_tests() {
   LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$JOBS" -LE slow
+  # ThreadSanitizer on the live chain (source threads, the block queue, the acquisition thread and
+  # its readers, the recorder): only that test binary is built. ASLR off (setarch -R) because
+  # GCC 12's ThreadSanitizer refuses the memory layout of kernels with high mmap randomisation.
+  cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
+    -DOSCILAB_SANITIZE_THREAD=ON -DOSCILAB_WERROR=ON -DOSCILAB_BUILD_GUI=OFF
+  cmake --build build-tsan -j "$JOBS" --target daq_live_tests
+  TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+    setarch "$(uname -m)" -R build-tsan/tests/daq_live_tests
 }
 
 case "${1:-run}" in

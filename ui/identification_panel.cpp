@@ -356,7 +356,7 @@ void IdentificationPanel::start(bool diagnosis) {
         outcome->fit = analysis::fit_edc(
             *objective, fit_options,
             [&](const analysis::FitProgress& p) {
-              if (p.stage == "uncertainty") return;
+              if (p.stage == analysis::FitStage::Uncertainty) return;
               progress(std::min(0.95, static_cast<double>(p.evaluations) / budget));
               const auto now = std::chrono::steady_clock::now();
               if (now - last_preview >= kPreviewInterval && !cancel.cancelled() &&

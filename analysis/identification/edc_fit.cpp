@@ -35,6 +35,18 @@ FitMethod parse_fit_method(const std::string& name) {
   throw InputError("--method: unknown method \"" + name + "\" (ga, cmaes or local)");
 }
 
+const char* to_string(FitStage stage) {
+  switch (stage) {
+    case FitStage::Search:
+      return "search";
+    case FitStage::Polish:
+      return "polish";
+    case FitStage::Uncertainty:
+      return "uncertainty";
+  }
+  return "unknown";
+}
+
 FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
                   const FitProgressFn& progress, const CancelToken& cancel) {
   if (!(options.polish_share >= 0.0 && options.polish_share < 1.0)) {
@@ -52,7 +64,7 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
     return objective.evaluate(form.from_unit(u)).weighted_cost;
   };
   long spent = 0;
-  const auto reporter = [&](const char* stage) -> SearchProgressFn {
+  const auto reporter = [&](FitStage stage) -> SearchProgressFn {
     if (!progress) return {};
     return [&, stage](const SearchProgress& p) {
       progress({stage, spent + p.evaluations, p.best_cost, form.from_unit(p.best_unit)});
@@ -75,7 +87,7 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
       GeneticOptions ga = options.genetic;
       ga.seed = options.seed;
       ga.threads = options.threads;
-      best = genetic_algorithm(form.size(), cost, ga, reporter("search"), cancel);
+      best = genetic_algorithm(form.size(), cost, ga, reporter(FitStage::Search), cancel);
       polish_budget = options.polish_after_genetic ? options.polish.max_evaluations : 0;
       result.settings = {{"population", ga.population},
                          {"generations", ga.generations},
@@ -93,7 +105,7 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
       cmaes.max_evaluations = options.max_evaluations - polish_budget;
       cmaes.seed = options.seed;
       if (cmaes.streams <= 0) cmaes.streams = options.threads;
-      best = cmaes_search(form.size(), cost, cmaes, reporter("search"), cancel);
+      best = cmaes_search(form.size(), cost, cmaes, reporter(FitStage::Search), cancel);
       // What the global search left of the budget goes to the polish.
       polish_budget = options.max_evaluations - best.evaluations;
       result.settings = {{"max_evaluations", options.max_evaluations},
@@ -118,7 +130,7 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
     PolishOptions polish = options.polish;
     polish.max_evaluations = polish_budget;
     const SearchResult polished =
-        local_polish(best.best_unit, cost, polish, reporter("polish"), cancel);
+        local_polish(best.best_unit, cost, polish, reporter(FitStage::Polish), cancel);
     append_history(polished);
     if (polished.best_cost < best.best_cost) {
       best.best_unit = polished.best_unit;
@@ -171,7 +183,7 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
     }
   }
   if (options.compute_uncertainty) {
-    if (progress) progress({"uncertainty", result.evaluations, best.best_cost, result.theta});
+    if (progress) progress({FitStage::Uncertainty, result.evaluations, best.best_cost, result.theta});
     UncertaintyOptions u = options.uncertainty;
     u.seed = options.seed;
     u.threads = options.threads;

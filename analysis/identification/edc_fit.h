@@ -46,9 +46,15 @@ struct FitOptions {
   bool check_truncation = true;
 };
 
+/// The stages of a fit, in the order they run: the global search (GA or CMA-ES), the local
+/// polish (BOBYQA), the uncertainty at the optimum (covariance, bootstrap).
+enum class FitStage { Search, Polish, Uncertainty };
+/// "search", "polish", "uncertainty": the names progress reports and the Python module use.
+const char* to_string(FitStage stage);
+
 /// Progress of a fit: which stage, evaluations so far, the best θ and its χ².
 struct FitProgress {
-  std::string stage;  // "search", "polish", "uncertainty"
+  FitStage stage = FitStage::Search;
   long evaluations = 0;
   double best_weighted_cost = 0.0;
   Eigen::VectorXd best_theta;

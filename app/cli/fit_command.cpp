@@ -145,7 +145,7 @@ void run(const FitCommandOptions& o) {
     const ProgressFn draw = bar.callback();
     const long budget = analysis::evaluation_budget(options);
     fit = analysis::fit_edc(objective, options, [&](const analysis::FitProgress& p) {
-      if (draw && p.stage != "uncertainty") {
+      if (draw && p.stage != analysis::FitStage::Uncertainty) {
         draw(std::min(1.0, static_cast<double>(p.evaluations) / static_cast<double>(budget)));
       }
     });

@@ -106,11 +106,11 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
             objective, options,
             [&](const analysis::FitProgress& p) {
               ProgressReport r;
-              r.fraction = p.stage == "uncertainty"
+              r.fraction = p.stage == analysis::FitStage::Uncertainty
                                ? 1.0
                                : std::min(1.0, static_cast<double>(p.evaluations) /
                                                    static_cast<double>(budget));
-              r.extra["stage"] = p.stage;
+              r.extra["stage"] = analysis::to_string(p.stage);
               r.extra["evaluations"] = p.evaluations;
               r.extra["best_weighted_cost"] = p.best_weighted_cost;
               r.extra["best_theta"] = std::vector<double>(

@@ -125,16 +125,6 @@ if "$cli" diagnose "$pos" "$neg" --max-seconds 0.001 --no-png --out "$work/diag_
 else
   fail "diagnose --max-seconds: $(tail -3 "$work/diag_cut.log")"
 fi
-# The hidden presliding hysteresis of the samples is named, with the evidence that supported it.
-if "$cli" diagnose "$src/samples/presliding_positive.flac" "$src/samples/presliding_negative.flac" \
-  --no-png --out "$work/diag_p" > "$work/diag_p.log" 2>&1 &&
-  grep -q '"verdict": "presliding-hysteresis"' "$work/diag_p/report.json" &&
-  grep -q '"verdict_supported_by"' "$work/diag_p/report.json" &&
-  grep -q '"sigma_budget"' "$work/diag_p/report.json"; then
-  pass "diagnose names the samples' presliding hysteresis"
-else
-  fail "diagnose presliding samples: $(tail -3 "$work/diag_p.log")"
-fi
 expect_error "diagnose negative time bound" 'max-seconds' "$cli" diagnose "$pos" "$neg" --max-seconds -1 --out "$work/d4"
 expect_error "diagnose unknown form" 'model-form' "$cli" diagnose "$pos" --model-form cubic --out "$work/d2"
 expect_error "diagnose without mass" 'nope.flac' "$cli" diagnose "$work/nope.flac" --out "$work/d3"

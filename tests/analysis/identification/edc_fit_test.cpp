@@ -102,6 +102,35 @@ TEST(EdcFit, ProgressReportsMonotoneBestCost) {
   EXPECT_EQ(reports.back().best_theta.size(), 6);
 }
 
+// The stages come in their order (search, then polish, then uncertainty), each reported at least
+// once, and the evaluations never go back across a stage change.
+TEST(EdcFit, ProgressNamesTheStagesInTheOrderTheyRun) {
+  const EdcObjective& objective = twin_objective();
+  FitOptions options;
+  options.method = FitMethod::Genetic;
+  options.genetic.population = 8;
+  options.genetic.generations = 2;
+  options.genetic.elite = 1;
+  options.polish_after_genetic = true;
+  options.polish.max_evaluations = 30;
+  options.uncertainty.bootstrap_replicates = 0;
+  std::vector<FitProgress> reports;
+  fit_edc(objective, options, [&](const FitProgress& p) { reports.push_back(p); });
+  ASSERT_FALSE(reports.empty());
+  std::vector<FitStage> order;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    if (order.empty() || order.back() != reports[i].stage) order.push_back(reports[i].stage);
+    if (i > 0) {
+      EXPECT_GE(reports[i].evaluations, reports[i - 1].evaluations);
+    }
+  }
+  const std::vector<FitStage> expected{FitStage::Search, FitStage::Polish, FitStage::Uncertainty};
+  EXPECT_EQ(order, expected);
+  EXPECT_STREQ(to_string(FitStage::Search), "search");
+  EXPECT_STREQ(to_string(FitStage::Polish), "polish");
+  EXPECT_STREQ(to_string(FitStage::Uncertainty), "uncertainty");
+}
+
 TEST(EdcFit, RejectsUnknownMethodNames) {
   EXPECT_EQ(parse_fit_method("ga"), FitMethod::Genetic);
   EXPECT_EQ(parse_fit_method("cmaes"), FitMethod::Cmaes);
