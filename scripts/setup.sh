@@ -100,20 +100,33 @@ format_check() {  # CI fails on a format diff (.clang-format)
   echo "setup: clang-format: ${#files[@]} files formatted"
 }
 
+phase_started=$SECONDS
+phase() {  # phase NAME: the time the step before it took, so CI logs say where the minutes go
+  echo "setup: --- $1 (previous step: $((SECONDS - phase_started)) s, total: $SECONDS s)"
+  phase_started=$SECONDS
+}
+
 run_tests() {
+  phase "format check"
   format_check
+  phase "release build"
   build build -DOSCILAB_WERROR=ON
+  phase "release tests"
   ctest --test-dir build --output-on-failure -j "$JOBS" -LE benchmark
+  phase "benchmarks"
   # Benchmarks one at a time, verbose, so their figures (medians) are printed.
   ctest --test-dir build --output-on-failure -L benchmark -V | grep -E "^[0-9]+: (BM_|Benchmark )|tests passed|tests failed|Failed|rror"
+  phase "ASan + UBSan build"
   # Sanitizer build: the headless tests again under AddressSanitizer + UndefinedBehaviorSanitizer,
   # at -O1 with light debug info (faster to build than -O2 -g; stack traces keep file and line).
   # The Qt GUI tests run in the release build above: a second, sanitized Qt build does not fit
   # the CI budget (20 minutes on 2 cores).
-  # Benchmarks are not registered there: their timings would mean nothing. Suites labelled
-  # `slow` (multi-seed campaigns) ran in the release build and are not repeated at -O1.
+  # Benchmarks are neither built nor registered there: their timings would mean nothing. Suites
+  # labelled `slow` (multi-seed campaigns, whole diagnoses) ran in the release build and are not
+  # built or repeated at -O1.
   build build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
     -DOSCILAB_SANITIZE=ON -DOSCILAB_WERROR=ON -DOSCILAB_BUILD_GUI=OFF
+  phase "ASan + UBSan tests"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -121,11 +134,14 @@ run_tests() {
   # ThreadSanitizer on the live chain (source threads, the block queue, the acquisition thread and
   # its readers, the recorder): only that test binary is built. ASLR off (setarch -R) because
   # GCC 12's ThreadSanitizer refuses the memory layout of kernels with high mmap randomisation.
+  phase "TSan build"
   cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
     -DOSCILAB_SANITIZE_THREAD=ON -DOSCILAB_WERROR=ON -DOSCILAB_BUILD_GUI=OFF
   cmake --build build-tsan -j "$JOBS" --target daq_live_tests
+  phase "TSan tests"
   TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
     setarch "$(uname -m)" -R build-tsan/tests/daq_live_tests
+  phase "done"
 }
 
 case "${1:-run}" in
