@@ -27,6 +27,13 @@ std::vector<std::string> split_ports(const std::string& text) {
   }
 }
 
+ReplaySource::Options replay_options(const SourceOptions& o) {
+  ReplaySource::Options replay;
+  replay.speed = o.speed;
+  replay.loop = o.loop;
+  return replay;
+}
+
 }  // namespace
 
 SourceKind source_kind(const std::string& spec) {
@@ -46,7 +53,8 @@ std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceO
       rig.speed = o.speed;
       rig.schedule = o.schedule;
       rig.duration_s = o.duration_s;
-      return std::make_unique<RigSource>(analysis::model_from_spec(o.model), rig);
+      return std::make_unique<RigSource>(
+          o.rig_model ? *o.rig_model : analysis::model_from_spec(o.model), rig);
     }
     case SourceKind::Network: {
       NetSource::Options net;
@@ -84,10 +92,11 @@ std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceO
   }
   const std::string path = starts_with(spec, "file:") ? spec.substr(5) : spec;
   if (path.empty()) throw InputError(o.what + " file: needs a recording path");
-  ReplaySource::Options replay;
-  replay.speed = o.speed;
-  replay.loop = o.loop;
-  return std::make_unique<ReplaySource>(path, replay);
+  return std::make_unique<ReplaySource>(path, replay_options(o));
+}
+
+std::unique_ptr<SampleSource> make_source(Recording recording, const SourceOptions& o) {
+  return std::make_unique<ReplaySource>(std::move(recording), replay_options(o));
 }
 
 }  // namespace oscilab::daq

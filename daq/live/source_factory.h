@@ -8,6 +8,7 @@
 
 #include "daq/live/rig_source.h"
 #include "daq/live/sample_source.h"
+#include "daq/recording/recording.h"
 #include "daq/recording/sidecar.h"
 
 namespace oscilab::daq {
@@ -17,7 +18,8 @@ namespace oscilab::daq {
 /// every kind; each kind reads the fields it needs.
 struct SourceOptions {
   // Virtual rig.
-  std::string model = "paper";  // paper | illustrative | MODEL.json
+  std::string model = "paper";               // paper | illustrative | MODEL.json
+  std::optional<analysis::Model> rig_model;  // a model given as a value: used instead of `model`
   bool positive_well = true;
   double frequency_hz = 9.0;             // ν until changed
   std::vector<ExcitationStep> schedule;  // an unattended stepped sine (empty: at rest)
@@ -55,5 +57,8 @@ SourceKind source_kind(const std::string& spec);
 ///   analysis_rate_hz).
 /// Throws InputError naming the option, the file or the port.
 std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceOptions& options);
+
+/// A replay of a recording already read (speed, loop), as make_source makes one of a file.
+std::unique_ptr<SampleSource> make_source(Recording recording, const SourceOptions& options);
 
 }  // namespace oscilab::daq

@@ -15,7 +15,7 @@
 #include "daq/live/net_source.h"
 #include "daq/live/replay_source.h"
 #include "daq/live/rig_source.h"
-#include "daq/live/tcp_socket.h"
+#include "daq/live/source_factory.h"
 #include "daq/recording/sidecar.h"
 #include "python_types.h"
 
@@ -248,71 +248,60 @@ it on leaving. Made by oscilab.live().
          const py::object& model, const std::string& well, double freq_hz,
          const py::object& levels_n, double hold_s, double lead_in_s, std::uint64_t seed,
          const py::object& expected_sidecar, const py::object& record_to, double poll_s,
-         bool blocks, const py::object& excitation_freq_hz) {
+         bool blocks, const py::object& excitation_freq_hz, const py::object& calibration,
+         const std::string& jack_server) {
         auto session = std::make_unique<LiveSession>();
         if (!duration_s.is_none()) session->duration_s = duration_s.cast<double>();
         if (!(poll_s > 0.0)) throw InputError("poll_s: must be positive");
         session->poll_s = poll_s;
         session->blocks = blocks;
         if (!record_to.is_none()) session->record_to = path_string(record_to);
+        // One factory for every front-end (the CLI's record and stream, the app's Live tab):
+        // Python adds only a Recording object as a source and a Model object as the rig's model.
+        daq::SourceOptions options;
+        options.what = "source";
+        options.speed = speed;
         std::unique_ptr<daq::SampleSource> src;
-        const std::string spec = py::isinstance<daq::Recording>(source) ? "" : path_string(source);
         if (py::isinstance<daq::Recording>(source)) {
-          daq::ReplaySource::Options replay;
-          replay.speed = speed;
-          auto s = std::make_unique<daq::ReplaySource>(source.cast<daq::Recording>(), replay);
-          session->replay = s.get();
-          src = std::move(s);
-        } else if (spec == "rig") {
-          if (well != "positive" && well != "negative") {
-            throw InputError("well: \"" + well + "\" is not positive or negative");
-          }
-          daq::RigSource::Options rig;
-          rig.rig.positive_well = well == "positive";
-          rig.rig.seed = seed;
-          rig.frequency_hz = freq_hz;
-          rig.speed = speed;
-          rig.duration_s = session->duration_s;
-          if (!levels_n.is_none()) {
-            rig.schedule = daq::rig_schedule(levels_argument(levels_n), hold_s, lead_in_s, freq_hz);
-          }
-          auto s = std::make_unique<daq::RigSource>(model_argument(model), rig);
-          session->rig = s.get();
-          src = std::move(s);
-        } else if (spec.rfind("net:", 0) == 0) {
-          daq::NetSource::Options net;
-          const std::string address = spec.substr(4);
-          if (address.size() > 2 && address.compare(address.size() - 2, 2, ":0") == 0) {
-            net.host = address.substr(0, address.size() - 2);  // port 0: any free port
-          } else {
-            daq::parse_host_port(address, "source", net.host, net.port);
-          }
-          if (!expected_sidecar.is_none()) {
-            net.expected = py::isinstance<py::dict>(expected_sidecar)
-                               ? daq::parse_sidecar(json_argument(expected_sidecar, "sidecar"),
-                                                    "expected_sidecar")
-                               : daq::read_sidecar(path_string(expected_sidecar));
-          }
-          auto s = std::make_unique<daq::NetSource>(net);
-          session->net = s.get();
-          src = std::move(s);
+          src = daq::make_source(source.cast<daq::Recording>(), options);
         } else {
-          const std::string path = spec.rfind("file:", 0) == 0 ? spec.substr(5) : spec;
-          if (path.empty()) throw InputError("source file: needs a recording path");
-          daq::ReplaySource::Options replay;
-          replay.speed = speed;
-          std::unique_ptr<daq::ReplaySource> s;
-          {
-            py::gil_scoped_release release;
-            s = std::make_unique<daq::ReplaySource>(path, replay);
+          const std::string spec = path_string(source);
+          if (daq::source_kind(spec) == daq::SourceKind::Rig) {
+            if (well != "positive" && well != "negative") {
+              throw InputError("well: \"" + well + "\" is not positive or negative");
+            }
+            options.rig_model = model_argument(model);
+            options.positive_well = well == "positive";
+            options.seed = seed;
+            options.frequency_hz = freq_hz;
+            options.duration_s = session->duration_s;
+            if (!levels_n.is_none()) {
+              options.schedule =
+                  daq::rig_schedule(levels_argument(levels_n), hold_s, lead_in_s, freq_hz);
+            }
           }
-          session->replay = s.get();
-          src = std::move(s);
+          const auto sidecar_argument = [](const py::object& value, const char* name) {
+            return py::isinstance<py::dict>(value)
+                       ? daq::parse_sidecar(json_argument(value, name), name)
+                       : daq::read_sidecar(path_string(value));
+          };
+          if (!expected_sidecar.is_none()) {
+            options.expected = sidecar_argument(expected_sidecar, "expected_sidecar");
+          }
+          if (!calibration.is_none())
+            options.calibration = sidecar_argument(calibration, "calibration");
+          options.jack_server = jack_server;
+          py::gil_scoped_release release;  // a replay reads its whole file here
+          src = daq::make_source(spec, options);
         }
-        daq::AcquisitionOptions options;
-        if (!excitation_freq_hz.is_none())
-          options.excitation_freq_hz = excitation_freq_hz.cast<double>();
-        session->acquisition = std::make_unique<daq::Acquisition>(std::move(src), options);
+        session->rig = dynamic_cast<daq::RigSource*>(src.get());
+        session->replay = dynamic_cast<daq::ReplaySource*>(src.get());
+        session->net = dynamic_cast<daq::NetSource*>(src.get());
+        daq::AcquisitionOptions acquisition;
+        if (!excitation_freq_hz.is_none()) {
+          acquisition.excitation_freq_hz = excitation_freq_hz.cast<double>();
+        }
+        session->acquisition = std::make_unique<daq::Acquisition>(std::move(src), acquisition);
         return session;
       },
       py::arg("source"), py::kw_only(), py::arg("duration_s") = py::none(), py::arg("speed") = 1.0,
@@ -320,7 +309,8 @@ it on leaving. Made by oscilab.live().
       py::arg("levels_n") = py::none(), py::arg("hold_s") = 10.0, py::arg("lead_in_s") = 2.5,
       py::arg("seed") = 1, py::arg("expected_sidecar") = py::none(),
       py::arg("record_to") = py::none(), py::arg("poll_s") = 0.1, py::arg("blocks") = true,
-      py::arg("excitation_freq_hz") = py::none(),
+      py::arg("excitation_freq_hz") = py::none(), py::arg("calibration") = py::none(),
+      py::arg("jack_server") = "",
       R"doc(A live source through the acquisition chain, as an iterator of updates (LiveSession).
 
 source: 'rig' (the virtual rig in real time: model, well, freq_hz [Hz], seed, and levels_n —
@@ -328,7 +318,9 @@ amplitudes [N] as a sequence or 'A:STEP:B' — held hold_s [s] each after lead_i
 unattended stepped sine; without it the rig rests until set_excitation()), a recording path or
 'file:PATH' or a Recording read from a file (replay), or 'net:HOST:PORT' (listen for a sender of
 the stream protocol; port 0 picks a free one, see .port; expected_sidecar: a dict or path of the
-layout to accept). speed: × real time for rig and replay (0: as fast as the chain takes it).
+layout to accept), or 'jack:PORT_BASE,PORT_MASS[,...]' (JACK capture ports, one per channel of
+the calibration sidecar, a dict or path, in its order; jack_server: the server's name, empty for
+the default; the signals are brought to the calibration's sample_rate_hz). speed: × real time for rig and replay (0: as fast as the chain takes it).
 duration_s: stop at this stream time [s]. record_to: also record to this path (.wav .w64 .rf64)
 with sidecar and event log. poll_s: seconds between updates. blocks: include the samples.
 excitation_freq_hz: override the layout's frequency for the live EDC [Hz].)doc");

@@ -85,6 +85,13 @@ def test_live_errors():
         oscilab.live("file:/no/such/recording.flac")
     with pytest.raises(ValueError, match="source"):
         oscilab.live("net:127.0.0.1")
+    # JACK comes through the same source factory as the CLI's record --source jack:...
+    with pytest.raises(ValueError, match="source jack:system:capture_1,: port 2 is empty"):
+        oscilab.live("jack:system:capture_1,")
+    with pytest.raises(ValueError, match="a JACK source needs its calibration"):
+        oscilab.live("jack:system:capture_1,system:capture_2")
+    with pytest.raises(ValueError, match="calibration"):
+        oscilab.live("jack:system:capture_1,system:capture_2", calibration={"channels": 3})
     session = oscilab.live(STEPPED[0], speed=0)
     with pytest.raises(ValueError, match="only the virtual rig"):
         session.set_excitation(1.0)
