@@ -183,7 +183,8 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
     }
   }
   if (options.compute_uncertainty) {
-    if (progress) progress({FitStage::Uncertainty, result.evaluations, best.best_cost, result.theta});
+    if (progress)
+      progress({FitStage::Uncertainty, result.evaluations, best.best_cost, result.theta});
     UncertaintyOptions u = options.uncertainty;
     u.seed = options.seed;
     u.threads = options.threads;
