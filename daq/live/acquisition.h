@@ -13,20 +13,15 @@
 #include "analysis/edc/cycle_fit.h"
 #include "analysis/edc/level_tracker.h"
 #include "analysis/pipeline/pipeline_settings.h"
+#include "daq/live/alarm_monitor.h"
 #include "daq/live/block_queue.h"
+#include "daq/live/history_ring.h"
 #include "daq/live/sample_source.h"
 #include "daq/live/stream_event.h"
 
 namespace oscilab::daq {
 
 class LiveRecorder;
-
-/// Limits whose crossing raises an alarm (logged and shown), in SI; unset: not checked.
-struct AlarmLimits {
-  std::optional<double> max_abs_z_m;      // relative displacement amplitude
-  std::optional<double> max_abs_base_m;   // integrated table displacement: integration drift
-  std::optional<double> max_abs_force_n;  // f = −m b̈
-};
 
 struct AcquisitionOptions {
   analysis::PipelineSettings settings;  // the same analysis as offline
@@ -73,26 +68,19 @@ struct AcquisitionStatus {
   std::uint64_t alarms = 0;
 };
 
-/// Decimated traces for display: per bucket the min and the max of each trace (an envelope, as
-/// a scope draws), in time order; NaN where a derived trace is not computed (yet).
-struct TraceHistory {
-  std::vector<double> t_s;
-  std::vector<double> base;     // b̈ (or the base channel's quantity), SI
-  std::vector<double> mass;     // y (or the mass channel's quantity), SI
-  std::vector<double> force_n;  // f = −m b̈
-  std::vector<double> b_m, z_m, z_dot_m_s, restoring_force_n;  // derived, delayed
-  void clear();
-};
-
 /// The live chain of one source: its thread delivers blocks into a lock-free queue; the
 /// acquisition thread takes them in order (StreamMonitor: gaps, duplicates, reordering),
-/// checks every sample (non-finite, saturation), records them (LiveRecorder), calibrates them to
-/// SI, feeds the measurement pipeline (the same per-cycle EDC as offline, excluding every cycle
-/// that touches a fault) and keeps the last minutes of traces for display. Every fault is
-/// counted (status), logged (events) and recorded (invalid intervals).
+/// checks every sample (SampleChecker: non-finite, saturation), records them (LiveRecorder),
+/// calibrates them to SI, feeds the measurement pipeline (the same per-cycle EDC as offline,
+/// excluding every cycle that touches a fault), derives b, z, ż and R (DerivedSignals), watches
+/// the alarm limits (AlarmMonitor) and keeps the last minutes of traces for display
+/// (HistoryRing). Every fault is counted (status), logged (events) and recorded (invalid
+/// intervals).
 ///
 /// Thread-safety: every public method may be called from any one controlling thread (the UI or
-/// the CLI); results are copied out under a mutex, per block, never per sample.
+/// the CLI). The acquisition thread works on a block without a lock and then publishes what it
+/// found under the acquisition's mutex once per block; the traces go to the history ring under
+/// the ring's own lock, so a display thinning minutes of traces never holds the acquisition up.
 class Acquisition {
  public:
   Acquisition(std::unique_ptr<SampleSource> source, AcquisitionOptions options);
@@ -124,7 +112,8 @@ class Acquisition {
   std::vector<analysis::CycleFit> cycles_since(std::size_t first) const;
   /// Events from index `first` on.
   std::vector<StreamEvent> events_since(std::size_t first) const;
-  /// Traces over [from_s, to_s] (stream time) decimated to at most 2 × buckets points each.
+  /// Traces over [from_s, to_s] (stream time) decimated to at most 2 × buckets points each
+  /// (HistoryRing::read); empty before the layout is known.
   void history(double from_s, double to_s, int buckets, TraceHistory& out) const;
 
  private:
