@@ -1,6 +1,8 @@
 // HDF5 through libhdf5: a Terra15 DAS file, and files h5py writes at test time.
 #include <gtest/gtest.h>
 
+#include "tests/instrument_files.h"
+
 #include <cmath>
 #include <map>
 #include <string>
@@ -22,7 +24,8 @@ using testing::input_error_of;
 using testing::TempDir;
 using testing::varied_values;
 
-const std::string kTerra15 = OSCILAB_INSTRUMENT_FILES "/hdf5/terra15_v5_test_file.hdf5";
+const std::string kTerra15 =
+    oscilab::testing::instrument_files() + "/hdf5/terra15_v5_test_file.hdf5";
 
 const SignalFileReader& reader() { return dynamic_cast<const SignalFileReader&>(hdf5_format()); }
 
@@ -44,6 +47,7 @@ Sidecar one_channel(double rate_hz, const std::string& source, int column) {
 }
 
 TEST(Hdf5Format, ReadsTheTerra15FileAsReadme) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   EXPECT_EQ(&format_for_file(kTerra15), &hdf5_format());
   const FileContents contents = hdf5_format().describe(kTerra15);
   EXPECT_EQ(contents.container.rfind("HDF5", 0), 0u);

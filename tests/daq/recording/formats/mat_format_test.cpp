@@ -2,6 +2,8 @@
 // time, and a Level 5 file built byte by byte.
 #include <gtest/gtest.h>
 
+#include "tests/instrument_files.h"
+
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -24,7 +26,7 @@ using testing::input_error_of;
 using testing::TempDir;
 using testing::varied_values;
 
-const std::string kSilverbox = OSCILAB_INSTRUMENT_FILES "/mat/SNLS80mV.mat";
+const std::string kSilverbox = oscilab::testing::instrument_files() + "/mat/SNLS80mV.mat";
 constexpr double kSilverboxRateHz = 1e7 / 16384.0;  // 10^7 / 2^14, the benchmark's documentation
 
 const SignalFileReader& mat_reader() { return dynamic_cast<const SignalFileReader&>(mat_format()); }
@@ -59,6 +61,7 @@ Sidecar sidecar_of(double rate_hz, const std::vector<std::pair<std::string, int>
 }
 
 TEST(MatFormat, DescribesTheSilverboxFileAsReadme) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   const FileContents contents = mat_format().describe(kSilverbox);
   EXPECT_EQ(contents.container, "MATLAB 5.0 MAT-file (v5, uncompressed)");
   EXPECT_EQ(contents.properties.at("header").get<std::string>().rfind("MATLAB 5.0 MAT-file", 0),
@@ -79,6 +82,7 @@ TEST(MatFormat, DescribesTheSilverboxFileAsReadme) {
 
 // RMS and first samples measured with SciPy 1.10 (scipy.io.loadmat) on the same file.
 TEST(MatFormat, ReadsTheSilverboxVoltagesAsSciPyDoes) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   const FileContents contents = mat_format().describe(kSilverbox);
   const std::vector<double> v1 =
       mat_reader().read_signal(kSilverbox, signal_named(contents, "V1"), -1);

@@ -3,6 +3,8 @@
 // Structure", every field commented.
 #include <gtest/gtest.h>
 
+#include "tests/instrument_files.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -28,7 +30,7 @@ using testing::TdmsBytes;
 using testing::TempDir;
 using namespace testing;  // ToC flags, type codes and index headers of tdms_test_bytes.h
 
-const std::string kFixtures = OSCILAB_INSTRUMENT_FILES "/tdms/";
+const std::string kFixtures = oscilab::testing::instrument_files() + "/tdms/";
 
 constexpr std::uint32_t kTocFirst = kTocMetaData | kTocNewObjList | kTocRawData;
 
@@ -70,6 +72,7 @@ bool contains(const std::string& text, const std::string& part) {
 // ---- Real files ------------------------------------------------------------------------------
 
 TEST(TdmsReader, ReadsDaqmxRawInterleavedInt16WithItsLinearScales) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   const std::string path = kFixtures + "example.tdms";
   const FileContents contents = tdms().describe(path);
   EXPECT_EQ(contents.container, "NI TDMS (version 4713), 4 segments");
@@ -107,6 +110,7 @@ TEST(TdmsReader, ReadsDaqmxRawInterleavedInt16WithItsLinearScales) {
 }
 
 TEST(TdmsReader, ReadsTheDigitalLineSignalExpressLoggedInNineSegments) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   const std::string path = kFixtures + "Digital_Input.tdms";
   const FileContents contents = tdms().describe(path);
   EXPECT_EQ(contents.container, "NI TDMS (version 4713), 9 segments");
@@ -135,6 +139,7 @@ TEST(TdmsReader, ReadsTheDigitalLineSignalExpressLoggedInNineSegments) {
 }
 
 TEST(TdmsReader, MapsTheRealDaqmxFileThroughASidecar) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   Sidecar sidecar;
   sidecar.sample_rate_hz = 200000.0;
   sidecar.channels = {channel("v0", ChannelRole::Base, Quantity::Acceleration, "V", 2.0),

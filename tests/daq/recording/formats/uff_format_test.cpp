@@ -3,6 +3,8 @@
 // values through CSV, and every refusal.
 #include <gtest/gtest.h>
 
+#include "tests/instrument_files.h"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -29,7 +31,7 @@ using testing::TempDir;
 using testing::Uff58Header;
 using testing::write_file;
 
-const std::string kFixtures = OSCILAB_INSTRUMENT_FILES "/uff/";
+const std::string kFixtures = oscilab::testing::instrument_files() + "/uff/";
 
 // A one-channel sidecar that reads `source` as volts (factor 1: samples_si = stored values).
 Sidecar volts_sidecar(double rate_hz, const std::string& source) {
@@ -54,6 +56,7 @@ std::vector<double> column(const Recording& recording, Eigen::Index c) {
 // --- Real files -------------------------------------------------------------------------------
 
 TEST(UffFormat, DescribesTheAsciiMicrophoneRecording) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   const std::string path = kFixtures + "Sample_UFF58_ascii.uff";
   ASSERT_EQ(&format_for_file(path), &uff_format());
   const FileContents contents = uff_format().describe(path);
@@ -78,6 +81,7 @@ TEST(UffFormat, DescribesTheAsciiMicrophoneRecording) {
 }
 
 TEST(UffFormat, ReadsTheMicrophoneRecordingAlikeFromAsciiAndBinary) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   const std::string ascii_path = kFixtures + "Sample_UFF58_ascii.uff";
   const std::string binary_path = kFixtures + "Sample_UFF58b_bin.uff";
   const FileContents binary_contents = uff_format().describe(binary_path);
@@ -107,6 +111,7 @@ TEST(UffFormat, ReadsTheMicrophoneRecordingAlikeFromAsciiAndBinary) {
 }
 
 TEST(UffFormat, ReadsTheCatmanFileWithThreeDigitExponentsAndAShortLastLine) {
+  OSCILAB_SKIP_WITHOUT_INSTRUMENT_FILES();
   const std::string path = kFixtures + "time-history-not-all-columns-filled.uff";
   const FileContents contents = uff_format().describe(path);
   ASSERT_EQ(contents.file_signals.size(), 1u);
