@@ -7,7 +7,6 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/rfs/restoring_force_slices.h"
-#include "analysis/signal/spectral_calculus.h"
 #include "daq/recording/measurement_mapping.h"
 
 namespace oscilab::ui {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace oscilab {
@@ -22,5 +23,8 @@ inline double quantile(std::vector<double> values, double q) {
   const double high = *std::min_element(nth + 1, values.end());  // the next order statistic
   return low + (position - static_cast<double>(below)) * (high - low);
 }
+
+/// The median: quantile(values, 0.5), the mean of the middle two for an even count.
+inline double median(std::vector<double> values) { return quantile(std::move(values), 0.5); }
 
 }  // namespace oscilab

@@ -1,4 +1,5 @@
 #include "analysis/edc/cycle_fit.h"
+#include "analysis/model/excitation_force.h"
 
 #include <algorithm>
 #include <cmath>
@@ -102,7 +103,7 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
     const std::complex<double> b_d = to_displacement(b, hw, base_order);
     const std::complex<double> y_d = to_displacement(y, hw, mass_order);
     const std::complex<double> z = input.mass_is_relative ? y_d : y_d - b_d;
-    const std::complex<double> f = input.mass_kg * hw * hw * b_d;  // F_h = −m (ihω)² B_h
+    const std::complex<double> f = excitation_force_harmonic(input.mass_kg, hw, b_d);
     out.z_h[static_cast<std::size_t>(h - 1)] = z;
     f_h[static_cast<std::size_t>(h - 1)] = f;
     b_disp(2 * h) = b_d.real();
@@ -138,7 +139,7 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   // interpolated linearly between the samples outside and inside.
   const Eigen::VectorXd b_acc_fit = base_order == 2 ? Eigen::VectorXd() : basis * b_acc;
   const auto force_at = [&](int i) {
-    return -input.mass_kg * (base_order == 2 ? base[i] : b_acc_fit[i - lo]);
+    return excitation_force_n(input.mass_kg, base_order == 2 ? base[i] : b_acc_fit[i - lo]);
   };
   const auto z_at = [&](int i) {
     if (mass_order != 0) return z_fit[i - lo];

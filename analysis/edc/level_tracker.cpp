@@ -4,18 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "analysis/common/quantile.h"
+
 namespace oscilab::analysis {
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  if (values.size() % 2 == 1) return *mid;
-  const double upper = *mid;
-  const double lower = *std::max_element(values.begin(), mid);
-  return 0.5 * (lower + upper);
-}
 
 // 1.4826 · median absolute deviation: σ of Gaussian data, robust to outliers.
 double robust_sigma(const std::vector<double>& values, double centre) {

@@ -4,16 +4,11 @@
 #include <memory>
 #include <vector>
 
+#include "analysis/model/excitation_force.h"
 #include "analysis/signal/motion_quantity.h"
 #include "analysis/signal/streaming_integrator.h"
 
 namespace oscilab::analysis {
-
-/// The excitation force of eq. (1), f = −m b̈ (N; N/kg with a unit mass), from the table's
-/// acceleration: the one place the live and the replayed chains compute it.
-inline double excitation_force_n(double mass_kg, double base_acceleration_m_s2) {
-  return -mass_kg * base_acceleration_m_s2;
-}
 
 /// The signals of eq. (1) derived from a stream of calibrated base and mass samples as they
 /// arrive: the table's displacement b, the relative motion z = y − b and ż, and the restoring

@@ -1,4 +1,5 @@
 #include "analysis/rfs/motion_signals.h"
+#include "analysis/model/excitation_force.h"
 
 #include <algorithm>
 #include <cmath>
@@ -63,8 +64,7 @@ Eigen::VectorXd excitation_force(const MeasurementChannels& channels,
   for (Eigen::Index i = 0; i < base.size(); ++i) {
     if (!std::isfinite(base[i])) base[i] = 0.0;
   }
-  // Eq. (1): f = −m b̈.
-  return -mass_kg * spectral_derivative(base, rate_hz, 2 - measured, options);
+  return excitation_force_n(mass_kg, spectral_derivative(base, rate_hz, 2 - measured, options));
 }
 
 }  // namespace oscilab::analysis

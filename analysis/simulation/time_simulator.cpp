@@ -1,4 +1,5 @@
 #include "analysis/simulation/time_simulator.h"
+#include "analysis/model/excitation_force.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,7 +59,7 @@ TimeSimulator::Result TimeSimulator::simulate(const TableMotion& motion, const R
   const auto record = [&](Eigen::Index k, const State& state, double t) {
     const double z = state[kZ], z_dot = state[kZDot];
     const double* s = model_.state_size() > 0 ? state.data() + kInternal : nullptr;
-    const double f = -model_.mass_kg() * motion.at(t).b_ddot_m_s2;
+    const double f = excitation_force_n(model_.mass_kg(), motion.at(t).b_ddot_m_s2);
     const double d = model_.dissipative_force(z, z_dot, s);
     const double r = model_.elastic_force(z) + d;
     result.t_s[k] = t;

@@ -1,4 +1,5 @@
 #include "analysis/simulation/time_stepper.h"
+#include "analysis/model/excitation_force.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +21,7 @@ struct EquationOfMotion {
     ++*evaluations;
     const double z = x[TimeStepper::kZ], z_dot = x[TimeStepper::kZDot];
     const double* s = model.state_size() > 0 ? x.data() + TimeStepper::kInternal : nullptr;
-    const double f = -model.mass_kg() * motion.at(t).b_ddot_m_s2;  // eq. (1)
+    const double f = excitation_force_n(model.mass_kg(), motion.at(t).b_ddot_m_s2);
     const double d = model.dissipative_force(z, z_dot, s);
     const double r = model.elastic_force(z) + d;
     dxdt[TimeStepper::kZ] = z_dot;

@@ -246,7 +246,7 @@ AcquisitionStatus Acquisition::status() const {
   s.clipped_samples = c.clipped_samples;
   s.reconnections = c.reconnections;
   s.finished = finished();
-  if (!latencies.empty()) s.edc_latency_median_s = quantile(std::move(latencies), 0.5);
+  if (!latencies.empty()) s.edc_latency_median_s = median(std::move(latencies));
   return s;
 }
 

@@ -44,5 +44,13 @@ TEST(Quantile, EqualsTheSortedDefinitionOnRandomData) {
   }
 }
 
+TEST(Median, IsTheMiddleValueOrTheMeanOfTheMiddleTwo) {
+  EXPECT_EQ(median({}), 0.0);
+  EXPECT_EQ(median({4.0}), 4.0);
+  EXPECT_EQ(median({9.0, -1.0, 3.0}), 3.0);
+  EXPECT_EQ(median({9.0, -1.0, 3.0, 5.0}), 4.0);
+  EXPECT_EQ(median({2.0, 2.0, 7.0, 1.0, 2.0, 100.0}), 2.0);
+}
+
 }  // namespace
 }  // namespace oscilab
