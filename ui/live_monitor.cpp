@@ -35,6 +35,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/hbm/level_response.h"
 #include "analysis/model/reference_models.h"
+#include "analysis/rfs/cycle_loop.h"
 #include "analysis/signal/amplitude_spectrum.h"
 #include "daq/live/jack_source.h"
 #include "daq/live/net_source.h"
@@ -216,9 +217,9 @@ LiveMonitor::LiveMonitor(QWidget* parent)
   clock_->start();
   trace_units_.resize(kTraceCount);
   trace_ranges_.resize(kTraceCount);
-  RfsAccumulator::Options rfs;
+  analysis::StreamingSlices::Options rfs;
   rfs.max_points = kSliceMaxPoints;
-  rfs_ = RfsAccumulator(rfs);
+  rfs_ = analysis::StreamingSlices(rfs);
 
   prediction_job_ = new BackgroundJob(this);
   connect(prediction_job_, &BackgroundJob::finished, this, &LiveMonitor::on_prediction_finished);
@@ -996,9 +997,9 @@ bool LiveMonitor::start() {
   event_faults_ = {};
   fault_tracker_.reset();
   throughput_.reset();
-  RfsAccumulator::Options rfs = rfs_.options();
+  analysis::StreamingSlices::Options rfs = rfs_.options();
   rfs.frequency_hz = frequency_hz();
-  rfs_ = RfsAccumulator(rfs);
+  rfs_ = analysis::StreamingSlices(rfs);
   events_seen_ = 0;
   levels_shown_ = static_cast<std::size_t>(-1);
   current_shown_.reset();
@@ -1392,9 +1393,9 @@ void LiveMonitor::refresh_slices() {
   const double rate_hz = status.sample_rate_hz;
   const double nu = frequency_hz();
   if (nu > 0 && std::abs(nu - rfs_.options().frequency_hz) > 1e-9) {
-    RfsAccumulator::Options o = rfs_.options();
+    analysis::StreamingSlices::Options o = rfs_.options();
     o.frequency_hz = nu;
-    rfs_ = RfsAccumulator(o);  // a new ν: a new cycle length for the bands
+    rfs_ = analysis::StreamingSlices(o);  // a new ν: a new cycle length for the bands
   }
   // Samples one by one over what the slices have not taken yet (the derived traces lag).
   const double now_s = status.stream_time_s;
@@ -1402,11 +1403,13 @@ void LiveMonitor::refresh_slices() {
       {0.0, now_s - kMaxSliceCatchUpS, std::min(rfs_.taken_until_s(), now_s - kAnalysisSpanS)});
   const int samples = static_cast<int>(std::ceil((now_s - from_s) * rate_hz)) + 2;
   acquisition_->history(from_s, now_s, samples, raw_);
-  if (raw_.t_s.empty() || rfs_.add(raw_, rate_hz) == 0) return;
+  if (raw_.t_s.empty() ||
+      rfs_.add(raw_.t_s, raw_.z_m, raw_.z_dot_m_s, raw_.restoring_force_n, rate_hz) == 0)
+    return;
   for (auto [plot, points] :
        {std::pair{stiffness_plot_, &rfs_.stiffness()}, std::pair{damping_plot_, &rfs_.damping()}}) {
     QVector<QCPGraphData> wells[2];
-    for (const WellPoint& p : *points) {
+    for (const analysis::WellPoint& p : *points) {
       wells[p.positive ? 0 : 1].push_back(QCPGraphData(1e3 * p.x, p.y));  // z in mm, ż in mm/s
     }
     double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
@@ -1439,7 +1442,8 @@ void LiveMonitor::refresh_cycle() {
 
   // The loop of the newest whole cycle of z.
   if (nu > 0) {
-    const CycleLoop cycle = current_loop(raw_, nu);
+    const analysis::CycleLoop cycle =
+        analysis::newest_cycle_loop(raw_.t_s, raw_.z_m, raw_.force_n, nu);
     if (auto* curve = qobject_cast<QCPCurve*>(loop_plot_->plottable(0));
         curve && !cycle.z_m.empty()) {
       QVector<QCPCurveData> data(static_cast<qsizetype>(cycle.z_m.size()));

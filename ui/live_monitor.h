@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/model/model.h"
+#include "analysis/rfs/streaming_slices.h"
 #include "daq/live/acquisition.h"
 #include "daq/live/rig_source.h"
 #include "ui/live_view_model.h"
@@ -212,7 +213,7 @@ class LiveMonitor : public QWidget {
   FaultCounts event_faults_;
   FaultTracker fault_tracker_;
   ThroughputMeter throughput_;
-  RfsAccumulator rfs_;
+  analysis::StreamingSlices rfs_;
   std::size_t events_seen_ = 0;
   std::size_t levels_shown_ = static_cast<std::size_t>(-1);
   std::optional<analysis::LevelResult> current_shown_;

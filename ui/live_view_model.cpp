@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "analysis/common/input_error.h"
-#include "analysis/common/quantile.h"
 #include "analysis/simulation/stepped_levels.h"
 
 namespace oscilab::ui {
@@ -43,11 +42,6 @@ std::uint64_t data_count(const daq::StreamEvent& event, const char* name, std::u
   if (it == event.data.end() || !it->is_number()) return fallback;
   const double v = it->get<double>();
   return v > 0 ? static_cast<std::uint64_t>(v) : 0;
-}
-
-template <typename T>
-void keep_newest(std::deque<T>& values, std::size_t max_size) {
-  while (values.size() > max_size) values.pop_front();
 }
 
 }  // namespace
@@ -462,87 +456,6 @@ std::string level_warning(const std::optional<analysis::LevelResult>& current) {
   if (!current->period1) text = "not period-1 (sub-harmonic or non-periodic motion, Fig. 17)";
   if (current->cross_well) text += std::string(text.empty() ? "" : "; ") + "crosses wells";
   return text;
-}
-
-// --- restoring force -------------------------------------------------------------------------
-
-RfsAccumulator::RfsAccumulator(Options options) : options_(options) {}
-
-void RfsAccumulator::reset() {
-  taken_until_s_ = -1.0;
-  recent_z_.clear();
-  recent_z_dot_.clear();
-  stiffness_.clear();
-  damping_.clear();
-  velocity_band_m_s_ = centre_m_ = position_band_m_ = 0.0;
-}
-
-std::size_t RfsAccumulator::add(const daq::TraceHistory& raw, double sample_rate_hz) {
-  struct Sample {
-    double z, z_dot, r;
-  };
-  std::vector<Sample> fresh;
-  for (std::size_t i = 0; i < raw.t_s.size(); ++i) {
-    if (!(raw.t_s[i] > taken_until_s_)) continue;
-    const double z = raw.z_m[i], z_dot = raw.z_dot_m_s[i], r = raw.restoring_force_n[i];
-    if (!std::isfinite(z) || !std::isfinite(z_dot) || !std::isfinite(r)) continue;
-    fresh.push_back({z, z_dot, r});
-    taken_until_s_ = raw.t_s[i];
-  }
-  if (fresh.empty()) return 0;
-
-  // The bands from the last N cycles, these samples included.
-  const double per_cycle = options_.frequency_hz > 0 && sample_rate_hz > 0
-                               ? sample_rate_hz / options_.frequency_hz
-                               : 64.0;
-  const auto recent = static_cast<std::size_t>(std::max(64.0, options_.cycles * per_cycle));
-  for (const Sample& s : fresh) {
-    recent_z_.push_back(s.z);
-    recent_z_dot_.push_back(std::abs(s.z_dot));
-  }
-  keep_newest(recent_z_, recent);
-  keep_newest(recent_z_dot_, recent);
-  const std::vector<double> z(recent_z_.begin(), recent_z_.end());
-  velocity_band_m_s_ =
-      options_.velocity_band_rel * quantile({recent_z_dot_.begin(), recent_z_dot_.end()}, 0.99);
-  centre_m_ = quantile(z, 0.5);
-  position_band_m_ = options_.position_band_rel * (quantile(z, 0.99) - quantile(z, 0.01));
-
-  for (const Sample& s : fresh) {
-    const bool positive = s.z > options_.well_boundary_m;
-    if (std::abs(s.z_dot) < velocity_band_m_s_) stiffness_.push_back({s.z, s.r, positive});
-    if (std::abs(s.z - centre_m_) < position_band_m_) damping_.push_back({s.z_dot, s.r, positive});
-  }
-  keep_newest(stiffness_, options_.max_points);
-  keep_newest(damping_, options_.max_points);
-  return fresh.size();
-}
-
-CycleLoop current_loop(const daq::TraceHistory& raw, double frequency_hz, double well_boundary_m) {
-  CycleLoop loop;
-  if (!(frequency_hz > 0) || raw.t_s.size() < 2) return loop;
-  const auto finite = [&](std::size_t i) {
-    return std::isfinite(raw.z_m[i]) && std::isfinite(raw.force_n[i]);
-  };
-  std::size_t last = raw.t_s.size();
-  while (last > 0 && !finite(last - 1)) --last;
-  if (last < 2) return loop;
-  const double end_s = raw.t_s[last - 1];
-  const double dt = raw.t_s[1] - raw.t_s[0];
-  const double start_s = end_s - 1.0 / frequency_hz;  // one whole period, closed
-  std::size_t first = last - 1;
-  while (first > 0 && finite(first - 1) && raw.t_s[first - 1] > start_s - 0.5 * dt) --first;
-  if (raw.t_s[first] > start_s + 0.5 * dt) return loop;  // less than a cycle
-  double sum = 0.0;
-  for (std::size_t i = first; i < last; ++i) {
-    loop.z_m.push_back(raw.z_m[i]);
-    loop.f_n.push_back(raw.force_n[i]);
-    sum += raw.z_m[i];
-  }
-  loop.start_s = raw.t_s[first];
-  loop.end_s = end_s;
-  loop.positive = sum / static_cast<double>(loop.z_m.size()) > well_boundary_m;
-  return loop;
 }
 
 // --- display ---------------------------------------------------------------------------------

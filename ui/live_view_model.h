@@ -19,8 +19,8 @@
 
 // The Qt-free logic of the live monitor (ui/live_monitor.h): which stretch of the history to
 // show and how far back the operator scrolled, the fault counters and how alarming they are, the
-// status and event-log texts, the EDC points per well, the restoring-force slices and the loop of
-// the current cycle from the traces, and the spectrum of z with its harmonics. The widget only
+// status and event-log texts, and the EDC points per well
+// (the restoring-force slices and the cycle loop are analysis/rfs/). The widget only
 // shows what these compute; GoogleTest checks them headless.
 namespace oscilab::ui {
 
@@ -206,64 +206,6 @@ std::vector<double> prediction_levels(double max_measured_f0_n);
 /// The warning shown for the level being filled: "" when it is period-1 in one well, else its
 /// flags in words ("not period-1 (sub-harmonic or non-periodic, Fig. 17)", "crosses wells").
 std::string level_warning(const std::optional<analysis::LevelResult>& current);
-
-/// A point of a slice or loop, tagged with the well it belongs to.
-struct WellPoint {
-  double x = 0.0;
-  double y = 0.0;
-  bool positive = true;  // z above the well boundary
-};
-
-/// The restoring-force surface as it grows live (§3.1–3.2): samples of (z, ż, R) from the
-/// derived traces, taken as they arrive; the stiffness slice keeps (z, R) where
-/// |ż| < velocity_band_rel × p99(|ż|) of the last `cycles` cycles, the damping slice keeps
-/// (ż, R) where |z − z̄| < position_band_rel × (z range), z̄ and the range over the last
-/// `cycles` cycles (the current well's centre and travel). Each keeps its newest max_points.
-class RfsAccumulator {
- public:
-  struct Options {
-    double velocity_band_rel = 0.02;  // as PipelineSettings::stiffness_velocity_band_rel
-    /// Wider than the offline 0.01 of the record's range: here the range is one level's.
-    double position_band_rel = 0.05;
-    int cycles = 30;  // N: the last N cycles set the bands
-    double frequency_hz = 9.0;
-    double well_boundary_m = 0.0;
-    std::size_t max_points = 20000;
-  };
-  RfsAccumulator() : RfsAccumulator(Options()) {}
-  explicit RfsAccumulator(Options options);
-  const Options& options() const { return options_; }
-  void reset();
-  /// The time up to which samples were taken; ask the history from there on.
-  double taken_until_s() const { return taken_until_s_; }
-  /// Takes the samples of `raw` (one per sample: TraceHistory with per-bucket 1) after
-  /// taken_until_s() whose z, ż and R are finite. Returns how many were new.
-  std::size_t add(const daq::TraceHistory& raw, double sample_rate_hz);
-
-  const std::deque<WellPoint>& stiffness() const { return stiffness_; }
-  const std::deque<WellPoint>& damping() const { return damping_; }
-  double velocity_band_m_s() const { return velocity_band_m_s_; }
-  double damping_centre_m() const { return centre_m_; }
-  double position_band_m() const { return position_band_m_; }
-
- private:
-  Options options_;
-  double taken_until_s_ = -1.0;
-  std::deque<double> recent_z_, recent_z_dot_;  // the last N cycles
-  std::deque<WellPoint> stiffness_, damping_;
-  double velocity_band_m_s_ = 0.0, centre_m_ = 0.0, position_band_m_ = 0.0;
-};
-
-/// The force–displacement loop (f against z, Fig. 9) of the newest whole cycle whose derived z
-/// is known: the last 1/ν of `raw` (one row per sample) that has finite z and f. Empty when
-/// there is less than a cycle.
-struct CycleLoop {
-  std::vector<double> z_m, f_n;
-  double start_s = 0.0, end_s = 0.0;
-  bool positive = true;  // mean z above the well boundary
-};
-CycleLoop current_loop(const daq::TraceHistory& raw, double frequency_hz,
-                       double well_boundary_m = 0.0);
 
 /// The display unit of a live trace, kept while the values still read between 0.5 and 2000 in
 /// it (so an axis does not flicker between mm and µm at a boundary), chosen afresh otherwise.

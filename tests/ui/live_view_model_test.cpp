@@ -1,6 +1,6 @@
 // The live monitor's Qt-free logic: settings, schedule, time window and scroll-back,
-// fault counting and colouring, status and event texts, EDC points, the restoring-force slices,
-// and the cycle loop, each against an independent expectation.
+// fault counting and colouring, status and event texts, EDC points, display units and axes,
+// each against an independent expectation.
 #include "ui/live_view_model.h"
 
 #include <cmath>
@@ -270,93 +270,6 @@ TEST(LevelWarning, NamesTheFlagsOfTheLevelBeingFilled) {
   r.cross_well = true;
   EXPECT_NE(level_warning(r).find("not period-1"), std::string::npos);
   EXPECT_NE(level_warning(r).find("crosses wells"), std::string::npos);
-}
-
-// Derived traces of a known motion: z = z0 + A sin ωt, R = K(z) + c ż, one row per sample.
-daq::TraceHistory motion(double t0, double t1, double rate, double z0, double a, double nu,
-                         double c, double m = 0.26) {
-  daq::TraceHistory h;
-  const double w = 2 * kPi * nu;
-  for (double t = t0; t < t1; t += 1.0 / rate) {
-    const double z = z0 + a * std::sin(w * t), z_dot = a * w * std::cos(w * t);
-    const double k = 7.35e5 * z * z * z + 1.56e3 * z * z - 550 * z + 2.4;  // Table 1
-    h.t_s.push_back(t);
-    h.z_m.push_back(z);
-    h.z_dot_m_s.push_back(z_dot);
-    h.restoring_force_n.push_back(k + c * z_dot);
-    h.force_n.push_back(k + c * z_dot + m * (-a * w * w * std::sin(w * t)));  // f = R + m z̈
-    for (auto* v : {&h.base, &h.mass, &h.b_m}) v->push_back(0.0);
-  }
-  return h;
-}
-
-double stiffness(double z) { return 7.35e5 * z * z * z + 1.56e3 * z * z - 550 * z + 2.4; }
-
-TEST(RfsAccumulator, KeepsTheStiffnessAndDampingSlicesOfAKnownSurface) {
-  RfsAccumulator::Options o;
-  o.frequency_hz = 9.0;
-  RfsAccumulator rfs(o);
-  const double rate = 512, z0 = 0.0028, a = 0.002, c = 2.02, nu = 9.0;
-  const daq::TraceHistory h = motion(0.0, 4.0, rate, z0, a, nu, c);
-  EXPECT_EQ(rfs.add(h, rate), h.t_s.size());
-  EXPECT_EQ(rfs.add(h, rate), 0u);  // taken already
-  ASSERT_GT(rfs.stiffness().size(), 20u);
-  ASSERT_GT(rfs.damping().size(), 20u);
-  // |ż| < ε_s = 0.02 × p99(|ż|) ≤ 0.02 A ω: R − K(z) = c ż is within c ε_s.
-  const double band = rfs.velocity_band_m_s();
-  EXPECT_LE(band, 0.02 * a * 2 * kPi * nu * (1 + 1e-12));
-  for (const WellPoint& p : rfs.stiffness()) {
-    EXPECT_LE(std::abs(p.y - stiffness(p.x)), c * band * (1 + 1e-9));
-    EXPECT_TRUE(p.positive);
-  }
-  // Damping slice: R = K(z) + c ż with |z − z̄| < ε_d; the least-squares slope of R against ż is
-  // c up to K'(z̄) ε_d / (ż range) — K' = −550 + … N/m over ≤ 0.2 mm against ż up to 0.11 m/s.
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(rfs.damping().size());
-  for (const WellPoint& p : rfs.damping()) {
-    EXPECT_LT(std::abs(p.x), a * 2 * kPi * nu * (1 + 1e-12));
-    sx += p.x, sy += p.y, sxx += p.x * p.x, sxy += p.x * p.y;
-  }
-  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  EXPECT_NEAR(slope, c, 0.05 * c);
-  EXPECT_NEAR(rfs.damping_centre_m(), z0, 0.05 * a);  // median of a sine: its centre
-}
-
-TEST(RfsAccumulator, TakesOnlyFiniteNewSamplesAndKeepsTheNewestPoints) {
-  RfsAccumulator::Options o;
-  o.max_points = 50;
-  RfsAccumulator rfs(o);
-  daq::TraceHistory h = motion(0.0, 2.0, 512, -0.0028, 0.002, 9.0, 2.0);
-  for (std::size_t i = 600; i < h.t_s.size(); ++i) h.z_m[i] = std::nan("");  // not derived yet
-  EXPECT_EQ(rfs.add(h, 512), 600u);
-  EXPECT_NEAR(rfs.taken_until_s(), 599.0 / 512, 1e-12);
-  EXPECT_LE(rfs.stiffness().size(), 50u);
-  for (const WellPoint& p : rfs.stiffness()) EXPECT_FALSE(p.positive);
-  h = motion(0.0, 2.0, 512, -0.0028, 0.002, 9.0, 2.0);  // now derived: the rest is taken
-  EXPECT_EQ(rfs.add(h, 512), h.t_s.size() - 600);
-}
-
-TEST(CurrentLoop, EnclosesTheEnergyOfEq13) {
-  // f = f0 sin ωt, z = z̄ + Z sin(ωt − θ): ∮ f dz = π f0 Z sin θ (docs/conventions.md, eq. (13)).
-  const double rate = 512, nu = 8.0, f0 = 1.3, zz = 0.002, theta = 0.4, w = 2 * kPi * nu;
-  daq::TraceHistory h;
-  for (int i = 0; i < 512; ++i) {
-    const double t = i / rate;
-    h.t_s.push_back(t);
-    h.force_n.push_back(f0 * std::sin(w * t));
-    h.z_m.push_back(i < 500 ? -0.0028 + zz * std::sin(w * t - theta) : std::nan(""));
-  }
-  const CycleLoop loop = current_loop(h, nu);
-  ASSERT_EQ(loop.z_m.size(), 65u);  // one period of 64 samples, closed
-  EXPECT_NEAR(loop.end_s, 499.0 / rate, 1e-12);
-  EXPECT_FALSE(loop.positive);
-  double area = 0;
-  for (std::size_t i = 0; i + 1 < loop.z_m.size(); ++i) {
-    area += 0.5 * (loop.f_n[i] + loop.f_n[i + 1]) * (loop.z_m[i + 1] - loop.z_m[i]);
-  }
-  // The trapezoid on 64 samples per period: relative error (ωΔt)²/12 ≈ 8e-4.
-  EXPECT_NEAR(area / (kPi * f0 * zz * std::sin(theta)), 1.0, 2e-3);
-  EXPECT_TRUE(current_loop(h, 0.1).z_m.empty());  // a 10 s cycle: not in 1 s of samples
 }
 
 TEST(StickyDisplayUnit, KeepsTheUnitNearAPrefixBoundary) {
