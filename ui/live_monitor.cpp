@@ -42,6 +42,9 @@
 #include "daq/live/replay_source.h"
 #include "daq/live/source_factory.h"
 #include "ui/background_job.h"
+#include "ui/live_edc_plot_data.h"
+#include "ui/live_event_row.h"
+#include "ui/live_status_fields.h"
 #include "ui/plot_helpers.h"
 #include "ui/well_colours.h"
 

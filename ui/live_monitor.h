@@ -14,7 +14,12 @@
 #include "analysis/rfs/streaming_slices.h"
 #include "daq/live/acquisition.h"
 #include "daq/live/rig_source.h"
-#include "ui/live_view_model.h"
+#include "ui/display_units.h"
+#include "ui/live_axis_following.h"
+#include "ui/live_faults.h"
+#include "ui/live_settings.h"
+#include "ui/live_timeline.h"
+#include "ui/throughput_meter.h"
 
 class QAction;
 class QCheckBox;
