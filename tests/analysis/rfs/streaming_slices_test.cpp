@@ -2,6 +2,7 @@
 // offline stiffness slice of the same record.
 #include "analysis/rfs/streaming_slices.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -147,6 +148,86 @@ TEST(StreamingSlices, SelectTheOfflineStiffnessSliceOfARecording) {
       Eigen::Map<const Eigen::VectorXd>(live_r.data(), static_cast<Eigen::Index>(live_r.size())),
       3);
   for (int k = 0; k <= 3; ++k) EXPECT_EQ(fit.coefficients[k], offline.fit.coefficients[k]) << k;
+}
+
+// As the live monitor feeds them: blocks of 0.25 s, the bands from the last 30 cycles. On one
+// steady level the band of the last 30 cycles is the offline band up to the scatter of a 99th
+// percentile taken over 30 cycles instead of the whole level, so the two selections differ only
+// in samples whose |ż| lies between the two bands. Near a turning point ż is linear in time, so
+// |ż| is spread evenly below the band: a relative band difference δ leaves about δ of the
+// selected samples between them. The test allows twice that, plus two for counting noise.
+TEST(StreamingSlices, FedInBlocksSelectTheOfflineStiffnessSliceOfASteadyLevel) {
+  SteppedSineSchedule schedule;
+  schedule.levels_n = {1.5};
+  schedule.hold_s = 30.0;
+  schedule.lead_in_s = 1.0;
+  daq::RigSpec spec;
+  spec.seed = 9;
+  const PipelineSettings settings;
+  const CampaignAnalysis campaign =
+      analyze_campaign({daq::measurement_channels(
+                           daq::record_stepped_sine(paper_model(), schedule, spec).recording)},
+                       settings);
+  ASSERT_TRUE(campaign.stiffness.has_value()) << campaign.rfs_message;
+  const MotionSignals& motion = campaign.records.at(0).motion;
+  // Compared once the window of 30 cycles lies within the steady level.
+  const double from_s = schedule.steady_start_s(0) + 30.0 / schedule.frequency_hz;
+
+  std::vector<double> t, z, z_dot, r;
+  for_each_slice_sample(motion, settings.edge_trim_s, [&](Eigen::Index i) {
+    if (motion.t_s[i] < schedule.steady_start_s(0)) return;  // the live window: steady cycles
+    t.push_back(motion.t_s[i]);
+    z.push_back(motion.z_m[i]);
+    z_dot.push_back(motion.z_dot_m_s[i]);
+    r.push_back(motion.restoring_force_n[i]);
+  });
+  const double rate_hz = 1.0 / (motion.t_s[1] - motion.t_s[0]);
+  StreamingSlices::Options o;
+  o.velocity_band_rel = settings.stiffness_velocity_band_rel;
+  o.frequency_hz = schedule.frequency_hz;
+  o.max_points = t.size();
+  StreamingSlices live(o);
+  const auto block = static_cast<std::size_t>(0.25 * rate_hz);
+  std::vector<bool> selected(t.size(), false);  // by the live slice
+  const double offline_band = campaign.stiffness->velocity_band_m_s;
+  double band_difference = 0.0;  // largest relative difference over the compared span
+  for (std::size_t start = 0; start < t.size(); start += block) {
+    const std::size_t end = std::min(t.size(), start + block);
+    const std::vector<double> bt(t.begin() + start, t.begin() + end),
+        bz(z.begin() + start, z.begin() + end), bv(z_dot.begin() + start, z_dot.begin() + end),
+        br(r.begin() + start, r.begin() + end);
+    const std::size_t kept = live.stiffness().size();
+    ASSERT_EQ(live.add(bt, bz, bv, br, rate_hz), bt.size());
+    // The block's new stiffness points: its samples with |ż| under the band just computed.
+    std::size_t next = kept;
+    for (std::size_t i = start; i < end; ++i) {
+      selected[i] = std::abs(z_dot[i]) < live.velocity_band_m_s();
+      if (!selected[i]) continue;
+      ASSERT_LT(next, live.stiffness().size());
+      EXPECT_EQ(live.stiffness()[next].x, z[i]);
+      EXPECT_EQ(live.stiffness()[next].y, r[i]);
+      ++next;
+    }
+    ASSERT_EQ(next, live.stiffness().size());
+    if (t[start] >= from_s) {
+      band_difference =
+          std::max(band_difference, std::abs(live.velocity_band_m_s() / offline_band - 1.0));
+    }
+  }
+  std::size_t compared = 0, offline_points = 0, disagree = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < from_s) continue;
+    ++compared;
+    const bool offline = std::abs(z_dot[i]) < offline_band;
+    offline_points += offline;
+    disagree += offline != selected[i];
+  }
+  ASSERT_GT(offline_points, 100u);
+  EXPECT_LT(band_difference, 0.05);  // a p99 of 30 cycles of one steady level
+  EXPECT_LE(static_cast<double>(disagree),
+            2.0 * band_difference * static_cast<double>(offline_points) + 2.0)
+      << disagree << " of " << offline_points << " offline points differ, bands within "
+      << band_difference << " (" << compared << " samples compared)";
 }
 
 }  // namespace
