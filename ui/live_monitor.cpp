@@ -17,15 +17,14 @@
 
 #include <qcustomplot.h>
 
-#include "analysis/common/input_error.h"
 #include "daq/live/jack_source.h"
 #include "daq/live/net_source.h"
 #include "daq/live/replay_source.h"
-#include "daq/live/source_factory.h"
 #include "ui/live_analysis_plots.h"
 #include "ui/live_edc_plot_data.h"
 #include "ui/live_prediction_job.h"
 #include "ui/live_source_controls.h"
+#include "ui/live_source_request.h"
 #include "ui/live_status_strip.h"
 #include "ui/live_trace_view.h"
 
@@ -205,37 +204,9 @@ bool LiveMonitor::start() {
   daq::JackSource* jack = nullptr;
   try {
     // One factory for the CLI and the app (daq/live/source_factory.h).
-    daq::SourceOptions o;
-    o.what = "source";
-    o.positive_well = s.rig_positive_well;
-    o.frequency_hz = s.rig_frequency_hz;
-    o.speed = s.speed;
-    o.schedule = schedule;
-    o.duration_s = source_controls_->rig_duration_s();
-    o.loop = s.replay_loop;
-    std::string spec;
-    switch (s.source) {
-      case LiveSourceKind::Rig:
-        spec = "rig";
-        break;
-      case LiveSourceKind::Replay:
-        if (s.replay_path.empty())
-          throw InputError("replay: choose a recording to replay (\u2026)");
-        spec = "file:" + s.replay_path;
-        break;
-      case LiveSourceKind::Network:
-        spec = "net:127.0.0.1:" + std::to_string(s.port);
-        break;
-      case LiveSourceKind::Jack:
-        if (s.jack_calibration.empty()) {
-          throw InputError("JACK: choose the calibration sidecar (base and mass channels)");
-        }
-        spec = "jack:" + s.jack_base_port + "," + s.jack_mass_port;
-        o.jack_server = s.jack_server;
-        o.calibration = daq::read_sidecar(s.jack_calibration);
-        break;
-    }
-    source = daq::make_source(spec, o);
+    const LiveSourceRequest request =
+        live_source_request(s, schedule, source_controls_->rig_duration_s());
+    source = daq::make_source(request.spec, request.options);
     rig = dynamic_cast<daq::RigSource*>(source.get());
     replay = dynamic_cast<daq::ReplaySource*>(source.get());
     net = dynamic_cast<daq::NetSource*>(source.get());
