@@ -2,7 +2,6 @@
 
 #include <memory>
 #include <optional>
-#include <string>
 #include <vector>
 
 #include <QString>
@@ -13,26 +12,11 @@
 #include "analysis/model/model.h"
 #include "daq/live/acquisition.h"
 #include "daq/live/rig_source.h"
-#include "ui/live_view_model.h"
+#include "ui/live_settings.h"
+#include "ui/time_window.h"
 
-class QAction;
-class QCheckBox;
-class QComboBox;
-class QCPAxisRect;
-class QCPErrorBars;
-class QCPGraph;
-class QCPItemText;
-class QCustomPlot;
-class QDoubleSpinBox;
 class QElapsedTimer;
 class QLabel;
-class QLineEdit;
-class QProgressBar;
-class QPushButton;
-class QScrollBar;
-class QSlider;
-class QSpinBox;
-class QTableWidget;
 class QTimer;
 
 namespace oscilab::daq {
@@ -43,24 +27,29 @@ class ReplaySource;
 
 namespace oscilab::ui {
 
-class BackgroundJob;
+class LiveAnalysisPlots;
+class LivePredictionJob;
+class LiveSourceControls;
+class LiveStatusStrip;
+class LiveTraceView;
 
-/// The live monitor: one live source (the virtual rig, a recording replayed, or a
-/// network stream received on 127.0.0.1) through daq::Acquisition, shown as it arrives:
+/// The live monitor: one live source (the virtual rig, a recording replayed, a network stream
+/// received on 127.0.0.1, or a JACK sound card) through daq::Acquisition, shown as it arrives.
+/// It owns the acquisition and coordinates the parts that show it:
 ///
-/// - controls: source, Start/Stop; the rig's f₀ and ν (Set, Step +ΔN); the replay's speed, pause
-///   and position; Record… / Stop recording (WAV, crash-safe); Mark; alarm limits on |z|, |b|
-///   (integration drift) and |f|;
-/// - a status strip (rate, stream time, samples, fault counters that turn amber and red as they
-///   rise, queue, recording, cycles, latency, alarms) and the event log;
-/// - traces of b̈, b, y, z and f over a window that follows the stream, or paused (the
-///   acquisition goes on) and scrolled back over the last 10 minutes;
-/// - the restoring-force surface growing live (stiffness and damping slices, §3.1–3.2) and the
-///   force–displacement loop of the current cycle (Fig. 9), coloured by well;
-/// - the EDC against f₀ of both wells, level by level with ±3σ bars (Fig. 10), under the paper's
-///   model (Tables 1 and 3) by harmonic balance, computed on a worker thread;
-/// - the spectrum of z with the excitation's harmonics, and a warning when the current level is
-///   not period-1 or crosses wells.
+/// - LiveSourceControls: source, Start/Stop; the rig's f₀ and ν (Set, Step +ΔN); the replay's
+///   speed, pause and position; Record… / Stop recording (WAV, crash-safe); Mark; alarm limits
+///   on |z|, |b| (integration drift) and |f|;
+/// - LiveStatusStrip: rate, stream time, samples, fault counters that turn amber and red as
+///   they rise, queue, recording, cycles, latency, alarms; the level being filled with a warning
+///   when it is not period-1 or crosses wells; and the event log;
+/// - LiveTraceView: traces of b̈, b, y, z and f over a window that follows the stream, or paused
+///   (the acquisition goes on) and scrolled back over the last 10 minutes;
+/// - LiveAnalysisPlots: the restoring-force surface growing live (stiffness and damping slices,
+///   §3.1–3.2), the force–displacement loop of the current cycle (Fig. 9), the EDC against f₀ of
+///   both wells, level by level with ±3σ bars (Fig. 10), and the spectrum of z;
+/// - LivePredictionJob: the model's EDC (default: the paper's, Tables 1 and 3) by harmonic
+///   balance on a worker thread, drawn under the measured levels.
 ///
 /// The acquisition runs on its own threads; the monitor polls it at display rate (a 60 Hz
 /// timer: traces every frame, the rest every 100–250 ms) and never waits on the UI thread but
@@ -91,10 +80,6 @@ class LiveMonitor : public QWidget {
   /// Fills the JACK port choices with the capture ports of the server named in the controls;
   /// false and a message when no server answers.
   bool list_jack_ports();
-  /// The level meters of a JACK source: peak of the base (0) and mass (1) channel since the last
-  /// refresh, in % of the interface's full scale.
-  QProgressBar* jack_meter(int channel) const { return jack_meters_[channel == 0 ? 0 : 1]; }
-  QComboBox* jack_port_box(int channel) const { return jack_port_boxes_[channel == 0 ? 0 : 1]; }
 
   /// The settings of the controls (MainWindow stores them in the session).
   LiveSettings settings() const;
@@ -109,7 +94,7 @@ class LiveMonitor : public QWidget {
   /// An unattended stepped sine for the rig's next start (empty: the rig rests until told).
   void set_rig_schedule(std::vector<daq::ExcitationStep> schedule);
   /// The rig runs for this long of stream time, then ends (none: until stopped).
-  void set_rig_duration(std::optional<double> duration_s) { rig_duration_s_ = duration_s; }
+  void set_rig_duration(std::optional<double> duration_s);
 
   /// Records the stream to `path` (.wav, .w64, .rf64) from the next block on; false and a
   /// message when it cannot.
@@ -123,46 +108,25 @@ class LiveMonitor : public QWidget {
 
   /// Pauses the traces (the acquisition goes on) or follows the stream again.
   void set_view_paused(bool paused);
-  bool view_paused() const { return !timeline_.following(); }
+  bool view_paused() const;
   /// Pauses the view and shows the window ending at `end_s` (stream time).
   void scroll_view_to(double end_s);
   /// The window of the traces, in stream time.
-  TimeWindow view_window() const { return timeline_.view(); }
+  TimeWindow view_window() const;
 
   /// Polls the acquisition and redraws everything now (the timer does it at display rate).
   void refresh();
   /// Trace-plot frames drawn since construction (QCustomPlot replots).
-  long frames_drawn() const { return frames_; }
+  long frames_drawn() const;
   /// The message line: the last error or notice.
   QString message() const;
 
-  QCustomPlot* trace_plot() const { return trace_plot_; }
-  QCustomPlot* edc_plot() const { return edc_plot_; }
-  QCustomPlot* stiffness_plot() const { return stiffness_plot_; }
-  QCustomPlot* damping_plot() const { return damping_plot_; }
-  QCustomPlot* loop_plot() const { return loop_plot_; }
-  QCustomPlot* spectrum_plot() const { return spectrum_plot_; }
-  /// EDC graphs: measured positive / negative / other wells, the level being filled, and the
-  /// model's prediction per well (empty until computed).
-  QCPGraph* edc_graph(const std::string& well) const;
-  QCPGraph* current_level_graph() const { return current_graph_; }
-  QCPGraph* model_graph(bool positive_well) const { return model_graphs_[positive_well ? 0 : 1]; }
-  /// The status strip's value label for a key of status_fields ("samples", "gaps", ...).
-  QLabel* status_label(const QString& key) const;
-  QLabel* warning_label() const { return warning_label_; }
-  QTableWidget* event_log() const { return event_log_; }
-  QComboBox* source_box() const { return source_box_; }
-  QComboBox* speed_box() const { return speed_box_; }
-  QDoubleSpinBox* f0_box() const { return f0_box_; }
-  QDoubleSpinBox* frequency_box() const { return frequency_box_; }
-  QDoubleSpinBox* window_box() const { return window_box_; }
-  QLineEdit* replay_path_edit() const { return replay_path_edit_; }
-  QPushButton* start_button() const { return start_button_; }
-  QPushButton* stop_button() const { return stop_button_; }
-  QPushButton* record_button() const { return record_button_; }
-  QPushButton* stop_recording_button() const { return stop_recording_button_; }
-  QPushButton* pause_view_button() const { return pause_view_button_; }
-  QScrollBar* scroll_bar() const { return scroll_bar_; }
+  /// The parts (each widget keeps its objectName for QObject::findChild).
+  LiveSourceControls* source_controls() const { return source_controls_; }
+  LiveStatusStrip* status_strip() const { return status_strip_; }
+  LiveTraceView* trace_view() const { return trace_view_; }
+  LiveAnalysisPlots* analysis_plots() const { return analysis_plots_; }
+  LivePredictionJob* prediction_job() const { return prediction_job_; }
 
  Q_SIGNALS:
   /// A control that the session keeps changed; `settings` is LiveSettings::to_json().
@@ -178,9 +142,7 @@ class LiveMonitor : public QWidget {
   void prediction_finished(const QString& message);
 
  private:
-  struct Prediction;
-  void build_controls(QWidget* panel);
-  void build_plots();
+  void connect_controls();
   void set_controls(const LiveSettings& settings);  // without settings_changed
   void show_message(const QString& text, bool error);
   void emit_settings();
@@ -194,8 +156,7 @@ class LiveMonitor : public QWidget {
   void refresh_cycle();
   void refresh_edc();
   void start_prediction(double frequency_hz);
-  void on_prediction_finished(bool cancelled);
-  void sync_scroll_bar();
+  void on_prediction_finished();
   double frequency_hz() const;
 
   std::unique_ptr<daq::Acquisition> acquisition_;
@@ -204,89 +165,19 @@ class LiveMonitor : public QWidget {
   daq::NetSource* net_ = nullptr;
   daq::JackSource* jack_ = nullptr;
   std::optional<daq::Sidecar> layout_;  // of the stream shown, once known
-  std::vector<daq::ExcitationStep> rig_schedule_;
-  std::optional<double> rig_duration_s_;
   bool applying_settings_ = false;
+  QString recording_path_;  // of the recording running, until recording_finished
 
-  LiveTimeline timeline_;
-  FaultCounts event_faults_;
-  FaultTracker fault_tracker_;
-  ThroughputMeter throughput_;
-  RfsAccumulator rfs_;
-  std::size_t events_seen_ = 0;
-  std::size_t levels_shown_ = static_cast<std::size_t>(-1);
-  std::optional<analysis::LevelResult> current_shown_;
-  daq::TraceHistory traces_, raw_;  // reused buffers
-  std::vector<std::optional<DisplayUnit>> trace_units_;
-  std::vector<std::optional<AxisRange>> trace_ranges_;
   std::unique_ptr<QElapsedTimer> clock_;
   qint64 last_part_ms_[4] = {-1000, -1000, -1000, -1000};  // when each slow part last ran
-  long frames_ = 0;
-
-  BackgroundJob* prediction_job_ = nullptr;
-  std::shared_ptr<Prediction> prediction_;                   // written by the worker
-  std::shared_ptr<const analysis::Model> prediction_model_;  // drawn over the measured EDC
-  QString prediction_label_;
-  QString recording_path_;               // of the recording running, until recording_finished
-  double predicted_frequency_hz_ = 0.0;  // of the prediction drawn or running
-  double predicted_top_n_ = 0.0;         // its largest level
-  bool prediction_again_ = false;
-
   QTimer* frame_timer_ = nullptr;
+
+  LiveSourceControls* source_controls_ = nullptr;
+  LiveStatusStrip* status_strip_ = nullptr;
+  LiveTraceView* trace_view_ = nullptr;
+  LiveAnalysisPlots* analysis_plots_ = nullptr;
+  LivePredictionJob* prediction_job_ = nullptr;
   QLabel* message_label_ = nullptr;
-  QLabel* warning_label_ = nullptr;
-  std::vector<std::pair<std::string, QLabel*>> status_labels_;
-  QTableWidget* event_log_ = nullptr;
-
-  QLineEdit* jack_server_edit_ = nullptr;
-  QLineEdit* jack_calibration_edit_ = nullptr;
-  QComboBox* jack_port_boxes_[2] = {nullptr, nullptr};
-  QPushButton* jack_list_button_ = nullptr;
-  QProgressBar* jack_meters_[2] = {nullptr, nullptr};
-  QComboBox* source_box_ = nullptr;
-  QLineEdit* replay_path_edit_ = nullptr;
-  QPushButton* browse_button_ = nullptr;
-  QCheckBox* loop_box_ = nullptr;
-  QSpinBox* port_box_ = nullptr;
-  QPushButton* start_button_ = nullptr;
-  QPushButton* stop_button_ = nullptr;
-  QWidget* rig_group_ = nullptr;
-  QWidget* replay_group_ = nullptr;
-  QLabel* rig_now_label_ = nullptr;
-  QComboBox* well_box_ = nullptr;
-  QDoubleSpinBox* f0_box_ = nullptr;
-  QDoubleSpinBox* frequency_box_ = nullptr;
-  QDoubleSpinBox* step_box_ = nullptr;
-  QPushButton* set_button_ = nullptr;
-  QPushButton* step_button_ = nullptr;
-  QComboBox* speed_box_ = nullptr;
-  QPushButton* replay_pause_button_ = nullptr;
-  QSlider* seek_slider_ = nullptr;
-  QLabel* seek_label_ = nullptr;
-  QPushButton* record_button_ = nullptr;
-  QPushButton* stop_recording_button_ = nullptr;
-  QLineEdit* mark_edit_ = nullptr;
-  QPushButton* mark_button_ = nullptr;
-  QDoubleSpinBox* alarm_z_box_ = nullptr;
-  QDoubleSpinBox* alarm_b_box_ = nullptr;
-  QDoubleSpinBox* alarm_f_box_ = nullptr;
-  QDoubleSpinBox* window_box_ = nullptr;
-  QPushButton* pause_view_button_ = nullptr;
-  QScrollBar* scroll_bar_ = nullptr;
-
-  QCustomPlot* trace_plot_ = nullptr;
-  std::vector<QCPAxisRect*> trace_rects_;
-  std::vector<QCPGraph*> trace_graphs_;
-  std::vector<QCPItemText*> trace_names_;
-  QCustomPlot* edc_plot_ = nullptr;
-  QCPGraph* edc_graphs_[3] = {nullptr, nullptr, nullptr};  // positive, negative, other
-  QCPGraph* current_graph_ = nullptr;
-  QCPErrorBars* edc_bars_[4] = {nullptr, nullptr, nullptr, nullptr};  // wells, then current
-  QCPGraph* model_graphs_[2] = {nullptr, nullptr};
-  QCustomPlot* stiffness_plot_ = nullptr;
-  QCustomPlot* damping_plot_ = nullptr;
-  QCustomPlot* loop_plot_ = nullptr;
-  QCustomPlot* spectrum_plot_ = nullptr;
 };
 
 }  // namespace oscilab::ui

@@ -13,6 +13,7 @@
 #include "ui/figure_dialog.h"
 #include "ui/identification_panel.h"
 #include "ui/live_monitor.h"
+#include "ui/live_settings.h"
 #include "ui/main_window.h"
 #include "ui/record_view.h"
 #include "ui/response_dialog.h"

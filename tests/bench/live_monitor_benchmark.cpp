@@ -18,6 +18,7 @@
 
 #include "daq/live/replay_source.h"
 #include "ui/live_monitor.h"
+#include "ui/live_trace_view.h"
 
 namespace {
 
@@ -85,7 +86,7 @@ void BM_LiveMonitorFramesPerSecondAt1x(benchmark::State& state) {
   state.counters["target_frames_per_s"] = 30.0;
   state.counters["window_s"] = shown.end_s - shown.start_s;
   state.counters["stream_time_s"] = monitor.acquisition()->status().stream_time_s;
-  state.counters["trace_replot_ms"] = monitor.trace_plot()->replotTime(true);
+  state.counters["trace_replot_ms"] = monitor.trace_view()->plot()->replotTime(true);
   monitor.stop();
 }
 BENCHMARK(BM_LiveMonitorFramesPerSecondAt1x)

@@ -15,6 +15,7 @@
 #include "daq/live/jack_source.h"
 #include "tests/daq/live/jack_test_helpers.h"
 #include "ui/live_monitor.h"
+#include "ui/live_source_controls.h"
 
 using oscilab::ui::LiveMonitor;
 using oscilab::ui::LiveSettings;
@@ -43,18 +44,21 @@ class LiveJackTest : public QObject {
     s.jack_calibration = calibration.string();
     monitor.set_settings(s);
     QVERIFY(monitor.list_jack_ports());
-    QComboBox* base = monitor.jack_port_box(0);
+    QComboBox* base = monitor.source_controls()->jack_port_box(0);
     QVERIFY(base->findText("system:capture_1") >= 0);
     QVERIFY(base->findText(QString::fromStdString(player.port(0))) >= 0);
     base->setCurrentText(QString::fromStdString(player.port(0)));
-    monitor.jack_port_box(1)->setCurrentText(QString::fromStdString(player.port(1)));
+    monitor.source_controls()->jack_port_box(1)->setCurrentText(
+        QString::fromStdString(player.port(1)));
     QVERIFY2(monitor.start(), qPrintable(monitor.message()));
     QVERIFY(monitor.jack() != nullptr);
     QVERIFY(
         QTest::qWaitFor([&] { return monitor.jack()->counters().samples_delivered > 512; }, 10000));
     // The peak of a sine of 0.5 of full scale is 50 %; ±2 % for a period's sampling of the peak.
-    QTRY_VERIFY_WITH_TIMEOUT(std::abs(monitor.jack_meter(0)->value() - 50) <= 2, 5000);
-    QTRY_VERIFY_WITH_TIMEOUT(std::abs(monitor.jack_meter(1)->value() - 25) <= 2, 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(monitor.source_controls()->jack_meter(0)->value() - 50) <= 2,
+                             5000);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(monitor.source_controls()->jack_meter(1)->value() - 25) <= 2,
+                             5000);
     monitor.stop();
     QVERIFY(!monitor.running());
 

@@ -34,7 +34,10 @@
 #include "daq/recording/campaign_reader.h"
 #include "daq/recording/recording.h"
 #include "ui/identification_panel.h"
+#include "ui/live_analysis_plots.h"
 #include "ui/live_monitor.h"
+#include "ui/live_status_strip.h"
+#include "ui/live_trace_view.h"
 #include "ui/main_window.h"
 
 using oscilab::ui::LiveMonitor;
@@ -68,6 +71,14 @@ LiveSettings rig_settings(double speed, double f0_n) {
   s.speed = speed;
   s.rig_f0_n = f0_n;
   return s;
+}
+
+// A widget of the monitor by its objectName (the names the GUI scripts use too).
+template <typename T>
+T* child(const QWidget& parent, const char* name) {
+  T* widget = parent.findChild<T*>(QString::fromLatin1(name));
+  if (!widget) qFatal("no child widget named %s", name);
+  return widget;
 }
 
 bool wait_finished(LiveMonitor& monitor, int timeout_ms) {
@@ -109,8 +120,8 @@ std::vector<double> error_bars(QCustomPlot* plot, const QCPGraph* graph) {
 
 int log_rows_of_kind(const LiveMonitor& monitor, const QString& kind) {
   int n = 0;
-  for (int r = 0; r < monitor.event_log()->rowCount(); ++r) {
-    n += monitor.event_log()->item(r, 1)->text() == kind;
+  for (int r = 0; r < monitor.status_strip()->event_log()->rowCount(); ++r) {
+    n += monitor.status_strip()->event_log()->item(r, 1)->text() == kind;
   }
   return n;
 }
@@ -130,8 +141,8 @@ class LiveMonitorTest : public QObject {
     QVERIFY2(monitor.start(), qPrintable(monitor.message()));
     QVERIFY(monitor.replay() != nullptr);
     // While it runs the EDC plot grows: some levels before the end.
-    QVERIFY(
-        QTest::qWaitFor([&] { return monitor.edc_graph("positive")->dataCount() >= 3; }, 30000));
+    QVERIFY(QTest::qWaitFor(
+        [&] { return monitor.analysis_plots()->edc_graph("positive")->dataCount() >= 3; }, 30000));
     QVERIFY(!monitor.acquisition()->finished());
     QVERIFY(wait_finished(monitor, 60000));
     QVERIFY(wait_end_shown(monitor));
@@ -139,12 +150,13 @@ class LiveMonitorTest : public QObject {
     // The points drawn are the acquisition's levels: f0 and EDC [mJ] with ±3σ bars.
     const std::vector<oscilab::analysis::LevelResult> live = monitor.acquisition()->levels();
     QCOMPARE(live.size(), std::size_t(26));  // 0.2 … 2.7 N (README, samples)
-    const auto drawn = points(monitor.edc_graph("positive"));
-    const auto bars = error_bars(monitor.edc_plot(), monitor.edc_graph("positive"));
+    const auto drawn = points(monitor.analysis_plots()->edc_graph("positive"));
+    const auto bars = error_bars(monitor.analysis_plots()->edc_plot(),
+                                 monitor.analysis_plots()->edc_graph("positive"));
     QCOMPARE(drawn.size(), live.size());
     QCOMPARE(bars.size(), live.size());
-    QCOMPARE(monitor.edc_graph("negative")->dataCount(), 0);
-    QCOMPARE(monitor.edc_graph("cross-well")->dataCount(), 0);
+    QCOMPARE(monitor.analysis_plots()->edc_graph("negative")->dataCount(), 0);
+    QCOMPARE(monitor.analysis_plots()->edc_graph("cross-well")->dataCount(), 0);
     for (std::size_t i = 0; i < live.size(); ++i) {
       QCOMPARE(live[i].well, std::string("positive"));
       QCOMPARE(drawn[i].first, live[i].f0_n);
@@ -152,7 +164,7 @@ class LiveMonitorTest : public QObject {
       QCOMPARE(bars[i], 3e3 * live[i].edc_std_j);
     }
     QVERIFY(!monitor.acquisition()->current_level().has_value());
-    QCOMPARE(monitor.current_level_graph()->dataCount(), 0);
+    QCOMPARE(monitor.analysis_plots()->current_level_graph()->dataCount(), 0);
 
     // The offline analysis of the same file: the same pipeline on the same stored values, with
     // the levels the replay posts from the sidecar at the same (stream = file) times.
@@ -173,25 +185,29 @@ class LiveMonitorTest : public QObject {
     const oscilab::daq::AcquisitionStatus s = monitor.acquisition()->status();
     const auto file_samples = oscilab::daq::read_recording(kSample).sample_count();
     QCOMPARE(s.samples, static_cast<std::uint64_t>(file_samples));  // all of it, once
-    QCOMPARE(monitor.status_label("samples")->text(), QString("samples %1").arg(file_samples));
-    QCOMPARE(monitor.status_label("gaps")->text(), QString("gaps 0 (0)"));
-    QCOMPARE(monitor.status_label("duplicates")->text(), QString("dup 0"));
-    QCOMPARE(monitor.status_label("nan")->text(), QString("NaN 0"));
-    QCOMPARE(monitor.status_label("levels")->text(), QString("levels 26"));
-    QCOMPARE(monitor.status_label("cycles")->text(), QString("cycles %1 (0 excl.)").arg(s.cycles));
-    QCOMPARE(monitor.status_label("time")->text(), QString("t 262.5 s"));  // 134401 / 512 Hz
-    QVERIFY(monitor.status_label("source")->text().endsWith("(ended)"));
+    QCOMPARE(monitor.status_strip()->label("samples")->text(),
+             QString("samples %1").arg(file_samples));
+    QCOMPARE(monitor.status_strip()->label("gaps")->text(), QString("gaps 0 (0)"));
+    QCOMPARE(monitor.status_strip()->label("duplicates")->text(), QString("dup 0"));
+    QCOMPARE(monitor.status_strip()->label("nan")->text(), QString("NaN 0"));
+    QCOMPARE(monitor.status_strip()->label("levels")->text(), QString("levels 26"));
+    QCOMPARE(monitor.status_strip()->label("cycles")->text(),
+             QString("cycles %1 (0 excl.)").arg(s.cycles));
+    const QString end_time("t 262.5 s");  // 134401 / 512 Hz
+    QCOMPARE(monitor.status_strip()->label("time")->text(), end_time);
+    QVERIFY(monitor.status_strip()->label("source")->text().endsWith("(ended)"));
     QCOMPARE(log_rows_of_kind(monitor, "level"), 26);
     QCOMPARE(log_rows_of_kind(monitor, "source-ended"), 1);
 
     // The paper model's prediction (HBM on a worker) over the levels of the paper.
     QVERIFY(predicted.count() > 0 || predicted.wait(20000));
     QCOMPARE(predicted.takeFirst().at(0).toString(), QString());
-    QCOMPARE(monitor.model_graph(true)->dataCount(), 53);  // 0.1 … 2.7 N in 0.05 N
+    const int model_levels = 53;  // 0.1 … 2.7 N in 0.05 N
+    QCOMPARE(monitor.analysis_plots()->model_graph(true)->dataCount(), model_levels);
     // The traces show the last 10 s; the spectrum, the loop and the slices are drawn.
     QCOMPARE(monitor.view_window().end_s, static_cast<double>(file_samples) / 512.0);
-    QVERIFY(monitor.spectrum_plot()->graph(0)->dataCount() > 500);
-    QVERIFY(monitor.stiffness_plot()->graph(0)->dataCount() > 100);
+    QVERIFY(child<QCustomPlot>(monitor, "spectrum_plot")->graph(0)->dataCount() > 500);
+    QVERIFY(child<QCustomPlot>(monitor, "stiffness_plot")->graph(0)->dataCount() > 100);
   }
 
   void recordThenStopWritesAReadableRecording() {
@@ -201,20 +217,20 @@ class LiveMonitorTest : public QObject {
     monitor.show();
     monitor.set_settings(rig_settings(0.0, 0.8));  // the rig as fast as it goes
     QVERIFY(monitor.start());
-    QVERIFY(monitor.record_button()->isEnabled());
+    QVERIFY(child<QPushButton>(monitor, "record")->isEnabled());
     QVERIFY2(monitor.start_recording(path), qPrintable(monitor.message()));
     QVERIFY(QTest::qWaitFor(
         [&] { return monitor.acquisition()->status().recorded_samples > 5 * 512; }, 20000));
     QTRY_VERIFY_WITH_TIMEOUT(  // the strip shows it at its next frame
-        monitor.status_label("recording")->text().startsWith(QString("rec \u25cf")), 5000);
-    QVERIFY(monitor.stop_recording_button()->isEnabled());
+        monitor.status_strip()->label("recording")->text().startsWith(QString("rec \u25cf")), 5000);
+    QVERIFY(child<QPushButton>(monitor, "stop_recording")->isEnabled());
     monitor.findChild<QLineEdit*>("mark_text")->setText("probe touched");
     QTest::mouseClick(monitor.findChild<QPushButton*>("mark"), Qt::LeftButton);
-    QTest::mouseClick(monitor.stop_recording_button(), Qt::LeftButton);
+    QTest::mouseClick(child<QPushButton>(monitor, "stop_recording"), Qt::LeftButton);
     QVERIFY(QTest::qWaitFor([&] { return !monitor.acquisition()->status().recording; }, 5000));
     const std::uint64_t recorded = monitor.acquisition()->status().recorded_samples;
     QVERIFY(monitor.running());  // the acquisition goes on
-    QTest::mouseClick(monitor.stop_button(), Qt::LeftButton);
+    QTest::mouseClick(child<QPushButton>(monitor, "stop"), Qt::LeftButton);
     QVERIFY(!monitor.running());
 
     const oscilab::daq::Recording recording = oscilab::daq::read_recording(path.toStdString());
@@ -227,9 +243,9 @@ class LiveMonitorTest : public QObject {
     QCOMPARE(log_rows_of_kind(monitor, "recording-started"), 1);
     QCOMPARE(log_rows_of_kind(monitor, "recording-stopped"), 1);
     QCOMPARE(log_rows_of_kind(monitor, "mark"), 1);
-    for (int r = 0; r < monitor.event_log()->rowCount(); ++r) {
-      if (monitor.event_log()->item(r, 1)->text() == "mark") {
-        QCOMPARE(monitor.event_log()->item(r, 2)->text(), QString("probe touched"));
+    for (int r = 0; r < monitor.status_strip()->event_log()->rowCount(); ++r) {
+      if (monitor.status_strip()->event_log()->item(r, 1)->text() == "mark") {
+        QCOMPARE(monitor.status_strip()->event_log()->item(r, 2)->text(), QString("probe touched"));
       }
     }
     fs::remove_all(dir);
@@ -243,7 +259,7 @@ class LiveMonitorTest : public QObject {
     QVERIFY(monitor.start());
     QVERIFY(
         QTest::qWaitFor([&] { return monitor.acquisition()->status().stream_time_s > 25; }, 20000));
-    QTest::mouseClick(monitor.pause_view_button(), Qt::LeftButton);
+    QTest::mouseClick(child<QPushButton>(monitor, "pause_view"), Qt::LeftButton);
     QVERIFY(monitor.view_paused());
     const oscilab::ui::TimeWindow paused = monitor.view_window();
     const std::uint64_t samples = monitor.acquisition()->status().samples;
@@ -252,16 +268,16 @@ class LiveMonitorTest : public QObject {
         [&] { return monitor.acquisition()->status().samples > samples + 1000; }, 20000));
     QVERIFY(wait_frames(monitor, 2));
     QCOMPARE(monitor.view_window().end_s, paused.end_s);
-    QCPAxis* time_axis = monitor.trace_plot()->axisRects().back()->axis(QCPAxis::atBottom);
+    QCPAxis* time_axis = monitor.trace_view()->plot()->axisRects().back()->axis(QCPAxis::atBottom);
     QCOMPARE(time_axis->range().upper, paused.end_s);
     // Scrolling back 10 s with the scroll bar (0.1 s per step).
-    QScrollBar* bar = monitor.scroll_bar();
+    QScrollBar* bar = child<QScrollBar>(monitor, "view_scroll");
     bar->setValue(bar->value() - 100);
     QCOMPARE(monitor.view_window().end_s, 0.1 * bar->value());
     QVERIFY(std::abs(monitor.view_window().end_s - (paused.end_s - 10.0)) < 0.11);
     QCOMPARE(time_axis->range().upper, monitor.view_window().end_s);
     // Resume: the view follows the stream again.
-    QTest::mouseClick(monitor.pause_view_button(), Qt::LeftButton);
+    QTest::mouseClick(child<QPushButton>(monitor, "pause_view"), Qt::LeftButton);
     QVERIFY(!monitor.view_paused());
     QVERIFY(wait_frames(monitor, 2));
     const double now = monitor.acquisition()->status().stream_time_s;
@@ -288,26 +304,29 @@ class LiveMonitorTest : public QObject {
         },
         30000));
     QTest::mouseClick(monitor.findChild<QPushButton*>("step_excitation"), Qt::LeftButton);
-    QCOMPARE(monitor.f0_box()->value(), 1.1);
+    QCOMPARE(child<QDoubleSpinBox>(monitor, "f0")->value(), 1.1);
     // RigSource::excitation() reads the previous value for the instant between the rig thread
     // taking a command and applying it: retried.
     QTRY_COMPARE_WITH_TIMEOUT(monitor.rig()->excitation().f0_n, 1.1, 1000);
     QVERIFY(QTest::qWaitFor([&] { return monitor.acquisition()->levels().size() >= 1; }, 30000));
-    QVERIFY(QTest::qWaitFor([&] { return monitor.edc_graph("positive")->dataCount() >= 1; }, 5000));
+    QVERIFY(QTest::qWaitFor(
+        [&] { return monitor.analysis_plots()->edc_graph("positive")->dataCount() >= 1; }, 5000));
     QVERIFY(wait_frames(monitor, 2));
     monitor.stop();
-    QCOMPARE(monitor.edc_graph("positive")->dataCount(),
+    QCOMPARE(monitor.analysis_plots()->edc_graph("positive")->dataCount(),
              static_cast<int>(monitor.acquisition()->levels().size()));
     QVERIFY(log_rows_of_kind(monitor, "level") >= 2);
     QCOMPARE(log_rows_of_kind(monitor, "alarm"), 1);
     QCOMPARE(monitor.acquisition()->status().alarms, std::uint64_t(1));
-    QCOMPARE(monitor.status_label("alarms")->text(), QString("alarms 1"));
-    QVERIFY(monitor.status_label("alarms")->property("severity").toInt() > 0);    // amber or red
-    QVERIFY(monitor.loop_plot()->plottable(0)->interface1D()->dataCount() > 50);  // a cycle
-    QVERIFY(monitor.spectrum_plot()->graph(1)->dataCount() == 8);                 // harmonics
-    QVERIFY(monitor.stiffness_plot()->graph(0)->dataCount() > 0);
-    QVERIFY(monitor.damping_plot()->graph(0)->dataCount() > 0);
-    for (int k = 0; k < 5; ++k) QVERIFY(monitor.trace_plot()->graph(k)->dataCount() > 100);
+    QLabel* alarms = monitor.status_strip()->label("alarms");
+    QCOMPARE(alarms->text(), QString("alarms 1"));
+    QVERIFY(alarms->property("severity").toInt() > 0);  // amber or red
+    QCustomPlot* loop = child<QCustomPlot>(monitor, "loop_plot");
+    QVERIFY(loop->plottable(0)->interface1D()->dataCount() > 50);                       // a cycle
+    QVERIFY(child<QCustomPlot>(monitor, "spectrum_plot")->graph(1)->dataCount() == 8);  // harmonics
+    QVERIFY(child<QCustomPlot>(monitor, "stiffness_plot")->graph(0)->dataCount() > 0);
+    QVERIFY(child<QCustomPlot>(monitor, "damping_plot")->graph(0)->dataCount() > 0);
+    for (int k = 0; k < 5; ++k) QVERIFY(monitor.trace_view()->plot()->graph(k)->dataCount() > 100);
     QVERIFY(monitor.frames_drawn() > 0);
   }
 
@@ -349,12 +368,13 @@ class LiveMonitorTest : public QObject {
     }
     QVERIFY(wait_end_shown(monitor));
     QCOMPARE(monitor.acquisition()->status().samples, std::uint64_t(kRows * kBlocks));
-    QCOMPARE(monitor.status_label("samples")->text(), QString("samples %1").arg(kRows * kBlocks));
-    QCOMPARE(monitor.status_label("gaps")->text(), QString("gaps 0 (0)"));
+    QCOMPARE(monitor.status_strip()->label("samples")->text(),
+             QString("samples %1").arg(kRows * kBlocks));
+    QCOMPARE(monitor.status_strip()->label("gaps")->text(), QString("gaps 0 (0)"));
     QCOMPARE(log_rows_of_kind(monitor, "connected"), 1);
     // The sidecar's levels in the first 20 s: 0.2 N from 2.5 s (README, samples), finished.
-    QVERIFY(monitor.edc_graph("positive")->dataCount() >= 1);
-    for (int k = 0; k < 5; ++k) QVERIFY(monitor.trace_plot()->graph(k)->dataCount() > 100);
+    QVERIFY(monitor.analysis_plots()->edc_graph("positive")->dataCount() >= 1);
+    for (int k = 0; k < 5; ++k) QVERIFY(monitor.trace_view()->plot()->graph(k)->dataCount() > 100);
   }
 
   void errorsAreShownNotThrown() {
@@ -395,10 +415,10 @@ class LiveMonitorTest : public QObject {
       QCOMPARE(tabs->tabText(1), QString("Live"));
       auto* monitor = qobject_cast<LiveMonitor*>(tabs->widget(1));
       QVERIFY(monitor != nullptr);
-      monitor->f0_box()->setValue(1.7);
-      monitor->window_box()->setValue(60.0);
-      monitor->source_box()->setCurrentIndex(1);
-      monitor->replay_path_edit()->setText(QString::fromStdString(kSample));
+      child<QDoubleSpinBox>(*monitor, "f0")->setValue(1.7);
+      child<QDoubleSpinBox>(*monitor, "window_s")->setValue(60.0);
+      child<QComboBox>(*monitor, "source")->setCurrentIndex(1);
+      child<QLineEdit>(*monitor, "replay_path")->setText(QString::fromStdString(kSample));
       QCOMPARE(window.live_settings()["rig"]["f0_n"].get<double>(), 1.7);
       QCOMPARE(window.live_settings()["source"].get<std::string>(), std::string("replay"));
       QVERIFY(window.save_session(session));
@@ -448,7 +468,8 @@ class LiveMonitorTest : public QObject {
     panel->start_fit();
     QVERIFY(QTest::qWaitFor([&] { return finished.count() == 1; }, 120000));
     QVERIFY2(panel->fit_result() != nullptr, qPrintable(finished.first().at(0).toString()));
-    QTRY_VERIFY_WITH_TIMEOUT(monitor->model_graph(true)->name().contains("fitted model"), 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(
+        monitor->analysis_plots()->model_graph(true)->name().contains("fitted model"), 5000);
     // θ = [f_d(z₋*), f_d(z₊*), f_d(0), v_t, k_s, c]; the rig's model is Table 3's.
     const Eigen::VectorXd& theta = panel->fit_result()->theta;
     std::printf("rig to fit: f_d(z-*) %.4f N (0.33), f_d(z+*) %.4f N (0.66), %ld evaluations\n",
