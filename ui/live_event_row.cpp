@@ -17,16 +17,31 @@ std::string format(const char* pattern, double value) {
 EventRow event_row(const daq::StreamEvent& event) {
   EventRow row;
   row.time = std::isfinite(event.t_s) ? format("%.3f s", event.t_s) : "\u2014";
-  row.kind = event.kind;
+  row.kind = event.kind_name();
   row.text = !event.text.empty()  ? event.text
              : event.data.empty() ? std::string()
                                   : event.data.dump();
-  const std::string& k = event.kind;
-  if (k == "gap" || k == "overflow" || k == "non-finite" || k == "saturated" || k == "alarm" ||
-      k == "error" || k == "malformed-frame" || k == "layout-mismatch" || k == "late") {
-    row.severity = Severity::Fault;
-  } else if (k == "duplicate" || k == "reordered" || k == "discontinuity" || k == "disconnected") {
-    row.severity = Severity::Warning;
+  using daq::EventKind;
+  switch (event.kind) {
+    case EventKind::Gap:
+    case EventKind::Overflow:
+    case EventKind::NonFinite:
+    case EventKind::Saturated:
+    case EventKind::Alarm:
+    case EventKind::Error:
+    case EventKind::MalformedFrame:
+    case EventKind::LayoutMismatch:
+    case EventKind::Late:
+      row.severity = Severity::Fault;
+      break;
+    case EventKind::Duplicate:
+    case EventKind::Reordered:
+    case EventKind::Discontinuity:
+    case EventKind::Disconnected:
+      row.severity = Severity::Warning;
+      break;
+    default:
+      break;
   }
   return row;
 }

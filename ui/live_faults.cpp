@@ -15,27 +15,29 @@ std::uint64_t data_count(const daq::StreamEvent& event, const char* name, std::u
 }  // namespace
 
 void FaultCounts::add(const daq::StreamEvent& event) {
-  const std::string& kind = event.kind;
-  if (kind == "gap") {
+  using daq::EventKind;
+  const EventKind kind = event.kind;
+  if (kind == EventKind::Gap) {
     ++gaps;
     gap_samples += data_count(event, "samples", 0);
-  } else if (kind == "duplicate") {
+  } else if (kind == EventKind::Duplicate) {
     ++duplicates;
-  } else if (kind == "reordered") {
+  } else if (kind == EventKind::Reordered) {
     ++reordered;
-  } else if (kind == "late") {
+  } else if (kind == EventKind::Late) {
     ++late;
-  } else if (kind == "non-finite") {
+  } else if (kind == EventKind::NonFinite) {
     non_finite_samples += data_count(event, "samples", 1);
-  } else if (kind == "saturated") {
+  } else if (kind == EventKind::Saturated) {
     saturated_samples += data_count(event, "samples", 1);
-  } else if (kind == "overflow") {
+  } else if (kind == EventKind::Overflow) {
     // The event carries the source's running total (one event per 100 overflows).
     overflowed_blocks =
         std::max(overflowed_blocks, data_count(event, "blocks", overflowed_blocks + 1));
-  } else if (kind == "alarm") {
+  } else if (kind == EventKind::Alarm) {
     ++alarms;
-  } else if (kind == "error" || kind == "malformed-frame" || kind == "layout-mismatch") {
+  } else if (kind == EventKind::Error || kind == EventKind::MalformedFrame ||
+             kind == EventKind::LayoutMismatch) {
     ++errors;
   }
 }

@@ -126,7 +126,7 @@ struct Acquisition::Impl {
   void log(StreamEvent event);  // queued; published with the block (publish_events)
   void on_block(const RawBlock& block, std::uint64_t first_sample);
   void on_gap(std::uint64_t first_sample, std::uint64_t samples);
-  void on_anomaly(const char* kind, std::uint64_t sequence, std::uint64_t first_sample);
+  void on_anomaly(EventKind kind, std::uint64_t sequence, std::uint64_t first_sample);
   void log_closed_runs();  // mutex held
   void exclude_samples(std::uint64_t from, std::uint64_t to);
   void raise_alarms(std::uint64_t first_sample, int rows);
@@ -208,7 +208,7 @@ void Acquisition::start_recording(const std::string& path) {
   impl_->status.recorder_error.clear();
   impl_->events.emplace_back(
       static_cast<double>(impl_->published_end) / std::max(layout->sample_rate_hz, 1.0),
-      "recording-started", path);
+      EventKind::RecordingStarted, path);
   impl_->events.back().wall = utc_now_iso8601();
   impl_->recorder->log(impl_->events.back());
 }
@@ -318,7 +318,7 @@ bool Acquisition::Impl::setup_layout() {
       options.reorder_window_blocks, max_rows, channels,
       StreamMonitor::Output{[this](const RawBlock& b, std::uint64_t first) { on_block(b, first); },
                             [this](std::uint64_t first, std::uint64_t n) { on_gap(first, n); },
-                            [this](const char* kind, std::uint64_t seq, std::uint64_t first) {
+                            [this](EventKind kind, std::uint64_t seq, std::uint64_t first) {
                               on_anomaly(kind, seq, first);
                             }});
 
@@ -439,7 +439,7 @@ void Acquisition::Impl::publish_events() {
 
 void Acquisition::Impl::handle_event(StreamEvent event) {
   const std::lock_guard lock(mutex);  // events are rare: each is published as it comes
-  if (event.kind == "level" && pipeline) {
+  if (event.kind == EventKind::Level && pipeline) {
     const double f0 = event.data.value("f0_n", 0.0);
     const double freq = event.data.value("frequency_hz", pipeline_freq_hz);
     const double change_s = event.t_s;
@@ -459,7 +459,7 @@ void Acquisition::Impl::handle_event(StreamEvent event) {
     if (f0 > 0) pipeline->add_level_window({from_s, to_s, f0});
     last_level = event;
     if (recorder) recorder->add_level(f0, freq, change_s, from_s, to_s);
-  } else if (event.kind == "invalid" || event.kind == "clipped") {
+  } else if (event.kind == EventKind::Invalid || event.kind == EventKind::Clipped) {
     // A replayed recording's own invalid stretch, or input a source saw clipped before it
     // resampled it: the same treatment as a fault seen here.
     const double from_s = event.data.value("from_s", event.t_s);
@@ -469,9 +469,9 @@ void Acquisition::Impl::handle_event(StreamEvent event) {
       recorder->mark_invalid(
           static_cast<std::uint64_t>(std::max(0.0, std::floor(from_s * rate_hz))),
           static_cast<std::uint64_t>(std::max(0.0, std::ceil(to_s * rate_hz))),
-          event.kind == "clipped" ? "clipped" : "replayed");
+          event.kind == EventKind::Clipped ? "clipped" : "replayed");
     }
-  } else if (event.kind == "discontinuity" && std::isfinite(event.t_s)) {
+  } else if (event.kind == EventKind::Discontinuity && std::isfinite(event.t_s)) {
     // The samples on either side of the jump do not belong to one motion.
     const auto at = static_cast<std::uint64_t>(std::max(0.0, std::round(event.t_s * rate_hz)));
     exclude_samples(at > 0 ? at - 1 : 0, at);
@@ -485,7 +485,7 @@ void Acquisition::Impl::handle_events() {
   for (StreamEvent& event : source->take_events()) handle_event(std::move(event));
   if (!marks_waiting.load(std::memory_order_acquire)) return;
   const std::lock_guard lock(mutex);
-  for (const std::string& text : pending_marks) log({time_of(next_sample), "mark", text});
+  for (const std::string& text : pending_marks) log({time_of(next_sample), EventKind::Mark, text});
   pending_marks.clear();
   marks_waiting.store(false, std::memory_order_relaxed);
   publish_events();
@@ -498,11 +498,10 @@ void Acquisition::Impl::exclude_samples(std::uint64_t from, std::uint64_t to) {
 
 void Acquisition::Impl::log_closed_runs() {
   for (const SampleChecker::Run& run : closed_runs) {
-    const char* kind = to_string(run.kind);
     const std::string& name = checker.channels()[static_cast<std::size_t>(run.channel)].name;
-    if (recorder) recorder->mark_invalid(run.from, run.to, kind);
+    if (recorder) recorder->mark_invalid(run.from, run.to, to_string(run.kind));
     log({time_of(run.from),
-         kind,
+         run.kind == BadSampleKind::NonFinite ? EventKind::NonFinite : EventKind::Saturated,
          std::to_string(run.count) + " sample(s) of \"" + name + "\"",
          {{"channel", name},
           {"samples", run.count},
@@ -515,14 +514,14 @@ void Acquisition::Impl::log_closed_runs() {
 void Acquisition::Impl::log_alarms() {
   for (AlarmMonitor::Alarm& alarm : raised_alarms) {
     ++status.alarms;
-    log({time_of(alarm.sample), "alarm", std::move(alarm.text)});
+    log({time_of(alarm.sample), EventKind::Alarm, std::move(alarm.text)});
   }
   raised_alarms.clear();
 }
 
-void Acquisition::Impl::on_anomaly(const char* kind, std::uint64_t sequence,
+void Acquisition::Impl::on_anomaly(EventKind kind, std::uint64_t sequence,
                                    std::uint64_t first_sample) {
-  const bool discontinuity = std::string(kind) == "discontinuity";
+  const bool discontinuity = kind == EventKind::Discontinuity;
   if (discontinuity) exclude_samples(first_sample > 0 ? first_sample - 1 : 0, first_sample);
   const std::lock_guard lock(mutex);
   if (discontinuity) ++status.discontinuities;
@@ -556,7 +555,7 @@ void Acquisition::Impl::on_gap(std::uint64_t first_sample, std::uint64_t samples
   if (recorder && !recorder->write_gap(samples)) status.recorder_error = recorder->error();
   published_end = next_sample;
   log({time_of(first_sample),
-       "gap",
+       EventKind::Gap,
        std::to_string(samples) + " sample(s) never arrived",
        {{"samples", samples},
         {"from_s", time_of(first_sample)},
@@ -712,13 +711,13 @@ void Acquisition::Impl::open_pending_recording() {
     recorder = std::make_unique<LiveRecorder>(path, *layout_copy, published_end,
                                               options.recorder_sync_interval);
     status.recording = true;
-    StreamEvent started(time_of(published_end), "recording-started", path);
+    StreamEvent started(time_of(published_end), EventKind::RecordingStarted, path);
     started.wall = utc_now_iso8601();
     recorder->log(started);
     events.push_back(started);
   } catch (const InputError& error) {
     status.recorder_error = error.what();
-    StreamEvent failed(time_of(published_end), "error", error.what());
+    StreamEvent failed(time_of(published_end), EventKind::Error, error.what());
     failed.wall = utc_now_iso8601();
     events.push_back(failed);
   }
@@ -729,7 +728,7 @@ void Acquisition::Impl::publish_recorder_state() {
   if (pending_stop_recording) {
     pending_stop_recording = false;
     if (recorder) {
-      StreamEvent stopped(time_of(next_sample), "recording-stopped", recorder->path());
+      StreamEvent stopped(time_of(next_sample), EventKind::RecordingStopped, recorder->path());
       stopped.wall = utc_now_iso8601();
       recorder->log(stopped);
       recorder->close();
@@ -760,8 +759,8 @@ void Acquisition::Impl::run(Acquisition& owner) {
   {
     const std::lock_guard lock(mutex);
     layout_known = status.layout_known;
-    log({0.0, "start", source->describe()});
-    for (const std::string& warning : setup_warnings) log({0.0, "warning", warning});
+    log({0.0, EventKind::Start, source->describe()});
+    for (const std::string& warning : setup_warnings) log({0.0, EventKind::Warning, warning});
     publish_events();
   }
   bool source_done = false;
@@ -790,7 +789,7 @@ void Acquisition::Impl::run(Acquisition& owner) {
   finish_pipeline();
   const std::lock_guard lock(mutex);
   log_closed_runs();
-  log({time_of(next_sample), "stop", source->describe()});
+  log({time_of(next_sample), EventKind::Stop, source->describe()});
   copy_monitor_counters();
   pending_stop_recording = true;
   publish_events();

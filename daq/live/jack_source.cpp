@@ -570,7 +570,7 @@ void JackSource::Impl::close_clip_run() {
   clip_open = false;
   owner.post_event(
       {time_of(clip_from),
-       "clipped",
+       EventKind::Clipped,
        std::to_string(clip_samples) + " input sample(s) at full scale",
        {{"samples", clip_samples}, {"from_s", time_of(clip_from)}, {"to_s", time_of(clip_to)}}});
 }
@@ -594,7 +594,7 @@ void JackSource::Impl::handle_xruns() {
     t_s = time_of(out_index(static_cast<std::uint64_t>(std::max<std::int64_t>(0, frame))));
   }
   owner.post_event({t_s,
-                    "xrun",
+                    EventKind::Xrun,
                     "the JACK server reported " + std::to_string(fresh) + " xrun(s)",
                     {{"xruns", fresh}}});
 }
@@ -612,7 +612,7 @@ void JackSource::Impl::drain(bool wait_for_room) {
       have_first_frame = true;
       next_frame = slot->frame_time;
       owner.post_event({time_of(segment_base),
-                        "connected",
+                        EventKind::Connected,
                         server_text(options.server) + " at " + std::to_string(rate_in) +
                             " Hz, period " + std::to_string(period),
                         {{"server_rate_hz", rate_in},
@@ -626,7 +626,7 @@ void JackSource::Impl::drain(bool wait_for_room) {
       bridge(static_cast<std::uint64_t>(jump), wait_for_room);
     } else if (jump != 0) {  // far ahead, or back: a new segment after what was made
       const std::uint64_t end = out_index(segment_in);
-      owner.post_event({time_of(end), "discontinuity",
+      owner.post_event({time_of(end), EventKind::Discontinuity,
                         "the JACK frame clock jumped by " + std::to_string(jump) + " frames"});
       end_segment(wait_for_room);
       const double ahead_s = jump > 0 ? static_cast<double>(jump) / rate_in : 0.0;
@@ -642,13 +642,13 @@ void JackSource::Impl::drain(bool wait_for_room) {
       if ((lost >> c) & 1u) {
         owner.port_disconnections_.fetch_add(1, std::memory_order_relaxed);
         owner.post_event({time_of(out_index(segment_in)),
-                          "port-disconnected",
+                          EventKind::PortDisconnected,
                           "\"" + options.ports[c] + "\" (" + channel + ") is not connected",
                           {{"port", options.ports[c]}, {"channel", channel}}});
       }
       if ((back >> c) & 1u) {
         owner.post_event({time_of(out_index(segment_in)),
-                          "port-connected",
+                          EventKind::PortConnected,
                           "\"" + options.ports[c] + "\" (" + channel + ") is connected again",
                           {{"port", options.ports[c]}, {"channel", channel}}});
       }
@@ -764,7 +764,7 @@ void JackSource::run() {
   Impl& m = *impl_;
   std::string error = m.open();
   if (!error.empty()) {
-    post_event({kNoTime, "error", "jack source: " + error});
+    post_event({kNoTime, EventKind::Error, "jack source: " + error});
     return;
   }
   server_rate_hz_.store(m.rate_in);
@@ -795,12 +795,12 @@ void JackSource::run() {
     m.end_segment(false);
     if (lost) {
       server_losses_.fetch_add(1, std::memory_order_relaxed);
-      post_event({m.time_of(end), "server-shutdown",
+      post_event({m.time_of(end), EventKind::ServerShutdown,
                   server_text(options_.server) + " shut down; reconnecting"});
     } else {
       rate_changes_.fetch_add(1, std::memory_order_relaxed);
       post_event({m.time_of(end),
-                  "rate-changed",
+                  EventKind::RateChanged,
                   server_text(options_.server) + " changed its rate from " +
                       std::to_string(m.rate_in) + " to " + std::to_string(new_rate) + " Hz",
                   {{"from_hz", m.rate_in}, {"to_hz", new_rate}}});
@@ -826,7 +826,7 @@ void JackSource::run() {
     m.begin_segment(resume_at);
     post_event(
         {m.time_of(resume_at),
-         "reconnected",
+         EventKind::Reconnected,
          server_text(options_.server) + " answers again after " + std::to_string(away_s) + " s",
          {{"away_s", away_s}, {"server_rate_hz", m.rate_in}}});
   }

@@ -71,11 +71,11 @@ void NetSource::run() {
     if (!peer.valid()) continue;
     connections_.fetch_add(1, std::memory_order_relaxed);
     const std::string who = peer.peer();
-    post_event({kNoTime, "connected", "sender " + who});
+    post_event({kNoTime, EventKind::Connected, "sender " + who});
     connected_.store(true, std::memory_order_release);
     const bool ended = serve(peer);
     connected_.store(false, std::memory_order_release);
-    post_event({kNoTime, "disconnected", "sender " + who});
+    post_event({kNoTime, EventKind::Disconnected, "sender " + who});
     if (ended) return;
   }
 }
@@ -96,7 +96,7 @@ bool NetSource::serve(TcpSocket& peer) {
       using stream_protocol::FrameType;
       if (!greeted && frame.type != FrameType::Hello) {
         malformed_frames_.fetch_add(1, std::memory_order_relaxed);
-        post_event({kNoTime, "malformed-frame", "the sender did not open with HELLO"});
+        post_event({kNoTime, EventKind::MalformedFrame, "the sender did not open with HELLO"});
         return false;
       }
       switch (frame.type) {
@@ -107,7 +107,7 @@ bool NetSource::serve(TcpSocket& peer) {
             if (!difference.empty()) {
               layout_mismatches_.fetch_add(1, std::memory_order_relaxed);
               post_event({kNoTime,
-                          "layout-mismatch",
+                          EventKind::LayoutMismatch,
                           "sender refused: " + difference,
                           {{"stream_id", hello.stream_id}}});
               return false;
@@ -120,7 +120,7 @@ bool NetSource::serve(TcpSocket& peer) {
             // A new stream: its clock starts after the last sample received.
             if (!stream_id_.empty()) {
               post_event(
-                  {static_cast<double>(next_sample_) / rate_hz, "discontinuity",
+                  {static_cast<double>(next_sample_) / rate_hz, EventKind::Discontinuity,
                    "a new stream \"" + hello.stream_id + "\" follows \"" + stream_id_ + "\""});
             }
             stream_id_ = hello.stream_id;
@@ -171,14 +171,14 @@ bool NetSource::serve(TcpSocket& peer) {
           break;
         }
         case FrameType::Bye:
-          post_event({static_cast<double>(next_sample_) / rate_hz, "source-ended",
+          post_event({static_cast<double>(next_sample_) / rate_hz, EventKind::SourceEnded,
                       "the sender ended its stream"});
           return true;
       }
     }
     if (!decoder.error().empty()) {
       malformed_frames_.fetch_add(1, std::memory_order_relaxed);
-      post_event({kNoTime, "malformed-frame", "connection closed: " + decoder.error()});
+      post_event({kNoTime, EventKind::MalformedFrame, "connection closed: " + decoder.error()});
       return false;
     }
   }

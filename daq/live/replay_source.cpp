@@ -94,7 +94,7 @@ void ReplaySource::run() {
 
   const auto jump_to = [&](Eigen::Index target, const char* why) {
     const double t_s = static_cast<double>(stream_sample) / rate_hz;
-    post_event({t_s, "discontinuity",
+    post_event({t_s, EventKind::Discontinuity,
                 std::string(why) + ": file time " +
                     std::to_string(static_cast<double>(file_sample) / rate_hz) + " s -> " +
                     std::to_string(static_cast<double>(target) / rate_hz) + " s"});
@@ -129,14 +129,14 @@ void ReplaySource::run() {
                              {"steady_from_s", level.start_s + offset_s},
                              {"steady_to_s", level.end_s + offset_s}};
       if (frequency_hz > 0) data["frequency_hz"] = frequency_hz;
-      post_event({level.start_s + offset_s, "level",
+      post_event({level.start_s + offset_s, EventKind::Level,
                   "f0 " + std::to_string(level.f0_n) + " N (from the recording)", data});
     }
     const auto& invalid = recording_.sidecar.invalid_intervals;
     while (next_invalid < invalid.size() && invalid[next_invalid].start_s < block_end_file_s) {
       const InvalidInterval& interval = invalid[next_invalid++];
       post_event({interval.start_s + offset_s,
-                  "invalid",
+                  EventKind::Invalid,
                   "the recording marks this stretch invalid (" + interval.reason + ")",
                   {{"from_s", interval.start_s + offset_s}, {"to_s", interval.end_s + offset_s}}});
     }
@@ -177,8 +177,8 @@ void ReplaySource::run() {
     position_.store(file_sample, std::memory_order_release);
   }
   if (file_sample >= n) {
-    post_event(
-        {static_cast<double>(stream_sample) / rate_hz, "source-ended", "the end of the recording"});
+    post_event({static_cast<double>(stream_sample) / rate_hz, EventKind::SourceEnded,
+                "the end of the recording"});
   }
 }
 

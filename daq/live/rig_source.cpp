@@ -123,7 +123,7 @@ void RigSource::run() {
       current_ = {t_s, f0_n, frequency_hz};
     }
     post_event({t_s,
-                "level",
+                EventKind::Level,
                 "f0 " + std::to_string(f0_n) + " N at " + std::to_string(frequency_hz) + " Hz",
                 {{"f0_n", f0_n},
                  {"frequency_hz", frequency_hz},
@@ -170,7 +170,7 @@ void RigSource::run() {
         apply(std::max(step.t_s, stepper.time_s()), step.f0_n, step.frequency_hz);
       }
       if (!stepper.advance_to(motion, t_s)) {
-        post_event({t_s, "error", "the rig's integration failed (step underflow)"});
+        post_event({t_s, EventKind::Error, "the rig's integration failed (step underflow)"});
         return;
       }
       const analysis::TableState table = motion.at(t_s);
@@ -197,7 +197,7 @@ void RigSource::run() {
     first_sample += static_cast<std::uint64_t>(rows);
   }
   if (first_sample >= total_samples) {
-    post_event({static_cast<double>(first_sample) / rate_hz, "source-ended",
+    post_event({static_cast<double>(first_sample) / rate_hz, EventKind::SourceEnded,
                 "the virtual rig reached its duration"});
   }
 }

@@ -35,7 +35,7 @@ void SampleSource::thread_main() {
   try {
     run();
   } catch (const std::exception& error) {  // nothing throws across threads
-    post_event({std::numeric_limits<double>::quiet_NaN(), "error", error.what()});
+    post_event({std::numeric_limits<double>::quiet_NaN(), EventKind::Error, error.what()});
   }
   finished_.store(true, std::memory_order_release);
 }
@@ -109,7 +109,7 @@ void SampleSource::count_overflow(std::uint64_t first_sample) {
     const Sidecar sidecar = layout().value_or(Sidecar{});
     const double rate = sidecar.sample_rate_hz > 0 ? sidecar.sample_rate_hz : 1.0;
     post_event({static_cast<double>(first_sample) / rate,
-                "overflow",
+                EventKind::Overflow,
                 "the consumer is behind: the queue is full and blocks are dropped",
                 {{"blocks", count}}});
   }

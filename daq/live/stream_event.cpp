@@ -7,10 +7,65 @@
 
 namespace oscilab::daq {
 
+namespace {
+
+constexpr std::pair<EventKind, const char*> kNames[] = {
+    {EventKind::Level, "level"},
+    {EventKind::Mark, "mark"},
+    {EventKind::Gap, "gap"},
+    {EventKind::Duplicate, "duplicate"},
+    {EventKind::Reordered, "reordered"},
+    {EventKind::Late, "late"},
+    {EventKind::Discontinuity, "discontinuity"},
+    {EventKind::Invalid, "invalid"},
+    {EventKind::Clipped, "clipped"},
+    {EventKind::NonFinite, "non-finite"},
+    {EventKind::Saturated, "saturated"},
+    {EventKind::Overflow, "overflow"},
+    {EventKind::Connected, "connected"},
+    {EventKind::Disconnected, "disconnected"},
+    {EventKind::LayoutMismatch, "layout-mismatch"},
+    {EventKind::MalformedFrame, "malformed-frame"},
+    {EventKind::Xrun, "xrun"},
+    {EventKind::ServerShutdown, "server-shutdown"},
+    {EventKind::RateChanged, "rate-changed"},
+    {EventKind::PortDisconnected, "port-disconnected"},
+    {EventKind::PortConnected, "port-connected"},
+    {EventKind::Reconnected, "reconnected"},
+    {EventKind::Alarm, "alarm"},
+    {EventKind::Warning, "warning"},
+    {EventKind::Start, "start"},
+    {EventKind::Stop, "stop"},
+    {EventKind::RecordingStarted, "recording-started"},
+    {EventKind::RecordingStopped, "recording-stopped"},
+    {EventKind::SourceEnded, "source-ended"},
+    {EventKind::Error, "error"},
+};
+
+}  // namespace
+
+const char* to_string(EventKind kind) {
+  for (const auto& [k, name] : kNames) {
+    if (k == kind) return name;
+  }
+  return "other";
+}
+
+EventKind event_kind_from_string(std::string_view name) {
+  for (const auto& [k, known] : kNames) {
+    if (name == known) return k;
+  }
+  return EventKind::Other;
+}
+
+std::string StreamEvent::kind_name() const {
+  return kind == EventKind::Other ? other_kind : std::string(to_string(kind));
+}
+
 nlohmann::json StreamEvent::to_json() const {
   nlohmann::json out;
   out["t_s"] = std::isfinite(t_s) ? nlohmann::json(t_s) : nlohmann::json(nullptr);
-  out["kind"] = kind;
+  out["kind"] = kind_name();
   if (!text.empty()) out["text"] = text;
   if (!data.empty()) out["data"] = data;
   out["wall"] = wall.empty() ? utc_now_iso8601() : wall;

@@ -1,38 +1,90 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
 namespace oscilab::daq {
 
-/// Something that happened in a live stream, for the status display and the event log (one JSON
-/// object per line in `<stem>.events.jsonl`). `kind` is one of:
+/// What a stream event says happened. Its name (to_string) is what the event log and the stream
+/// protocol carry:
 ///   level            the excitation was set (data: f0_n, frequency_hz, ramp_s)
 ///   mark             an operator's mark (text)
 ///   gap              blocks never arrived (data: samples, from_s, to_s)
 ///   duplicate        a block arrived twice and was dropped (data: sequence)
 ///   reordered        a block arrived out of order and was put back in place (data: sequence)
 ///   late             a block arrived after its gap was closed and was dropped (data: sequence)
+///   discontinuity    the samples on either side of it are not one motion (a seek, a clock jump)
+///   invalid          a replayed recording's own invalid stretch (data: from_s, to_s)
+///   clipped          input at the interface's full scale before resampling (data: from_s, to_s)
 ///   non-finite       NaN or Inf samples (data: channel, samples, from_s, to_s)
 ///   saturated        samples at or beyond a channel's range (data: channel, samples, ...)
 ///   overflow         the queue was full: the source dropped blocks (data: blocks)
-///   connected, disconnected, layout-mismatch, malformed-frame   network source
+///   connected, disconnected, layout-mismatch, malformed-frame   network and JACK sources
+///   xrun, server-shutdown, rate-changed, port-disconnected, port-connected, reconnected   JACK
 ///   alarm            a limit was crossed (text)
+///   warning          a set-up the analysis can do, but not well (text)
 ///   start, stop, recording-started, recording-stopped, source-ended, error
-/// `t_s` is stream time (sample clock), NaN where it has none; `wall` ISO-8601 UTC.
+/// `other` is a kind a network sender named that this program does not know; the event keeps
+/// the sender's name for it.
+enum class EventKind {
+  Level,
+  Mark,
+  Gap,
+  Duplicate,
+  Reordered,
+  Late,
+  Discontinuity,
+  Invalid,
+  Clipped,
+  NonFinite,
+  Saturated,
+  Overflow,
+  Connected,
+  Disconnected,
+  LayoutMismatch,
+  MalformedFrame,
+  Xrun,
+  ServerShutdown,
+  RateChanged,
+  PortDisconnected,
+  PortConnected,
+  Reconnected,
+  Alarm,
+  Warning,
+  Start,
+  Stop,
+  RecordingStarted,
+  RecordingStopped,
+  SourceEnded,
+  Error,
+  Other
+};
+
+/// The kind's name in the event log and the stream protocol, e.g. "non-finite".
+const char* to_string(EventKind kind);
+/// The kind of a name; Other for a name no kind has.
+EventKind event_kind_from_string(std::string_view name);
+
+/// Something that happened in a live stream, for the status display and the event log (one JSON
+/// object per line in `<stem>.events.jsonl`). `t_s` is stream time (sample clock), NaN where it
+/// has none; `wall` ISO-8601 UTC.
 struct StreamEvent {
   StreamEvent() = default;
-  StreamEvent(double t_s_, std::string kind_, std::string text_ = {},
+  StreamEvent(double t_s_, EventKind kind_, std::string text_ = {},
               nlohmann::json data_ = nlohmann::json::object())
-      : t_s(t_s_), kind(std::move(kind_)), text(std::move(text_)), data(std::move(data_)) {}
+      : t_s(t_s_), kind(kind_), text(std::move(text_)), data(std::move(data_)) {}
 
   double t_s = 0.0;
-  std::string kind;
+  EventKind kind = EventKind::Mark;
+  std::string other_kind;  // the sender's name of a kind this program does not know (Other)
   std::string text;
   nlohmann::json data = nlohmann::json::object();
   std::string wall;  // set when the event is logged
 
+  /// to_string(kind), or the sender's own name for an Other.
+  std::string kind_name() const;
   nlohmann::json to_json() const;
 };
 

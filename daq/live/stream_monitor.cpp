@@ -44,7 +44,7 @@ void StreamMonitor::deliver(const RawBlock& block) {
   if (block.first_sample < next_sample_) {
     // The sender's clock went back: keep the samples, re-timed to follow on.
     ++counters_.discontinuities;
-    output_.anomaly("discontinuity", block.sequence, next_sample_);
+    output_.anomaly(EventKind::Discontinuity, block.sequence, next_sample_);
   }
   output_.block(block, next_sample_);
   ++counters_.blocks;
@@ -103,14 +103,15 @@ void StreamMonitor::push(const RawBlock& block) {
   if (block.sequence < next_sequence_) {
     const bool late = std::find(lost_.begin(), lost_.end(), block.sequence) != lost_.end();
     ++(late ? counters_.late : counters_.duplicates);
-    output_.anomaly(late ? "late" : "duplicate", block.sequence, block.first_sample);
+    output_.anomaly(late ? EventKind::Late : EventKind::Duplicate, block.sequence,
+                    block.first_sample);
     return;
   }
   // Ahead: hold it (a duplicate of a held block is dropped).
   for (std::size_t i = 0; i < held_.size(); ++i) {
     if (used_[i] && held_[i].sequence == block.sequence) {
       ++counters_.duplicates;
-      output_.anomaly("duplicate", block.sequence, block.first_sample);
+      output_.anomaly(EventKind::Duplicate, block.sequence, block.first_sample);
       return;
     }
   }

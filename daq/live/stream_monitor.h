@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "daq/live/raw_block.h"
+#include "daq/live/stream_event.h"
 
 namespace oscilab::daq {
 
@@ -41,9 +42,8 @@ class StreamMonitor {
     std::function<void(const RawBlock& block, std::uint64_t first_sample)> block;
     /// `samples` samples from first_sample on never arrived.
     std::function<void(std::uint64_t first_sample, std::uint64_t samples)> gap;
-    /// Blocks dropped (kind "duplicate" or "late") or re-timed ("discontinuity").
-    std::function<void(const char* kind, std::uint64_t sequence, std::uint64_t first_sample)>
-        anomaly;
+    /// Blocks dropped (Duplicate or Late) or re-timed (Discontinuity).
+    std::function<void(EventKind kind, std::uint64_t sequence, std::uint64_t first_sample)> anomaly;
   };
 
   StreamMonitor(int reorder_window, int max_rows, int channels, Output output);

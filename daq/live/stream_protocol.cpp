@@ -149,7 +149,8 @@ bool FrameDecoder::next(Frame& frame) {
                                                        : std::numeric_limits<double>::quiet_NaN();
       const auto kind = value.find("kind");
       if (kind == value.end() || !kind->is_string()) return fail("EVENT: kind missing");
-      event.kind = kind->get<std::string>();
+      event.kind = event_kind_from_string(kind->get<std::string>());
+      if (event.kind == EventKind::Other) event.other_kind = kind->get<std::string>();
       if (const auto text = value.find("text"); text != value.end() && text->is_string()) {
         event.text = text->get<std::string>();
       }

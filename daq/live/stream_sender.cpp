@@ -18,8 +18,9 @@ constexpr std::chrono::milliseconds kRetryEvery{200};
 constexpr std::chrono::milliseconds kIdle{1};  // waiting for the source's next block
 
 // Events the receiver needs to analyse and record the stream as operated.
-bool forwarded(const std::string& kind) {
-  return kind == "level" || kind == "mark" || kind == "discontinuity" || kind == "invalid";
+bool forwarded(EventKind kind) {
+  return kind == EventKind::Level || kind == EventKind::Mark || kind == EventKind::Discontinuity ||
+         kind == EventKind::Invalid;
 }
 
 std::string random_stream_id() {

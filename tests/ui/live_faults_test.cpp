@@ -9,7 +9,7 @@ namespace oscilab::ui {
 namespace {
 
 daq::StreamEvent event(const std::string& kind, nlohmann::json data = nlohmann::json::object()) {
-  return {1.0, kind, "", std::move(data)};
+  return {1.0, daq::event_kind_from_string(kind), "", std::move(data)};
 }
 
 TEST(FaultCounts, CountsLoggedFaultsAndTakesTheLargerOfTheAcquisitionsCounts) {

@@ -50,7 +50,7 @@ void run_to_end(Acquisition& acquisition) {
 
 std::size_t count_events(const Acquisition& acquisition, const std::string& kind) {
   std::size_t n = 0;
-  for (const StreamEvent& e : acquisition.events_since(0)) n += e.kind == kind;
+  for (const StreamEvent& e : acquisition.events_since(0)) n += e.kind_name() == kind;
   return n;
 }
 
@@ -260,7 +260,7 @@ TEST(Acquisition, BlocksAQueueCouldNotTakeBecomeOneGapOfExactlyTheirSamples) {
   StreamMonitor monitor(8, 32, 2,
                         {[&](const RawBlock&, std::uint64_t) { ++delivered; },
                          [&](std::uint64_t first, std::uint64_t n) { gaps.emplace_back(first, n); },
-                         [](const char*, std::uint64_t, std::uint64_t) {}});
+                         [](EventKind, std::uint64_t, std::uint64_t) {}});
   while (!source.finished() || queue.size() > 0) {
     while (RawBlock* block = queue.front()) {
       monitor.push(*block);

@@ -102,7 +102,8 @@ inline void soak(double signal_s) {
   while (samples < target && Clock::now() - started < std::chrono::seconds(600)) {
     if (!s0_known) {
       for (const StreamEvent& e : source->take_events()) {
-        if (e.kind == "connected") s0 = e.data.at("server_frame").get<double>(), s0_known = true;
+        if (e.kind == EventKind::Connected)
+          s0 = e.data.at("server_frame").get<double>(), s0_known = true;
       }
     }
     RawBlock* block = queue.front();

@@ -293,8 +293,8 @@ TEST(LiveRecorder, EventsAreLoggedOnePerLineInRecordingTime) {
   const std::string path = dir.file("events.wav");
   {
     LiveRecorder recorder(path, layout(), 1024);  // stream time 2 s
-    recorder.log(StreamEvent(2.5, "mark", "operator's mark", {{"n", 1}}));
-    recorder.log(StreamEvent(kNaN, "connected"));
+    recorder.log(StreamEvent(2.5, EventKind::Mark, "operator's mark", {{"n", 1}}));
+    recorder.log(StreamEvent(kNaN, EventKind::Connected));
   }
   std::ifstream in(dir.file("events.events.jsonl"));
   std::string line;

@@ -49,7 +49,7 @@ TEST(ReplaySource, PlaysEveryStoredValueAsFastAsTakenAndPostsTheLevels) {
   }
   std::size_t levels = 0;
   for (const StreamEvent& e : source.take_events()) {
-    if (e.kind != "level") continue;
+    if (e.kind != EventKind::Level) continue;
     const ExcitationLevel& original = recording.sidecar.excitation->levels[levels++];
     EXPECT_EQ(e.data["steady_from_s"].get<double>(), original.start_s);  // no seek: same times
     EXPECT_EQ(e.data["steady_to_s"].get<double>(), original.end_s);
@@ -89,7 +89,8 @@ TEST(ReplaySource, PausesAndSeeksWhileTheStreamClockRunsOn) {
   const auto target = static_cast<Eigen::Index>(200.0 * 512);
   EXPECT_EQ(drain.y[paused_at], recording.samples_stored(target, 1));
   bool discontinuity = false;
-  for (const StreamEvent& e : source.take_events()) discontinuity |= e.kind == "discontinuity";
+  for (const StreamEvent& e : source.take_events())
+    discontinuity |= e.kind == EventKind::Discontinuity;
   EXPECT_TRUE(discontinuity);
   EXPECT_THROW(source.set_speed(-1), InputError);
   EXPECT_THROW(ReplaySource(kSample + ".missing.wav", options), InputError);

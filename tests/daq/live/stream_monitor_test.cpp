@@ -19,7 +19,9 @@ StreamMonitor monitor(Log& log, int window = 3) {
       window, 4, 1,
       {[&](const RawBlock& b, std::uint64_t at) { log.blocks.emplace_back(b.sequence, at); },
        [&](std::uint64_t first, std::uint64_t n) { log.gaps.emplace_back(first, n); },
-       [&](const char* kind, std::uint64_t, std::uint64_t) { log.anomalies.emplace_back(kind); }});
+       [&](EventKind kind, std::uint64_t, std::uint64_t) {
+         log.anomalies.emplace_back(to_string(kind));
+       }});
 }
 
 RawBlock block(std::uint64_t sequence, std::uint64_t first_sample = ~0ull) {

@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <random>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -19,7 +20,7 @@ std::vector<std::uint8_t> sample_stream() {
   append_hello({"id-1", two_channels()}, bytes);
   const double values[6] = {1.5, -2.0, 3.25, std::numeric_limits<double>::quiet_NaN(), 1e300, -0.0};
   append_data(7, 1024, 3, 2, values, bytes);
-  append_event({12.5, "level", "f0", {{"f0_n", 0.5}}}, bytes);
+  append_event({12.5, EventKind::Level, "f0", {{"f0_n", 0.5}}}, bytes);
   append_bye(bytes);
   return bytes;
 }
@@ -62,7 +63,7 @@ TEST(StreamProtocol, RoundTripsEveryFrameTypeWhateverTheSplit) {
     EXPECT_TRUE(std::isnan(data[0][3]));  // bit-exact: NaN, huge and signed zero survive
     EXPECT_EQ(data[0][4], 1e300);
     EXPECT_TRUE(std::signbit(data[0][5]));
-    EXPECT_EQ(frames[2].event->kind, "level");
+    EXPECT_EQ(frames[2].event->kind, EventKind::Level);
     EXPECT_EQ(frames[2].event->data["f0_n"], 0.5);
     EXPECT_EQ(frames[3].type, FrameType::Bye);
   }
@@ -75,6 +76,34 @@ std::string decode_error(std::vector<std::uint8_t> bytes) {
   while (decoder.next(frame)) {
   }
   return decoder.error();
+}
+
+// Every kind crosses the wire by its name; a kind this program does not know keeps the sender's.
+TEST(StreamProtocol, CarriesEveryEventKindByNameAndKeepsAnUnknownOne) {
+  std::vector<StreamEvent> sent;
+  for (int k = 0; k <= static_cast<int>(EventKind::Other); ++k) {
+    sent.emplace_back(1.0, static_cast<EventKind>(k), "text");
+  }
+  sent.back().other_kind = "tare";
+  std::vector<std::uint8_t> bytes;
+  append_hello({"id-1", two_channels()}, bytes);
+  for (const StreamEvent& event : sent) append_event(event, bytes);
+  FrameDecoder decoder;
+  decoder.feed(bytes.data(), bytes.size());
+  Frame frame;
+  ASSERT_TRUE(decoder.next(frame));  // HELLO
+  std::set<std::string> names;
+  for (const StreamEvent& event : sent) {
+    ASSERT_TRUE(decoder.next(frame)) << decoder.error();
+    ASSERT_TRUE(frame.event);
+    EXPECT_EQ(frame.event->kind, event.kind) << event.kind_name();
+    EXPECT_EQ(frame.event->kind_name(), event.kind_name());
+    names.insert(event.kind_name());
+  }
+  EXPECT_EQ(names.size(), sent.size());  // no two kinds share a name
+  EXPECT_EQ(sent.back().kind_name(), "tare");
+  EXPECT_EQ(event_kind_from_string("non-finite"), EventKind::NonFinite);
+  EXPECT_EQ(event_kind_from_string("no such kind"), EventKind::Other);
 }
 
 TEST(StreamProtocol, RejectsHostileFramesWithAReason) {

@@ -334,14 +334,15 @@ TEST(StreamSender, SendsEverySampleInOrderBitForBitWithEachEventBeforeItsBlock) 
   const std::vector<std::uint64_t> first = first_samples(kBlocks, kMaxRows);
   const auto at = [&](std::size_t block) { return static_cast<double>(first[block]) / kRateHz; };
   std::map<std::size_t, std::vector<StreamEvent>> events;
-  events[0] = {{at(0), "level", "rest", {{"f0_n", 0.0}, {"frequency_hz", 9.0}}}};
-  events[10] = {{at(10), "level", "up", {{"f0_n", 0.5}, {"frequency_hz", 9.0}}},
-                {at(10), "mark", "operator"}};
-  events[20] = {{at(20), "alarm", "not the receiver's business"}};
-  events[30] = {{at(30), "invalid", "sensor", {{"from_s", at(30)}, {"to_s", at(31)}}}};
-  events[150] = {{at(150), "overflow", "not forwarded"}, {at(150), "discontinuity", "seek"}};
-  events[299] = {{at(299), "mark", "last block"}};
-  const std::vector<StreamEvent> after = {{at(299) + 1.0, "mark", "after the last block"}};
+  events[0] = {{at(0), EventKind::Level, "rest", {{"f0_n", 0.0}, {"frequency_hz", 9.0}}}};
+  events[10] = {{at(10), EventKind::Level, "up", {{"f0_n", 0.5}, {"frequency_hz", 9.0}}},
+                {at(10), EventKind::Mark, "operator"}};
+  events[20] = {{at(20), EventKind::Alarm, "not the receiver's business"}};
+  events[30] = {{at(30), EventKind::Invalid, "sensor", {{"from_s", at(30)}, {"to_s", at(31)}}}};
+  events[150] = {{at(150), EventKind::Overflow, "not forwarded"},
+                 {at(150), EventKind::Discontinuity, "seek"}};
+  events[299] = {{at(299), EventKind::Mark, "last block"}};
+  const std::vector<StreamEvent> after = {{at(299) + 1.0, EventKind::Mark, "after the last block"}};
   TestSource source(kBlocks, kMaxRows, events, after);
   TestReceiver receiver({});
   StreamSender::Options options = to(receiver.port());
@@ -410,8 +411,9 @@ TEST(StreamSender, TheProjectsReceiverGetsEverySampleAndEventAsSent) {
   constexpr int kMaxRows = 128;
   const std::vector<std::uint64_t> first = first_samples(kBlocks, kMaxRows);
   const double level_s = static_cast<double>(first[50]) / kRateHz;
-  TestSource source(kBlocks, kMaxRows,
-                    {{50, {{level_s, "level", "up", {{"f0_n", 1.0}, {"frequency_hz", 9.0}}}}}});
+  TestSource source(
+      kBlocks, kMaxRows,
+      {{50, {{level_s, EventKind::Level, "up", {{"f0_n", 1.0}, {"frequency_hz", 9.0}}}}}});
   NetSource net(NetSource::Options{});
   BlockQueue queue(256, net.max_block_rows(), net.max_channels());
   net.start(queue);
@@ -447,8 +449,8 @@ TEST(StreamSender, TheProjectsReceiverGetsEverySampleAndEventAsSent) {
   EXPECT_EQ(layout_difference(two_channels(), *net.layout()), "");
   std::vector<std::string> kinds;
   for (const StreamEvent& e : net.take_events()) {
-    kinds.push_back(e.kind);
-    if (e.kind == "level") {
+    kinds.push_back(e.kind_name());
+    if (e.kind == EventKind::Level) {
       EXPECT_EQ(e.t_s, level_s);
       EXPECT_EQ(e.data["f0_n"], 1.0);
     }
