@@ -3,20 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ui/number_text.h"
+
 namespace oscilab::ui {
-namespace {
-
-std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
-
-}  // namespace
-
 EventRow event_row(const daq::StreamEvent& event) {
   EventRow row;
-  row.time = std::isfinite(event.t_s) ? format("%.3f s", event.t_s) : "\u2014";
+  row.time = std::isfinite(event.t_s) ? number_text("%.3f s", event.t_s) : "\u2014";
   row.kind = event.kind_name();
   row.text = !event.text.empty()  ? event.text
              : event.data.empty() ? std::string()

@@ -8,15 +8,10 @@
 #include "analysis/common/input_error.h"
 #include "analysis/simulation/stepped_levels.h"
 #include "ui/live_timeline.h"
+#include "ui/number_text.h"
 
 namespace oscilab::ui {
 namespace {
-
-std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
 
 // A double field of `json`, if present: a number, else InputError naming it.
 std::optional<double> number_field(const nlohmann::json& json, const char* name,
@@ -30,7 +25,7 @@ std::optional<double> number_field(const nlohmann::json& json, const char* name,
 }
 
 void require(bool ok, const std::string& field, double value, const char* why) {
-  if (!ok) throw InputError(field + ": " + format("%g", value) + " (" + why + ")");
+  if (!ok) throw InputError(field + ": " + number_text("%g", value) + " (" + why + ")");
 }
 
 }  // namespace

@@ -4,14 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ui/number_text.h"
+
 namespace oscilab::ui {
 namespace {
-
-std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
 
 std::string count_text(std::uint64_t n) { return std::to_string(n); }
 
@@ -30,13 +26,13 @@ std::vector<StatusField> status_fields(const daq::AcquisitionStatus& s, const Fa
 
   const char* state = s.running && !s.finished ? "running" : s.finished ? "ended" : "stopped";
   add("source", "", s.source.empty() ? "no source" : s.source + " (" + state + ")");
-  std::string rate = s.sample_rate_hz > 0 ? format("%g Hz", s.sample_rate_hz) : "—";
+  std::string rate = s.sample_rate_hz > 0 ? number_text("%g Hz", s.sample_rate_hz) : "—";
   if (s.sample_rate_hz > 0 && samples_per_s > 0 && s.running && !s.finished) {
-    rate += format(" \u00d7%.3g", samples_per_s / s.sample_rate_hz);
+    rate += number_text(" \u00d7%.3g", samples_per_s / s.sample_rate_hz);
   }
   add("rate", "rate", rate, Severity::Normal,
       "Sample rate of the stream; \u00d7: samples arriving per second of wall time / rate");
-  add("time", "t", format("%.1f s", s.stream_time_s), Severity::Normal,
+  add("time", "t", number_text("%.1f s", s.stream_time_s), Severity::Normal,
       "Stream time: the sample clock of the newest sample processed");
   add("samples", "samples", count_text(s.samples));
   add("gaps", "gaps", count_text(faults.gap_samples) + " (" + count_text(faults.gaps) + ")",
@@ -59,8 +55,8 @@ std::vector<StatusField> status_fields(const daq::AcquisitionStatus& s, const Fa
       "Blocks waiting between the source and the acquisition thread / capacity");
   const double recorded_s =
       s.sample_rate_hz > 0 ? static_cast<double>(s.recorded_samples) / s.sample_rate_hz : 0.0;
-  std::string recording = s.recording              ? format("\u25cf %.1f s", recorded_s)
-                          : s.recorded_samples > 0 ? format("off (%.1f s written)", recorded_s)
+  std::string recording = s.recording              ? number_text("\u25cf %.1f s", recorded_s)
+                          : s.recorded_samples > 0 ? number_text("off (%.1f s written)", recorded_s)
                                                    : std::string("off");
   Severity recording_severity = Severity::Normal;
   if (!s.recorder_error.empty()) {
@@ -77,11 +73,11 @@ std::vector<StatusField> status_fields(const daq::AcquisitionStatus& s, const Fa
   add("levels", "levels", count_text(s.levels), Severity::Normal,
       s.edc_message.empty() ? "Stepped-sine levels finished" : s.edc_message);
   add("latency", "EDC latency",
-      s.edc_latency_s > 0 ? format("%.0f ms", 1e3 * s.edc_latency_s) : std::string("—"),
+      s.edc_latency_s > 0 ? number_text("%.0f ms", 1e3 * s.edc_latency_s) : std::string("—"),
       Severity::Normal,
-      format("Arrival of a cycle's first sample to its EDC; median %.0f ms",
-             1e3 * s.edc_latency_median_s) +
-          format(", max %.0f ms", 1e3 * s.edc_latency_max_s));
+      number_text("Arrival of a cycle's first sample to its EDC; median %.0f ms",
+                  1e3 * s.edc_latency_median_s) +
+          number_text(", max %.0f ms", 1e3 * s.edc_latency_max_s));
   add("alarms", "alarms", count_text(faults.alarms), fault("alarms"),
       "Alarm limits crossed (|z|, |b| drift, |f|)");
   add("errors", "errors", count_text(faults.errors), fault("errors"),

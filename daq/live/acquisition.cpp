@@ -130,7 +130,8 @@ struct Acquisition::Impl {
   void log_closed_runs();  // mutex held
   void exclude_samples(std::uint64_t from, std::uint64_t to);
   void raise_alarms(std::uint64_t first_sample, int rows);
-  void log_alarms();                                               // mutex held
+  void add_derived(HistoryRing::BlockWrite& write) const;  // the derived block, for the ring
+  void log_alarms();                                       // mutex held
   void publish_cycles(std::chrono::steady_clock::time_point now);  // mutex held
   void publish_events();                                           // mutex held
   void publish_recorder_state();                                   // mutex held
@@ -540,12 +541,7 @@ void Acquisition::Impl::on_gap(std::uint64_t first_sample, std::uint64_t samples
       const int rows = static_cast<int>(std::min(max_rows, first_sample + samples - s));
       derived->push(s, base_si.data(), mass_si.data(), rows, derived_block);
       HistoryRing::BlockWrite write;
-      write.derived_first = derived_block.first_sample;
-      write.derived_count = derived_block.count;
-      write.b_m = derived_block.b_m.data();
-      write.z_m = derived_block.z_m.data();
-      write.z_dot_m_s = derived_block.z_dot_m_s.data();
-      write.restoring_force_n = derived_block.restoring_force_n.data();
+      add_derived(write);
       history_ring->write(write);
     }
   }
@@ -629,15 +625,17 @@ void Acquisition::Impl::on_block(const RawBlock& block, std::uint64_t first_samp
     write.mass = mass_shown.data();
     write.force_n = force_n.data();
   }
-  if (analysed && derived) {
-    write.derived_first = derived_block.first_sample;
-    write.derived_count = derived_block.count;
-    write.b_m = derived_block.b_m.data();
-    write.z_m = derived_block.z_m.data();
-    write.z_dot_m_s = derived_block.z_dot_m_s.data();
-    write.restoring_force_n = derived_block.restoring_force_n.data();
-  }
+  if (analysed && derived) add_derived(write);
   history_ring->write(write);
+}
+
+void Acquisition::Impl::add_derived(HistoryRing::BlockWrite& write) const {
+  write.derived_first = derived_block.first_sample;
+  write.derived_count = derived_block.count;
+  write.b_m = derived_block.b_m.data();
+  write.z_m = derived_block.z_m.data();
+  write.z_dot_m_s = derived_block.z_dot_m_s.data();
+  write.restoring_force_n = derived_block.restoring_force_n.data();
 }
 
 void Acquisition::Impl::raise_alarms(std::uint64_t first_sample, int rows) {
