@@ -50,10 +50,10 @@ void write_edc(const analysis::CampaignAnalysis& campaign, const std::string& pa
     for (const auto& l : record.levels) {
       std::fprintf(
           out, "%s,%.6g,%.9g,%.6g,%d,%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6f,%.6f,%d,%.6g,%d,%s\n",
-          l.well.c_str(), l.f0_n, l.edc_mean_j, l.edc_std_j, l.cycles, record.name.c_str(),
-          l.edc_noise_floor_j, l.edc_eq13_mean_j, l.edc_trapz_mean_j, l.z1_abs_m, l.lag_rad,
-          l.z_mean_m, l.start_s, l.end_s, l.transient_cycles, l.period1_change, l.usable() ? 1 : 0,
-          analysis::level_flags(record, l).c_str());
+          to_string(l.well).c_str(), l.f0_n, l.edc_mean_j, l.edc_std_j, l.cycles,
+          record.name.c_str(), l.edc_noise_floor_j, l.edc_eq13_mean_j, l.edc_trapz_mean_j,
+          l.z1_abs_m, l.lag_rad, l.z_mean_m, l.start_s, l.end_s, l.transient_cycles,
+          l.period1_change, l.usable() ? 1 : 0, analysis::level_flags(record, l).c_str());
     }
   }
   close_output(out, path);
@@ -115,7 +115,7 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
                 ("EDC " + energy).c_str(), ("std " + energy).c_str(), ("floor " + energy).c_str(),
                 "cycles", "flags");
     for (const auto& l : record.levels) {
-      std::printf("  %-10s %9.3f %12.5g %11.3g %12.3g %6d  %s\n", l.well.c_str(), l.f0_n,
+      std::printf("  %-10s %9.3f %12.5g %11.3g %12.3g %6d  %s\n", to_string(l.well).c_str(), l.f0_n,
                   l.edc_mean_j, l.edc_std_j, l.edc_noise_floor_j, l.cycles, l.flags().c_str());
     }
   }

@@ -23,7 +23,7 @@ py::dict level_table(const std::vector<analysis::LevelResult>& levels,
   std::vector<int> cycles(n), transient(n), usable(n);
   for (std::size_t i = 0; i < n; ++i) {
     const analysis::LevelResult& l = levels[i];
-    well.append(l.well);
+    well.append(analysis::to_string(l.well));
     f0[i] = l.f0_n;
     mean[i] = l.edc_mean_j;
     std_j[i] = l.edc_std_j;
