@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "analysis/pipeline/result_units.h"
 #include "app/cli/campaign_input.h"
@@ -153,7 +154,9 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
 void run(const AnalyzeOptions& options) {
   daq::MappingOverrides overrides;
   if (options.freq_hz > 0) overrides.excitation_freq_hz = options.freq_hz;
-  if (!options.well.empty()) overrides.well_positive = options.well == "positive";
+  if (!options.well.empty()) {
+    overrides.well_positive = analysis::well_from_string(options.well) == analysis::Well::Positive;
+  }
   overrides.ignore_sidecar_levels = options.detect_levels;
   InputTimes times;
   const analysis::CampaignAnalysis campaign =

@@ -113,11 +113,7 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
     overrides.excitation_freq_hz = freq;
   }
   if (!a.well.is_none()) {
-    const std::string well = a.well.cast<std::string>();
-    if (well != "positive" && well != "negative") {
-      throw InputError("well: \"" + well + "\" is not positive or negative");
-    }
-    overrides.well_positive = well == "positive";
+    overrides.well_positive = well_argument(a.well.cast<std::string>()) == analysis::Well::Positive;
   }
   overrides.ignore_sidecar_levels = a.detect_levels;
   analysis::PipelineSettings settings;
