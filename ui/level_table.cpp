@@ -78,7 +78,7 @@ void LevelTable::set_rows(const std::vector<LevelRow>& rows, const QString& forc
     record->setData(kRecordRole, row.key.record);
     record->setData(kLevelRole, row.key.level);
     setItem(r, kRecord, record);
-    auto* well = read_only(new QTableWidgetItem(QString::fromStdString(row.well)));
+    auto* well = read_only(new QTableWidgetItem(QString::fromStdString(to_string(row.well))));
     well->setForeground(well_colour(row.well));
     setItem(r, kWell, well);
     setItem(r, kF0, read_only(new NumberItem(QString::number(row.f0_n, 'f', 3), row.f0_n)));

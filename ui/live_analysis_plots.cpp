@@ -26,7 +26,7 @@ constexpr double kAnalysisSpanS = 6.0;
 // a long run, or after the slices were reset).
 constexpr double kMaxSliceCatchUpS = 60.0;
 constexpr int kSliceMaxPoints = 6000;  // per slice: enough for the cloud, quick to draw
-const QColor kOtherWell = well_colour("cross-well");
+const QColor kOtherWell = well_colour(analysis::Well::CrossWell);
 
 QCustomPlot* make_plot(const QString& name, const QString& title, const QString& x_label,
                        const QString& y_label) {
@@ -104,7 +104,8 @@ LiveAnalysisPlots::LiveAnalysisPlots(QWidget* parent) : QWidget(parent) {
   edc_plot_->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignLeft);
   const QString well_names[3] = {tr("z\u208a* measured \u00b13\u03c3"),
                                  tr("z\u208b* measured \u00b13\u03c3"), tr("cross-well / unknown")};
-  const QColor well_colours[3] = {well_colour("positive"), well_colour("negative"), kOtherWell};
+  const QColor well_colours[3] = {well_colour(analysis::Well::Positive),
+                                  well_colour(analysis::Well::Negative), kOtherWell};
   for (int w = 0; w < 2; ++w) {
     model_graphs_[w] = edc_plot_->addGraph();
     model_graphs_[w]->setPen(QPen(well_colours[w], 1.5, Qt::DashDotLine));
@@ -145,7 +146,7 @@ LiveAnalysisPlots::LiveAnalysisPlots(QWidget* parent) : QWidget(parent) {
   loop_plot_ = make_plot("loop_plot", tr("f\u2013z loop of the current cycle (Fig. 9)"),
                          tr("z [mm]"), tr("f [N]"));
   auto* loop = new QCPCurve(loop_plot_->xAxis, loop_plot_->yAxis);
-  loop->setPen(QPen(well_colour("positive"), 1.5));
+  loop->setPen(QPen(well_colour(analysis::Well::Positive), 1.5));
   loop->setName(tr("current cycle"));
   set_plot_hint(loop_plot_, tr("Needs a whole cycle of z (2 s behind)."));
 
@@ -181,8 +182,10 @@ LiveAnalysisPlots::LiveAnalysisPlots(QWidget* parent) : QWidget(parent) {
       make_plot("damping_plot", tr("Damping slice: R near the current z\u0304 (Fig. 7c)"),
                 tr("\u017c [mm/s]"), tr("R [N]"));
   for (QCustomPlot* plot : {stiffness_plot_, damping_plot_}) {
-    scatter_graph(plot, well_colour("positive"), tr("z\u208a* well"))->removeFromLegend();
-    scatter_graph(plot, well_colour("negative"), tr("z\u208b* well"))->removeFromLegend();
+    scatter_graph(plot, well_colour(analysis::Well::Positive), tr("z\u208a* well"))
+        ->removeFromLegend();
+    scatter_graph(plot, well_colour(analysis::Well::Negative), tr("z\u208b* well"))
+        ->removeFromLegend();
     plot->legend->setVisible(true);
     plot->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignLeft);
     set_plot_hint(plot, tr("Grows as cycles arrive (R, z, \u017c are 2 s behind)."));
@@ -217,8 +220,10 @@ void LiveAnalysisPlots::reset(double frequency_hz) {
   if (auto* loop = qobject_cast<QCPCurve*>(loop_plot_->plottable(0))) loop->data()->clear();
 }
 
-QCPGraph* LiveAnalysisPlots::edc_graph(const std::string& well) const {
-  return well == "positive" ? edc_graphs_[0] : well == "negative" ? edc_graphs_[1] : edc_graphs_[2];
+QCPGraph* LiveAnalysisPlots::edc_graph(analysis::Well well) const {
+  return well == analysis::Well::Positive   ? edc_graphs_[0]
+         : well == analysis::Well::Negative ? edc_graphs_[1]
+                                            : edc_graphs_[2];
 }
 
 void LiveAnalysisPlots::set_model_label(const QString& label) {
@@ -306,7 +311,8 @@ void LiveAnalysisPlots::refresh_cycle(const daq::Acquisition& acquisition, doubl
         data[qsizetype(i)] = QCPCurveData(double(i), 1e3 * cycle.z_m[i], cycle.f_n[i]);
       }
       curve->data()->set(data, true);
-      const QColor colour = well_colour(cycle.positive ? "positive" : "negative");
+      const QColor colour =
+          well_colour(cycle.positive ? analysis::Well::Positive : analysis::Well::Negative);
       curve->setPen(QPen(colour, 1.5));
       curve->setBrush(QColor(colour.red(), colour.green(), colour.blue(), 40));
       curve->setName(

@@ -9,6 +9,7 @@
 #include <QWidget>
 
 #include "analysis/edc/level_tracker.h"
+#include "analysis/edc/well.h"
 #include "analysis/hbm/level_response.h"
 #include "analysis/rfs/streaming_slices.h"
 #include "daq/live/acquisition.h"
@@ -50,7 +51,7 @@ class LiveAnalysisPlots : public QWidget {
   QCustomPlot* edc_plot() const { return edc_plot_; }
   /// EDC graphs: measured positive / negative / other wells, the level being filled, and the
   /// model's prediction per well (empty until computed).
-  QCPGraph* edc_graph(const std::string& well) const;
+  QCPGraph* edc_graph(analysis::Well well) const;
   QCPGraph* current_level_graph() const { return current_graph_; }
   QCPGraph* model_graph(bool positive_well) const { return model_graphs_[positive_well ? 0 : 1]; }
 

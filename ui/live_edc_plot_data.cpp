@@ -14,9 +14,9 @@ EdcPlotData edc_plot_data(const std::vector<analysis::LevelResult>& levels,
                     level.flags()};
   };
   for (const analysis::LevelResult& level : levels) {
-    auto& series = level.well == "positive"   ? data.positive
-                   : level.well == "negative" ? data.negative
-                                              : data.other;
+    auto& series = level.well == analysis::Well::Positive   ? data.positive
+                   : level.well == analysis::Well::Negative ? data.negative
+                                                            : data.other;
     series.push_back(point(level));
   }
   if (current && current->cycles > 0) {

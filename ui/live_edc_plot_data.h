@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "analysis/edc/level_tracker.h"
+#include "analysis/edc/well.h"
 
 // The measured EDC points of the live monitor, level by level, and where the model is drawn.
 
@@ -24,7 +25,7 @@ struct EdcPoint {
 struct EdcPlotData {
   std::vector<EdcPoint> positive, negative, other;
   std::optional<EdcPoint> current;
-  std::string current_well;
+  analysis::Well current_well = analysis::Well::Unclassified;
   double max_f0_n = 0.0;  // over all points
 };
 EdcPlotData edc_plot_data(const std::vector<analysis::LevelResult>& levels,

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/simulation/stepped_levels.h"
 #include "ui/live_timeline.h"
 #include "ui/number_text.h"
@@ -140,11 +141,13 @@ LiveSettings LiveSettings::from_json(const nlohmann::json& json) {
     }
     if (rig.contains("well")) {
       const nlohmann::json& well = rig.at("well");
-      if (well != "positive" && well != "negative") {
+      const std::optional<analysis::Well> parsed =
+          well.is_string() ? analysis::parse_well(well.get<std::string>()) : std::nullopt;
+      if (parsed != analysis::Well::Positive && parsed != analysis::Well::Negative) {
         throw InputError("live.rig.well: expected \"positive\" or \"negative\", got " +
                          well.dump());
       }
-      s.rig_positive_well = well == "positive";
+      s.rig_positive_well = parsed == analysis::Well::Positive;
     }
   }
   if (const auto v = number_field(json, "speed", "live")) {

@@ -204,7 +204,7 @@ void LiveStatusStrip::update(const daq::Acquisition& acquisition,
   if (current && current->cycles > 0) {
     text = tr("Level now: f\u2080 = %1 N, %2 well, %3 steady cycles, EDC %4 \u00b1 %5 mJ (3\u03c3)")
                .arg(current->f0_n, 0, 'f', 3)
-               .arg(qs(current->well))
+               .arg(qs(to_string(current->well)))
                .arg(current->cycles)
                .arg(1e3 * current->edc_mean_j, 0, 'g', 4)
                .arg(3e3 * current->edc_std_j, 0, 'g', 2);

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "analysis/common/job.h"
+#include "analysis/edc/well.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "daq/recording/recording.h"
 #include "ui/time_window.h"
@@ -48,7 +49,7 @@ struct LevelKey {
 struct LevelRow {
   LevelKey key;
   std::string record;  // the record's name (its file name)
-  std::string well;    // positive | negative | cross-well | unknown
+  analysis::Well well = analysis::Well::Unclassified;
   double f0_n = 0.0;
   double edc_mean_j = 0.0;
   double edc_std_j = 0.0;
@@ -76,7 +77,7 @@ TimeWindow level_time_window(const analysis::LevelResult& level, double margin_r
 /// [start_s, end_s]. Samples the analysis left out (non-finite R or f) break the loop: they are
 /// skipped.
 struct LevelLoop {
-  std::string well;
+  analysis::Well well = analysis::Well::Unclassified;
   int cycles = 0;  // steady cycles the samples span
   std::vector<double> t_s, z_m, f_n;
 };

@@ -504,8 +504,8 @@ void ReviewView::plot_loops(const std::vector<LevelKey>& keys) {
                     : tr("f = \u2212m d\u00b2b/dt\u00b2 [%1]").arg(text(f_unit.symbol));
 
   // One axis rect per well, in the order positive, negative, other.
-  const auto group_of = [](const std::string& well) {
-    return well == "positive" ? 0 : well == "negative" ? 1 : 2;
+  const auto group_of = [](analysis::Well well) {
+    return well == analysis::Well::Positive ? 0 : well == analysis::Well::Negative ? 1 : 2;
   };
   bool present[3] = {false, false, false};
   for (const LevelLoop& loop : loops) present[group_of(loop.well)] = true;
@@ -536,7 +536,9 @@ void ReviewView::plot_loops(const std::vector<LevelKey>& keys) {
     label->setText(g == 0   ? tr("around z\u208a*")
                    : g == 1 ? tr("around z\u208b*")
                             : tr("cross-well / unknown"));
-    label->setColor(well_colour(g == 0 ? "positive" : g == 1 ? "negative" : ""));
+    label->setColor(well_colour(g == 0   ? analysis::Well::Positive
+                                : g == 1 ? analysis::Well::Negative
+                                         : analysis::Well::Unknown));
     loop_labels_.push_back(label);
     rect_of[g] = rect;
     rects.push_back(rect);
@@ -602,7 +604,7 @@ void ReviewView::plot_cycles() {
   }
   set_plot_hint(cycle_plot_, {});
   // Which level's steady part holds a cycle (its well), if any.
-  const auto steady_well = [&](const analysis::CycleFit& cycle) -> const std::string* {
+  const auto steady_well = [&](const analysis::CycleFit& cycle) -> const analysis::Well* {
     for (const analysis::LevelResult& level : record.levels) {
       if (cycle.start_s >= level.start_s - 1e-9 && cycle.end_s <= level.end_s + 1e-9) {
         return &level.well;
@@ -611,12 +613,18 @@ void ReviewView::plot_cycles() {
     return nullptr;
   };
   QVector<double> other_t, other_e;
-  std::map<std::string, std::pair<QVector<double>, QVector<double>>> by_well;
+  struct WellCycles {
+    analysis::Well well;
+    QVector<double> t_s, edc_mj;
+  };
+  std::map<std::string, WellCycles> by_well;  // by the well's name: the legend's order
   for (const analysis::CycleFit& cycle : record.cycles) {
     const double t_s = 0.5 * (cycle.start_s + cycle.end_s);
-    if (const std::string* well = steady_well(cycle)) {
-      by_well[*well].first.push_back(t_s);
-      by_well[*well].second.push_back(1e3 * cycle.edc_j);
+    if (const analysis::Well* well = steady_well(cycle)) {
+      WellCycles& cycles =
+          by_well.try_emplace(to_string(*well), WellCycles{*well, {}, {}}).first->second;
+      cycles.t_s.push_back(t_s);
+      cycles.edc_mj.push_back(1e3 * cycle.edc_j);
     } else {
       other_t.push_back(t_s);
       other_e.push_back(1e3 * cycle.edc_j);
@@ -627,12 +635,12 @@ void ReviewView::plot_cycles() {
   other->setLineStyle(QCPGraph::lsNone);
   other->setScatterStyle(disc_markers(QColor(160, 160, 160), 3));
   other->setData(other_t, other_e, true);
-  for (const auto& [well, points] : by_well) {
+  for (const auto& [name, cycles] : by_well) {
     QCPGraph* graph = cycle_plot_->addGraph();
-    graph->setName(tr("steady cycles, %1 well").arg(text(well)));
+    graph->setName(tr("steady cycles, %1 well").arg(text(name)));
     graph->setLineStyle(QCPGraph::lsNone);
-    graph->setScatterStyle(disc_markers(well_colour(well), 4));
-    graph->setData(points.first, points.second, true);
+    graph->setScatterStyle(disc_markers(well_colour(cycles.well), 4));
+    graph->setData(cycles.t_s, cycles.edc_mj, true);
   }
   // Each level's mean as a segment over its steady part; NaN between levels breaks the line.
   QVector<double> mean_t, mean_e;

@@ -164,14 +164,14 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   }
 
   if (level.cross_well) {
-    level.well = "cross-well";
+    level.well = Well::CrossWell;
   } else if (std::isfinite(level.z_mean_m) &&
              options.mass_quantity == MotionQuantity::Displacement) {
-    level.well = level.z_mean_m > options.well_boundary_m ? "positive" : "negative";
+    level.well = level.z_mean_m > options.well_boundary_m ? Well::Positive : Well::Negative;
   } else if (options.well_hint_positive) {
-    level.well = *options.well_hint_positive ? "positive" : "negative";
+    level.well = *options.well_hint_positive ? Well::Positive : Well::Negative;
   } else {
-    level.well = "unknown";
+    level.well = Well::Unknown;
   }
   return level;
 }

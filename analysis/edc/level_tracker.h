@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "analysis/edc/cycle_fit.h"
+#include "analysis/edc/well.h"
 
 namespace oscilab::analysis {
 
@@ -41,7 +42,7 @@ struct LevelOptions {
 
 /// One row of the EDC table (docs/contracts.md §3 names) with what backs it.
 struct LevelResult {
-  std::string well;  // positive | negative | cross-well | unknown
+  Well well = Well::Unclassified;  // Unclassified until it has steady cycles
   double f0_n = 0.0;
   double edc_mean_j = 0.0;         // ∮ f dz, mean over steady cycles
   double edc_std_j = 0.0;          // standard deviation over steady cycles

@@ -112,7 +112,7 @@ void write_branches_csv(const std::vector<CsvBranch>& branches, bool well_column
     }
     while (std::getline(lines, line)) {
       file << line;
-      if (well_column) file << ',' << branches[i].well;
+      if (well_column) file << ',' << to_string(branches[i].well);
       if (period_column) file << ',' << branches[i].period;
       file << '\n';
     }

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/edc/well.h"
 #include "analysis/figures/figure.h"
 #include "analysis/hbm/branch.h"
 #include "analysis/simulation/amplitude_sweep.h"
@@ -20,7 +21,7 @@ struct NamedBranch {
 /// forcing periods (1, 2, 4 …).
 struct CsvBranch {
   const analysis::Branch* branch = nullptr;
-  std::string well;  // "positive" or "negative"
+  analysis::Well well = analysis::Well::Positive;  // Positive or Negative
   int period = 1;
 };
 

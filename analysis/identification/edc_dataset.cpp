@@ -17,7 +17,7 @@ constexpr double kSameFrequencyRel = 1e-3;
 std::string describe(const std::string& record, const LevelResult& level) {
   std::ostringstream out;
   out.precision(3);
-  out << record << ": " << level.well << ", f0 " << std::fixed << level.f0_n
+  out << record << ": " << to_string(level.well) << ", f0 " << std::fixed << level.f0_n
       << " N: " << (level.flags().empty() ? "no steady cycles" : level.flags());
   return out.str();
 }
@@ -130,7 +130,7 @@ EdcDataset edc_dataset(const CampaignAnalysis& campaign) {
       continue;
     }
     for (const LevelResult& level : record.levels) {
-      const bool known_well = level.well == "positive" || level.well == "negative";
+      const bool known_well = level.well == Well::Positive || level.well == Well::Negative;
       if (!level.usable() || !known_well || !(level.edc_mean_j > 0.0)) {
         data.excluded.push_back(describe(record.name, level));
         continue;
@@ -144,7 +144,7 @@ EdcDataset edc_dataset(const CampaignAnalysis& campaign) {
       m.amplitude_m = level.z1_abs_m;
       m.record = record.name;
       harmonic_content(record, level, m);
-      group_for(data, level.well == "positive", record.setup.excitation_freq_hz)
+      group_for(data, level.well == Well::Positive, record.setup.excitation_freq_hz)
           .levels.push_back(m);
     }
   }

@@ -204,7 +204,7 @@ nlohmann::json campaign_summary(const CampaignAnalysis& campaign) {
   for (const RecordAnalysis& r : campaign.records) {
     json levels = json::array();
     for (const LevelResult& level : r.levels) {
-      levels.push_back({{"well", level.well},
+      levels.push_back({{"well", to_string(level.well)},
                         {"f0_n", level.f0_n},
                         {"edc_mean_j", level.edc_mean_j},
                         {"edc_std_j", level.edc_std_j},

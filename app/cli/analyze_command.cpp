@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "analysis/pipeline/result_units.h"
 #include "app/cli/campaign_input.h"
@@ -50,10 +51,10 @@ void write_edc(const analysis::CampaignAnalysis& campaign, const std::string& pa
     for (const auto& l : record.levels) {
       std::fprintf(
           out, "%s,%.6g,%.9g,%.6g,%d,%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6f,%.6f,%d,%.6g,%d,%s\n",
-          l.well.c_str(), l.f0_n, l.edc_mean_j, l.edc_std_j, l.cycles, record.name.c_str(),
-          l.edc_noise_floor_j, l.edc_eq13_mean_j, l.edc_trapz_mean_j, l.z1_abs_m, l.lag_rad,
-          l.z_mean_m, l.start_s, l.end_s, l.transient_cycles, l.period1_change, l.usable() ? 1 : 0,
-          analysis::level_flags(record, l).c_str());
+          to_string(l.well).c_str(), l.f0_n, l.edc_mean_j, l.edc_std_j, l.cycles,
+          record.name.c_str(), l.edc_noise_floor_j, l.edc_eq13_mean_j, l.edc_trapz_mean_j,
+          l.z1_abs_m, l.lag_rad, l.z_mean_m, l.start_s, l.end_s, l.transient_cycles,
+          l.period1_change, l.usable() ? 1 : 0, analysis::level_flags(record, l).c_str());
     }
   }
   close_output(out, path);
@@ -115,7 +116,7 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
                 ("EDC " + energy).c_str(), ("std " + energy).c_str(), ("floor " + energy).c_str(),
                 "cycles", "flags");
     for (const auto& l : record.levels) {
-      std::printf("  %-10s %9.3f %12.5g %11.3g %12.3g %6d  %s\n", l.well.c_str(), l.f0_n,
+      std::printf("  %-10s %9.3f %12.5g %11.3g %12.3g %6d  %s\n", to_string(l.well).c_str(), l.f0_n,
                   l.edc_mean_j, l.edc_std_j, l.edc_noise_floor_j, l.cycles, l.flags().c_str());
     }
   }
@@ -153,7 +154,9 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
 void run(const AnalyzeOptions& options) {
   daq::MappingOverrides overrides;
   if (options.freq_hz > 0) overrides.excitation_freq_hz = options.freq_hz;
-  if (!options.well.empty()) overrides.well_positive = options.well == "positive";
+  if (!options.well.empty()) {
+    overrides.well_positive = analysis::well_from_string(options.well) == analysis::Well::Positive;
+  }
   overrides.ignore_sidecar_levels = options.detect_levels;
   InputTimes times;
   const analysis::CampaignAnalysis campaign =

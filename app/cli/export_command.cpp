@@ -6,10 +6,12 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/option_parsing.h"
@@ -127,7 +129,9 @@ void run(const ExportOptions& o) {
   if (!o.edc_mat_path.empty()) {
     daq::MappingOverrides overrides;
     if (o.freq_hz > 0) overrides.excitation_freq_hz = o.freq_hz;
-    if (!o.well.empty()) overrides.well_positive = o.well == "positive";
+    if (!o.well.empty()) {
+      overrides.well_positive = analysis::well_from_string(o.well) == analysis::Well::Positive;
+    }
     const analysis::CampaignAnalysis campaign =
         analyze_recordings(o.recordings, overrides, analysis::PipelineSettings{});
     const std::vector<daq::EdcTableRow> rows = daq::edc_table_rows(campaign);
@@ -170,7 +174,8 @@ void add_export_command(CLI::App& app) {
     if (o->mat_path.empty() && o->uff_path.empty() && o->edc_mat_path.empty()) {
       throw InputError("export: nothing to write: give --mat, --uff or --edc-mat");
     }
-    if (!o->well.empty() && o->well != "positive" && o->well != "negative") {
+    const std::optional<analysis::Well> well = analysis::parse_well(o->well);
+    if (!o->well.empty() && well != analysis::Well::Positive && well != analysis::Well::Negative) {
       throw InputError("--well " + o->well + ": expected positive or negative");
     }
     if (o->uff.direction < -6 || o->uff.direction > 6) {

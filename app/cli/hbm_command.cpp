@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/figures/figure_png.h"
 #include "analysis/figures/hbm_figures.h"
 #include "analysis/hbm/branch_switching.h"
@@ -43,19 +45,21 @@ struct HbmCommandOptions {
   bool follow_period_doubling = false;
 };
 
+using analysis::Well;
 using figures::CsvBranch;
 using figures::NamedBranch;
 
 // Follows the period-doubling cascade of `branch` (analysis::follow_period_doublings), says what
 // each switch found, and appends the new branches to `out` and `csv`.
 void follow_period_doublings(const analysis::Model& model, const analysis::Branch& branch,
-                             const analysis::ContinuationOptions& options, const std::string& well,
+                             const analysis::ContinuationOptions& options, Well well,
                              std::vector<std::unique_ptr<analysis::Branch>>& out,
                              std::vector<CsvBranch>& csv) {
+  const std::string name = to_string(well);
   const auto start = std::chrono::steady_clock::now();
   std::vector<analysis::PeriodDoublingSwitch> switches;
   {
-    ProgressBar bar("period doublings " + well);
+    ProgressBar bar("period doublings " + name);
     switches = analysis::follow_period_doublings(model, branch, options, bar.callback());
   }
   const double seconds =
@@ -63,14 +67,14 @@ void follow_period_doublings(const analysis::Model& model, const analysis::Branc
   for (analysis::PeriodDoublingSwitch& doubled : switches) {
     const int period = doubled.subharmonic;
     if (doubled.status != JobStatus::Ok && doubled.branch.points.empty()) {
-      std::printf("period-%d branch (%s well): not followed: %s\n", period, well.c_str(),
+      std::printf("period-%d branch (%s well): not followed: %s\n", period, name.c_str(),
                   doubled.message.c_str());
       return;
     }
     std::printf(
         "period-%d branch (%s well): starts at f0 = %.6f N (harmonic-balance pitchfork; "
         "Floquet flip at %.6f N), %zu points to f0 = %.6f N\n",
-        period, well.c_str(), doubled.f0_pitchfork_n, doubled.f0_flip_n,
+        period, name.c_str(), doubled.f0_pitchfork_n, doubled.f0_flip_n,
         doubled.branch.points.size(), doubled.branch.points.back().f0_n);
     for (const analysis::BranchEvent& e : doubled.branch.events) {
       if (e.point_index == 0) continue;  // the start itself
@@ -107,23 +111,24 @@ void run(const HbmCommandOptions& o) {
   options.max_step = o.max_step;
   options.initial_step = std::min(options.initial_step, o.max_step);
 
-  std::vector<std::string> wells;
-  if (o.well != "negative") wells.push_back("positive");
-  if (o.well != "positive") wells.push_back("negative");
+  const std::optional<Well> only_well = analysis::parse_well(o.well);  // none: both
+  std::vector<Well> wells;
+  if (only_well != Well::Negative) wells.push_back(Well::Positive);
+  if (only_well != Well::Positive) wells.push_back(Well::Negative);
   std::vector<analysis::Branch> branches;
-  for (const std::string& well : wells) {
-    options.positive_well = well == "positive";
+  for (const Well well : wells) {
+    options.positive_well = well == Well::Positive;
     const auto start = std::chrono::steady_clock::now();
     analysis::Branch branch;
     {
-      ProgressBar bar("hbm " + well);
+      ProgressBar bar("hbm " + to_string(well));
       branch = analysis::continue_branch(model, options, bar.callback());
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s well: %zu points, %g Hz, f0 %g -> %g N, H = %d, nu = %d, N = %d\n",
-                well.c_str(), branch.points.size(), o.freq_hz, options.start, options.end,
-                o.harmonics, o.subharmonic, branch.samples);
+                to_string(well).c_str(), branch.points.size(), o.freq_hz, options.start,
+                options.end, o.harmonics, o.subharmonic, branch.samples);
     std::printf("continuation: %d steps accepted, %d rejected, %d Newton iterations, %.1f ms\n",
                 branch.steps_accepted, branch.steps_rejected, branch.newton_iterations,
                 seconds * 1e3);
@@ -139,9 +144,9 @@ void run(const HbmCommandOptions& o) {
   for (std::size_t i = 0; i < branches.size(); ++i) {
     csv.push_back({&branches[i], wells[i], o.subharmonic});
     if (o.follow_period_doubling) {
-      options.positive_well = wells[i] == "positive";
+      options.positive_well = wells[i] == Well::Positive;
       if (branches[i].events_of(analysis::PointMarker::PeriodDoubling).empty())
-        std::printf("%s well: no period doubling to follow\n", wells[i].c_str());
+        std::printf("%s well: no period doubling to follow\n", to_string(wells[i]).c_str());
       follow_period_doublings(model, branches[i], options, wells[i], doubled, csv);
     }
   }
@@ -157,7 +162,7 @@ void run(const HbmCommandOptions& o) {
 
   std::vector<NamedBranch> named;
   for (std::size_t i = 0; i < branches.size(); ++i) {
-    named.push_back({wells[i] == "positive" ? "z+* well" : "z-* well", &branches[i]});
+    named.push_back({wells[i] == Well::Positive ? "z+* well" : "z-* well", &branches[i]});
   }
   char title[160];
   std::snprintf(title, sizeof title, "%s model, %.4g Hz, H = %d%s", o.model.c_str(), o.freq_hz,
@@ -173,7 +178,7 @@ void run(const HbmCommandOptions& o) {
     sweep_options.freq_hz = o.freq_hz;
     sweep_options.f0_max_n = options.end;
     sweep_options.up_s = sweep_options.down_s = o.sweep_time;
-    sweep_options.positive_well = wells[0] == "positive";
+    sweep_options.positive_well = wells[0] == Well::Positive;
     analysis::AmplitudeSweep sweep;
     {
       ProgressBar bar("sweep");
@@ -182,7 +187,7 @@ void run(const HbmCommandOptions& o) {
     analysis::write_amplitude_sweep_csv(sweep, o.sweep);
     std::printf("wrote %s: sweep 0 -> %g -> 0 N, %g s each way (%g N/s), %s well\n",
                 o.sweep.c_str(), sweep_options.f0_max_n, o.sweep_time,
-                sweep_options.f0_max_n / o.sweep_time, wells[0].c_str());
+                sweep_options.f0_max_n / o.sweep_time, to_string(wells[0]).c_str());
     std::printf("jump up   at f0 = %.4f N  (%.4g -> %.4g m)\n", sweep.jump_up.f0_n,
                 sweep.jump_up.amp_before_m, sweep.jump_up.amp_after_m);
     std::printf("jump down at f0 = %.4f N  (%.4g -> %.4g m)\n", sweep.jump_down.f0_n,
@@ -207,8 +212,8 @@ void run(const HbmCommandOptions& o) {
     map_options.step_n = o.map_step;
     map_options.hold_periods = o.map_hold;
     map_options.sampled_periods = o.map_sampled;
-    map_options.positive_well = o.well != "negative";
-    map_options.negative_well = o.well != "positive";
+    map_options.positive_well = only_well != Well::Negative;
+    map_options.negative_well = only_well != Well::Positive;
     analysis::BifurcationMap map;
     {
       ProgressBar bar("map");
@@ -217,12 +222,11 @@ void run(const HbmCommandOptions& o) {
     analysis::write_bifurcation_map_csv(map, o.map);
     std::printf("wrote %s: %zu levels, %d periods each, last %d sampled at t = nT\n", o.map.c_str(),
                 map.levels.size(), o.map_hold, o.map_sampled);
-    for (bool positive : {true, false}) {
-      const char* well = positive ? "positive" : "negative";
+    for (const Well well : {Well::Positive, Well::Negative}) {
       int previous = 0;
-      for (const analysis::BifurcationMapLevel& level : map.levels_of(positive)) {
+      for (const analysis::BifurcationMapLevel& level : map.levels_of(well == Well::Positive)) {
         if (level.distinct_points != previous) {
-          std::printf("%s well: %d distinct point%s from f0 = %.4g N\n", well,
+          std::printf("%s well: %d distinct point%s from f0 = %.4g N\n", to_string(well).c_str(),
                       level.distinct_points, level.distinct_points == 1 ? "" : "s", level.f0_n);
           previous = level.distinct_points;
         }

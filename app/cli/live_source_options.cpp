@@ -1,6 +1,7 @@
 #include "app/cli/live_source_options.h"
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "app/cli/option_parsing.h"
 #include "daq/live/rig_source.h"
 #include "daq/live/source_factory.h"
@@ -49,7 +50,7 @@ std::unique_ptr<daq::SampleSource> make_live_source(const std::string& spec,
   }
   daq::SourceOptions source;
   source.model = o.model;
-  source.positive_well = o.well == "positive";
+  source.positive_well = analysis::well_from_string(o.well) == analysis::Well::Positive;
   source.seed = o.seed;
   source.frequency_hz = o.freq_hz;
   source.speed = o.speed;

@@ -54,7 +54,7 @@ void write_edc(const std::vector<analysis::LevelResult>& levels, const std::stri
   if (!out) throw InputError(path + ": cannot write");
   std::fprintf(out, "well,f0_n,edc_mean_j,edc_std_j,cycles,flags\n");
   for (const auto& l : levels) {
-    std::fprintf(out, "%s,%.9g,%.9g,%.9g,%d,%s\n", l.well.c_str(), l.f0_n, l.edc_mean_j,
+    std::fprintf(out, "%s,%.9g,%.9g,%.9g,%d,%s\n", to_string(l.well).c_str(), l.f0_n, l.edc_mean_j,
                  l.edc_std_j, l.cycles, l.flags().c_str());
   }
   if (std::fclose(out) != 0) throw InputError(path + ": write failed");
@@ -109,8 +109,8 @@ void run(const RecordOptions& o) {
       levels.size(), status.cycles, status.excluded_cycles, 1e3 * status.edc_latency_s,
       1e3 * status.edc_latency_max_s);
   for (const auto& l : levels) {
-    std::printf("  %-8s f0 %.3f N  EDC %.6g ± %.2g mJ  %d cycles %s\n", l.well.c_str(), l.f0_n,
-                1e3 * l.edc_mean_j, 1e3 * l.edc_std_j, l.cycles, l.flags().c_str());
+    std::printf("  %-8s f0 %.3f N  EDC %.6g ± %.2g mJ  %d cycles %s\n", to_string(l.well).c_str(),
+                l.f0_n, 1e3 * l.edc_mean_j, 1e3 * l.edc_std_j, l.cycles, l.flags().c_str());
   }
   if (!o.edc.empty()) write_edc(levels, o.edc);
 }

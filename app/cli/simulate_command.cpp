@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/model/model_json.h"
 #include "app/cli/commands.h"
 #include "app/cli/option_parsing.h"
@@ -36,7 +37,7 @@ struct SimulateOptions {
 void run(const SimulateOptions& options) {
   const analysis::Model model = analysis::model_from_spec(options.model);
   daq::RigSpec spec;
-  spec.positive_well = options.well == "positive";
+  spec.positive_well = analysis::well_from_string(options.well) == analysis::Well::Positive;
   spec.sample_rate_hz = options.rate_hz;
   spec.seed = options.seed;
   if (options.ideal_sensors) {

@@ -273,7 +273,7 @@ void write_edc_mat(const std::vector<EdcTableRow>& rows, const std::string& path
   std::vector<std::vector<double>> columns(std::size(kColumns), std::vector<double>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const analysis::LevelResult& level = rows[i].level;
-    well[i] = level.well;
+    well[i] = analysis::to_string(level.well);
     record[i] = rows[i].record;
     flags[i] = rows[i].flags;
     usable[i] = level.usable() ? 1 : 0;

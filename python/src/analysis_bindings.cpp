@@ -23,7 +23,7 @@ py::dict level_table(const std::vector<analysis::LevelResult>& levels,
   std::vector<int> cycles(n), transient(n), usable(n);
   for (std::size_t i = 0; i < n; ++i) {
     const analysis::LevelResult& l = levels[i];
-    well.append(l.well);
+    well.append(analysis::to_string(l.well));
     f0[i] = l.f0_n;
     mean[i] = l.edc_mean_j;
     std_j[i] = l.edc_std_j;
@@ -113,11 +113,7 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
     overrides.excitation_freq_hz = freq;
   }
   if (!a.well.is_none()) {
-    const std::string well = a.well.cast<std::string>();
-    if (well != "positive" && well != "negative") {
-      throw InputError("well: \"" + well + "\" is not positive or negative");
-    }
-    overrides.well_positive = well == "positive";
+    overrides.well_positive = well_argument(a.well.cast<std::string>()) == analysis::Well::Positive;
   }
   overrides.ignore_sidecar_levels = a.detect_levels;
   analysis::PipelineSettings settings;

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/common/job.h"
+#include "analysis/edc/well.h"
 
 namespace oscilab::python {
 
@@ -48,6 +49,9 @@ Eigen::VectorXd to_vector(const py::handle& object, const std::string& where);
 /// One path or a sequence of paths (str or os.PathLike) → strings.
 std::vector<std::string> path_list(const py::handle& object, const std::string& where);
 std::string path_string(const py::handle& object);
+
+/// A `well` argument: "positive" or "negative"; throws InputError naming the value otherwise.
+analysis::Well well_argument(const std::string& well);
 
 // --- Long jobs (job_runner.cpp) --------------------------------------------------------------
 

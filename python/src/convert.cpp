@@ -1,5 +1,6 @@
 // JSON, array and path conversions between Python and the C++ core.
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -122,6 +123,14 @@ Eigen::VectorXd to_vector(const py::handle& object, const std::string& where) {
 
 std::string path_string(const py::handle& object) {
   return py::str(py::module_::import("os").attr("fspath")(object)).cast<std::string>();
+}
+
+analysis::Well well_argument(const std::string& well) {
+  const std::optional<analysis::Well> parsed = analysis::parse_well(well);
+  if (parsed != analysis::Well::Positive && parsed != analysis::Well::Negative) {
+    throw InputError("well: \"" + well + "\" is not positive or negative");
+  }
+  return *parsed;
 }
 
 std::vector<std::string> path_list(const py::handle& object, const std::string& where) {

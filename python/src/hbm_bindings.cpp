@@ -127,14 +127,12 @@ void bind_hbm(py::module_& m) {
          bool stability, double max_step, const std::vector<double>& landing,
          bool follow_period_doubling, const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
-        if (well != "positive" && well != "negative") {
-          throw InputError("well: \"" + well + "\" is not positive or negative");
-        }
+        const analysis::Well start_well = well_argument(well);
         analysis::ContinuationOptions options;
         options.start = f0_n.first;
         options.end = f0_n.second;
         options.freq_hz = freq_hz;
-        options.positive_well = well == "positive";
+        options.positive_well = start_well == analysis::Well::Positive;
         options.hbm.harmonics = harmonics;
         options.hbm.subharmonic = subharmonic;
         options.hbm.samples = samples;

@@ -267,11 +267,9 @@ it on leaving. Made by oscilab.live().
         } else {
           const std::string spec = path_string(source);
           if (daq::source_kind(spec) == daq::SourceKind::Rig) {
-            if (well != "positive" && well != "negative") {
-              throw InputError("well: \"" + well + "\" is not positive or negative");
-            }
+            const analysis::Well rig_well = well_argument(well);
             options.rig_model = model_argument(model);
-            options.positive_well = well == "positive";
+            options.positive_well = rig_well == analysis::Well::Positive;
             options.seed = seed;
             options.frequency_hz = freq_hz;
             options.duration_s = session->duration_s;

@@ -167,10 +167,8 @@ make the others. Raises ValueError naming the term and field for bad input.
       .def(
           "well",
           [](const Model& model, const std::string& well) {
-            if (well != "positive" && well != "negative") {
-              throw InputError("well: \"" + well + "\" is not positive or negative");
-            }
-            const analysis::Equilibrium e = model.well(well == "positive");
+            const analysis::Equilibrium e =
+                model.well(well_argument(well) == analysis::Well::Positive);
             py::dict d;
             d["z_m"] = e.z_m;
             d["stable"] = e.stable;

@@ -29,13 +29,6 @@ const char* simulator_status(analysis::TimeSimulator::Status s) {
   return "unknown";
 }
 
-bool well_argument(const std::string& well) {
-  if (well != "positive" && well != "negative") {
-    throw InputError("well: \"" + well + "\" is not positive or negative");
-  }
-  return well == "positive";
-}
-
 py::dict samples_dict(const analysis::TimeSimulator::Result& r) {
   py::dict d;
   d["t_s"] = to_array(r.t_s);
@@ -146,7 +139,7 @@ void bind_simulation(py::module_& m) {
          double sample_rate_hz, double relative_tolerance, double absolute_tolerance,
          const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
-        const bool positive = well_argument(well);
+        const bool positive = well_argument(well) == analysis::Well::Positive;
         const double z0 = z0_m.is_none() ? model.well(positive).z_m : z0_m.cast<double>();
         analysis::TimeSimulator::Options options;
         options.relative_tolerance = relative_tolerance;
@@ -213,7 +206,7 @@ cycles, start_s, end_s). progress: callable(info) with info['fraction']; Ctrl-C 
          std::uint64_t seed, bool ideal_sensors, const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
         daq::RigSpec spec;
-        spec.positive_well = well_argument(well);
+        spec.positive_well = well_argument(well) == analysis::Well::Positive;
         spec.sample_rate_hz = rate_hz;
         spec.seed = seed;
         if (ideal_sensors) {

@@ -9,7 +9,7 @@
 namespace oscilab::ui {
 namespace {
 
-analysis::LevelResult level(const char* well, double f0, double edc, double std, int cycles) {
+analysis::LevelResult level(analysis::Well well, double f0, double edc, double std, int cycles) {
   analysis::LevelResult r;
   r.well = well;
   r.f0_n = f0;
@@ -21,10 +21,13 @@ analysis::LevelResult level(const char* well, double f0, double edc, double std,
 
 TEST(EdcPlotData, SplitsLevelsByWellWithThreeSigmaBars) {
   std::vector<analysis::LevelResult> levels = {
-      level("positive", 0.2, 1e-5, 1e-7, 80), level("negative", 0.2, 2e-5, 2e-7, 80),
-      level("positive", 0.3, 3e-5, 1e-7, 80), level("cross-well", 2.9, 1e-2, 1e-3, 80)};
+      level(analysis::Well::Positive, 0.2, 1e-5, 1e-7, 80),
+      level(analysis::Well::Negative, 0.2, 2e-5, 2e-7, 80),
+      level(analysis::Well::Positive, 0.3, 3e-5, 1e-7, 80),
+      level(analysis::Well::CrossWell, 2.9, 1e-2, 1e-3, 80)};
   levels[3].cross_well = true;
-  const EdcPlotData data = edc_plot_data(levels, level("positive", 0.4, 4e-5, 1e-7, 12));
+  const EdcPlotData data =
+      edc_plot_data(levels, level(analysis::Well::Positive, 0.4, 4e-5, 1e-7, 12));
   ASSERT_EQ(data.positive.size(), 2u);
   ASSERT_EQ(data.negative.size(), 1u);
   ASSERT_EQ(data.other.size(), 1u);
@@ -34,10 +37,11 @@ TEST(EdcPlotData, SplitsLevelsByWellWithThreeSigmaBars) {
   EXPECT_EQ(data.other[0].flags, "cross-well");
   ASSERT_TRUE(data.current.has_value());
   EXPECT_EQ(data.current->f0_n, 0.4);
-  EXPECT_EQ(data.current_well, "positive");
+  EXPECT_EQ(data.current_well, analysis::Well::Positive);
   EXPECT_EQ(data.max_f0_n, 2.9);
   // A level with no steady cycle yet is not drawn.
-  EXPECT_FALSE(edc_plot_data({}, level("positive", 0.5, 0, 0, 0)).current.has_value());
+  EXPECT_FALSE(
+      edc_plot_data({}, level(analysis::Well::Positive, 0.5, 0, 0, 0)).current.has_value());
 }
 
 TEST(PredictionLevels, CoverThePapersRangeOrThatMeasured) {
@@ -51,7 +55,7 @@ TEST(PredictionLevels, CoverThePapersRangeOrThatMeasured) {
 
 TEST(LevelWarning, NamesTheFlagsOfTheLevelBeingFilled) {
   EXPECT_EQ(level_warning(std::nullopt), "");
-  analysis::LevelResult r = level("positive", 2.8, 1e-2, 1e-4, 40);
+  analysis::LevelResult r = level(analysis::Well::Positive, 2.8, 1e-2, 1e-4, 40);
   EXPECT_EQ(level_warning(r), "");
   r.period1 = false;
   r.cross_well = true;

@@ -142,7 +142,12 @@ class LiveMonitorTest : public QObject {
     QVERIFY(monitor.replay() != nullptr);
     // While it runs the EDC plot grows: some levels before the end.
     QVERIFY(QTest::qWaitFor(
-        [&] { return monitor.analysis_plots()->edc_graph("positive")->dataCount() >= 3; }, 30000));
+        [&] {
+          return monitor.analysis_plots()
+                     ->edc_graph(oscilab::analysis::Well::Positive)
+                     ->dataCount() >= 3;
+        },
+        30000));
     QVERIFY(!monitor.acquisition()->finished());
     QVERIFY(wait_finished(monitor, 60000));
     QVERIFY(wait_end_shown(monitor));
@@ -150,15 +155,19 @@ class LiveMonitorTest : public QObject {
     // The points drawn are the acquisition's levels: f0 and EDC [mJ] with ±3σ bars.
     const std::vector<oscilab::analysis::LevelResult> live = monitor.acquisition()->levels();
     QCOMPARE(live.size(), std::size_t(26));  // 0.2 … 2.7 N (README, samples)
-    const auto drawn = points(monitor.analysis_plots()->edc_graph("positive"));
-    const auto bars = error_bars(monitor.analysis_plots()->edc_plot(),
-                                 monitor.analysis_plots()->edc_graph("positive"));
+    const auto drawn =
+        points(monitor.analysis_plots()->edc_graph(oscilab::analysis::Well::Positive));
+    const auto bars =
+        error_bars(monitor.analysis_plots()->edc_plot(),
+                   monitor.analysis_plots()->edc_graph(oscilab::analysis::Well::Positive));
     QCOMPARE(drawn.size(), live.size());
     QCOMPARE(bars.size(), live.size());
-    QCOMPARE(monitor.analysis_plots()->edc_graph("negative")->dataCount(), 0);
-    QCOMPARE(monitor.analysis_plots()->edc_graph("cross-well")->dataCount(), 0);
+    QCOMPARE(monitor.analysis_plots()->edc_graph(oscilab::analysis::Well::Negative)->dataCount(),
+             0);
+    QCOMPARE(monitor.analysis_plots()->edc_graph(oscilab::analysis::Well::CrossWell)->dataCount(),
+             0);
     for (std::size_t i = 0; i < live.size(); ++i) {
-      QCOMPARE(live[i].well, std::string("positive"));
+      QCOMPARE(live[i].well, oscilab::analysis::Well::Positive);
       QCOMPARE(drawn[i].first, live[i].f0_n);
       QCOMPARE(drawn[i].second, 1e3 * live[i].edc_mean_j);
       QCOMPARE(bars[i], 3e3 * live[i].edc_std_j);
@@ -310,10 +319,15 @@ class LiveMonitorTest : public QObject {
     QTRY_COMPARE_WITH_TIMEOUT(monitor.rig()->excitation().f0_n, 1.1, 1000);
     QVERIFY(QTest::qWaitFor([&] { return monitor.acquisition()->levels().size() >= 1; }, 30000));
     QVERIFY(QTest::qWaitFor(
-        [&] { return monitor.analysis_plots()->edc_graph("positive")->dataCount() >= 1; }, 5000));
+        [&] {
+          return monitor.analysis_plots()
+                     ->edc_graph(oscilab::analysis::Well::Positive)
+                     ->dataCount() >= 1;
+        },
+        5000));
     QVERIFY(wait_frames(monitor, 2));
     monitor.stop();
-    QCOMPARE(monitor.analysis_plots()->edc_graph("positive")->dataCount(),
+    QCOMPARE(monitor.analysis_plots()->edc_graph(oscilab::analysis::Well::Positive)->dataCount(),
              static_cast<int>(monitor.acquisition()->levels().size()));
     QVERIFY(log_rows_of_kind(monitor, "level") >= 2);
     QCOMPARE(log_rows_of_kind(monitor, "alarm"), 1);
@@ -373,7 +387,8 @@ class LiveMonitorTest : public QObject {
     QCOMPARE(monitor.status_strip()->label("gaps")->text(), QString("gaps 0 (0)"));
     QCOMPARE(log_rows_of_kind(monitor, "connected"), 1);
     // The sidecar's levels in the first 20 s: 0.2 N from 2.5 s (README, samples), finished.
-    QVERIFY(monitor.analysis_plots()->edc_graph("positive")->dataCount() >= 1);
+    QVERIFY(monitor.analysis_plots()->edc_graph(oscilab::analysis::Well::Positive)->dataCount() >=
+            1);
     for (int k = 0; k < 5; ++k) QVERIFY(monitor.trace_view()->plot()->graph(k)->dataCount() > 100);
   }
 

@@ -18,9 +18,10 @@ using analysis::LevelResult;
 
 constexpr double kPi = std::numbers::pi;
 
-LevelResult level(std::string well, double f0_n, double edc_mean_j, double edc_std_j, int cycles) {
+LevelResult level(analysis::Well well, double f0_n, double edc_mean_j, double edc_std_j,
+                  int cycles) {
   LevelResult result;
-  result.well = std::move(well);
+  result.well = well;
   result.f0_n = f0_n;
   result.edc_mean_j = edc_mean_j;
   result.edc_std_j = edc_std_j;
@@ -29,9 +30,9 @@ LevelResult level(std::string well, double f0_n, double edc_mean_j, double edc_s
 }
 
 TEST(LevelRows, OneRowPerLevelWithTheLevelsNumbersAndFlags) {
-  std::vector<LevelResult> levels = {level("positive", 0.2, 1.5e-4, 2e-6, 70),
-                                     level("cross-well", 2.6, 2.1e-2, 4e-3, 60),
-                                     level("negative", 0.3, 3.0e-4, 5e-6, 3)};
+  std::vector<LevelResult> levels = {level(analysis::Well::Positive, 0.2, 1.5e-4, 2e-6, 70),
+                                     level(analysis::Well::CrossWell, 2.6, 2.1e-2, 4e-3, 60),
+                                     level(analysis::Well::Negative, 0.3, 3.0e-4, 5e-6, 3)};
   levels[1].cross_well = true;
   levels[1].period1 = false;
   levels[2].few_cycles = true;
@@ -58,10 +59,10 @@ TEST(LevelRows, CampaignRowsGoRecordByRecordAndFindTheirLevel) {
   analysis::CampaignAnalysis campaign;
   campaign.records.resize(2);
   campaign.records[0].name = "pos.flac";
-  campaign.records[0].levels = {level("positive", 0.2, 1e-4, 0, 10),
-                                level("positive", 0.3, 2e-4, 0, 10)};
+  campaign.records[0].levels = {level(analysis::Well::Positive, 0.2, 1e-4, 0, 10),
+                                level(analysis::Well::Positive, 0.3, 2e-4, 0, 10)};
   campaign.records[1].name = "neg.flac";
-  campaign.records[1].levels = {level("negative", 0.2, 1.1e-4, 0, 10)};
+  campaign.records[1].levels = {level(analysis::Well::Negative, 0.2, 1.1e-4, 0, 10)};
   const std::vector<LevelRow> rows = level_rows(campaign);
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[1].key, (LevelKey{0, 1}));
@@ -102,11 +103,11 @@ TEST(LevelLoop, HoldsTheSteadySamplesAndItsAreaIsTheEnergyPerCycle) {
   motion.restoring_force_n = Eigen::VectorXd::Zero(n);
   const Eigen::VectorXd f_n = (omega * motion.t_s.array()).sin() * kF;
 
-  LevelResult l = level("positive", kF, 0, 0, 45);
+  LevelResult l = level(analysis::Well::Positive, kF, 0, 0, 45);
   l.start_s = 5.0;  // 45 cycles of 1/9 s: [5, 10]
   l.end_s = 5.0 + 45 / kFreqHz;
   const LevelLoop loop = level_loop(motion, f_n, l);
-  EXPECT_EQ(loop.well, "positive");
+  EXPECT_EQ(loop.well, analysis::Well::Positive);
   EXPECT_EQ(loop.cycles, 45);
   ASSERT_EQ(loop.z_m.size(), std::size_t(45 * 64 + 1));  // both ends are sample times
   EXPECT_DOUBLE_EQ(loop.t_s.front(), 5.0);

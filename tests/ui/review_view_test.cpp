@@ -47,8 +47,8 @@ constexpr double kFreqHz = 9.0;    // their excitation frequency
 constexpr int kAnalysisTimeoutMs = 180000;
 
 // The level of `well` closest to f0 = `f0_n` in the independent analysis.
-LevelKey level_near(const oscilab::analysis::CampaignAnalysis& campaign, const std::string& well,
-                    double f0_n) {
+LevelKey level_near(const oscilab::analysis::CampaignAnalysis& campaign,
+                    oscilab::analysis::Well well, double f0_n) {
   LevelKey best;
   double distance = INFINITY;
   for (std::size_t r = 0; r < campaign.records.size(); ++r) {
@@ -139,7 +139,8 @@ class ReviewViewTest : public QObject {
       QVERIFY(key.level >= 0 && std::size_t(key.level) < record.levels.size());
       const LevelResult& level = record.levels[std::size_t(key.level)];
       QCOMPARE(table->item(row, LevelTable::kRecord)->text(), QString::fromStdString(record.name));
-      QCOMPARE(table->item(row, LevelTable::kWell)->text(), QString::fromStdString(level.well));
+      QCOMPARE(table->item(row, LevelTable::kWell)->text(),
+               QString::fromStdString(to_string(level.well)));
       QCOMPARE(table->item(row, LevelTable::kFlags)->text(), QString::fromStdString(level.flags()));
       QCOMPARE(table->item(row, LevelTable::kCycles)->text(), QString::number(level.cycles));
       // The same computation on the same samples: equal up to the last bits of the FFTs.
@@ -169,8 +170,8 @@ class ReviewViewTest : public QObject {
     LevelTable* table = review->level_table();
     review->tabs()->setCurrentIndex(ReviewView::kLevelsTab);
     // Fig. 9: 1.3 N, the negative well first (so that the record shown changes).
-    const LevelKey negative = level_near(expected_, "negative", 1.3);
-    const LevelKey positive = level_near(expected_, "positive", 1.3);
+    const LevelKey negative = level_near(expected_, oscilab::analysis::Well::Negative, 1.3);
+    const LevelKey positive = level_near(expected_, oscilab::analysis::Well::Positive, 1.3);
     QVERIFY(negative.valid() && positive.valid());
     const LevelResult& level =
         expected_.records[std::size_t(negative.record)].levels[std::size_t(negative.level)];
@@ -210,7 +211,8 @@ class ReviewViewTest : public QObject {
     QCOMPARE(curve->data()->size(), last - first + 1);
     QCOMPARE(loop_plot->xAxis->label(), QString("z [mm]"));
     QCOMPARE(loop_plot->yAxis->label(), QString("f = \u2212m d\u00b2b/dt\u00b2 [N]"));
-    QCOMPARE(curve->pen().color().rgba(), oscilab::ui::well_colour("negative").rgba());
+    QCOMPARE(curve->pen().color().rgba(),
+             oscilab::ui::well_colour(oscilab::analysis::Well::Negative).rgba());
     // Its z stays inside the level's range of fitted z (the fits' extremes), give or take the
     // laser's noise and the harmonics above the 8th: 2 % of the range.
     const double z_span_mm = 1e3 * (level.z_max_m - level.z_min_m);
@@ -237,9 +239,9 @@ class ReviewViewTest : public QObject {
     QCOMPARE(loop_plot->plottableCount(), 2);
     QCOMPARE(review->selected_levels().front(), positive);  // the current row first
     QCOMPARE(qobject_cast<QCPCurve*>(loop_plot->plottable(0))->pen().color().rgba(),
-             oscilab::ui::well_colour("positive").rgba());
+             oscilab::ui::well_colour(oscilab::analysis::Well::Positive).rgba());
     QCOMPARE(qobject_cast<QCPCurve*>(loop_plot->plottable(1))->pen().color().rgba(),
-             oscilab::ui::well_colour("negative").rgba());
+             oscilab::ui::well_colour(oscilab::analysis::Well::Negative).rgba());
     QVERIFY(window_->windowTitle().startsWith("stepped_positive.flac"));
   }
 
@@ -309,8 +311,8 @@ class ReviewViewTest : public QObject {
   void aSessionBringsEverythingBackInAFreshWindow() {
     ReviewView* review = window_->review_view();
     // The state to keep: the two Fig. 9 levels, a window, the cursor, the notes, the layout.
-    const LevelKey negative = level_near(expected_, "negative", 1.3);
-    const LevelKey positive = level_near(expected_, "positive", 1.3);
+    const LevelKey negative = level_near(expected_, oscilab::analysis::Well::Negative, 1.3);
+    const LevelKey positive = level_near(expected_, oscilab::analysis::Well::Positive, 1.3);
     review->select_levels({positive, negative});
     window_->record_view()->set_time_window(101.0, 104.5);
     window_->record_view()->set_cursor_time(102.0);

@@ -139,7 +139,7 @@ TEST(LevelTracker, FindsEachHoldOfASteppedSequenceWithItsSteadyPart) {
     // relative ≤ 1e-5 on σ.
     EXPECT_NEAR(level.edc_std_j, std_dev, 1e-5 * std_dev);
     EXPECT_NEAR(level.z1_abs_m, 1e-3 * holds[h].f0_n, 1e-15);
-    EXPECT_EQ(level.well, "positive");
+    EXPECT_EQ(level.well, Well::Positive);
     EXPECT_TRUE(level.period1);
     EXPECT_TRUE(level.usable());
     EXPECT_EQ(level.flags(), "");
@@ -355,13 +355,13 @@ TEST(LevelTracker, CrossWellAndPeriodTwoLevelsAreFlagged) {
   }
   const std::vector<LevelResult> levels = track(detected_options(), cycles);
   ASSERT_EQ(levels.size(), 3u);
-  EXPECT_EQ(levels[0].well, "negative");
+  EXPECT_EQ(levels[0].well, Well::Negative);
   EXPECT_TRUE(levels[0].usable());
-  EXPECT_EQ(levels[1].well, "cross-well");
+  EXPECT_EQ(levels[1].well, Well::CrossWell);
   EXPECT_TRUE(levels[1].cross_well);
   EXPECT_FALSE(levels[1].usable());
   EXPECT_EQ(levels[1].flags(), "cross-well");
-  EXPECT_EQ(levels[2].well, "positive");
+  EXPECT_EQ(levels[2].well, Well::Positive);
   EXPECT_FALSE(levels[2].period1);
   // The median over the 19 changes: 10 into a small cycle (0.4/0.8), 9 into a large one
   // (0.4/1.2).
@@ -377,9 +377,9 @@ TEST(LevelTracker, VelocityChannelTakesItsWellFromTheHint) {
   options.mass_quantity = MotionQuantity::Velocity;
   std::vector<CycleFit> cycles = s.cycles;
   for (CycleFit& c : cycles) c.z_mean_m = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(track(options, cycles).at(0).well, "unknown");
+  EXPECT_EQ(track(options, cycles).at(0).well, Well::Unknown);
   options.well_hint_positive = false;
-  EXPECT_EQ(track(options, cycles).at(0).well, "negative");
+  EXPECT_EQ(track(options, cycles).at(0).well, Well::Negative);
 }
 
 // Cycles fitted (CycleAnalyzer, H = 8) from a sine response with white sensor noise on the mass

@@ -7,7 +7,7 @@
 namespace oscilab::analysis {
 namespace {
 
-LevelResult level(const std::string& well, double f0, double edc, int cycles) {
+LevelResult level(Well well, double f0, double edc, int cycles) {
   LevelResult r;
   r.well = well;
   r.f0_n = f0;
@@ -28,14 +28,14 @@ RecordAnalysis record(const std::string& name, double freq_hz, std::vector<Level
 
 TEST(EdcDataset, KeepsUsableLevelsPerWellAndListsTheRest) {
   CampaignAnalysis campaign;
-  LevelResult doubled = level("positive", 3.0, 0.02, 40);
+  LevelResult doubled = level(Well::Positive, 3.0, 0.02, 40);
   doubled.period1 = false;
-  LevelResult crossing = level("cross-well", 3.2, 0.05, 40);
+  LevelResult crossing = level(Well::CrossWell, 3.2, 0.05, 40);
   crossing.cross_well = true;
-  campaign.records.push_back(record(
-      "up.flac", 9.0,
-      {level("positive", 0.4, 2e-4, 80), level("positive", 0.2, 1e-4, 80), doubled, crossing}));
-  campaign.records.push_back(record("down.flac", 9.0001, {level("negative", 0.5, 3e-4, 70)}));
+  campaign.records.push_back(record("up.flac", 9.0,
+                                    {level(Well::Positive, 0.4, 2e-4, 80),
+                                     level(Well::Positive, 0.2, 1e-4, 80), doubled, crossing}));
+  campaign.records.push_back(record("down.flac", 9.0001, {level(Well::Negative, 0.5, 3e-4, 70)}));
   RecordAnalysis random;
   random.name = "random.flac";
   campaign.records.push_back(random);
@@ -56,8 +56,8 @@ TEST(EdcDataset, KeepsUsableLevelsPerWellAndListsTheRest) {
 
 TEST(EdcDataset, MergesTheSameLevelFromTwoRecordsByCycles) {
   CampaignAnalysis campaign;
-  campaign.records.push_back(record("a.flac", 9.0, {level("positive", 1.0, 0.010, 30)}));
-  campaign.records.push_back(record("b.flac", 9.0, {level("positive", 1.0, 0.013, 10)}));
+  campaign.records.push_back(record("a.flac", 9.0, {level(Well::Positive, 1.0, 0.010, 30)}));
+  campaign.records.push_back(record("b.flac", 9.0, {level(Well::Positive, 1.0, 0.013, 10)}));
   const EdcDataset data = edc_dataset(campaign);
   ASSERT_EQ(data.level_count(), 1);
   const MeasuredLevel& m = data.groups[0].levels[0];
@@ -77,7 +77,7 @@ TEST(EdcDataset, SigmaOfMeanIsTheStandardErrorWithTheNoiseFloorBelow) {
 
 TEST(EdcDataset, ThrowsNamingTheRecordsWhenNothingIsUsable) {
   CampaignAnalysis campaign;
-  LevelResult crossing = level("cross-well", 3.2, 0.05, 40);
+  LevelResult crossing = level(Well::CrossWell, 3.2, 0.05, 40);
   crossing.cross_well = true;
   campaign.records.push_back(record("only.flac", 9.0, {crossing}));
   try {

@@ -28,7 +28,7 @@ daq::RigRecording rig_record(bool positive, std::uint64_t seed,
 }
 
 void expect_matches_truth(const RecordAnalysis& analysis, const daq::RigRecording& rig,
-                          const std::string& expected_well) {
+                          Well expected_well) {
   ASSERT_EQ(analysis.levels.size(), rig.levels.size());
   for (std::size_t i = 0; i < rig.levels.size(); ++i) {
     const LevelResult& measured = analysis.levels[i];
@@ -51,7 +51,7 @@ TEST_P(EdcAccuracy, MeanEdcWithinHalfPercentPlusFiveSigmaOfTruth) {
   const RecordAnalysis analysis =
       analyze_record(daq::measurement_channels(rig.recording), PipelineSettings{});
   EXPECT_FALSE(analysis.frequency_detected);  // the sidecar gives it
-  expect_matches_truth(analysis, rig, positive ? "positive" : "negative");
+  expect_matches_truth(analysis, rig, positive ? Well::Positive : Well::Negative);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothWellsThreeSeeds, EdcAccuracy,
@@ -68,7 +68,7 @@ TEST(EdcAnalysis, FindsFrequencyAndLevelsWithoutSidecarExcitation) {
   EXPECT_TRUE(analysis.stepped_sine);
   // 9 levels of 10 s at 9 Hz: the carrier is found to a few µHz (1e-3 of a 3.8 mHz bin).
   EXPECT_NEAR(analysis.setup.excitation_freq_hz, 9.0, 2e-5);
-  expect_matches_truth(analysis, rig, "positive");
+  expect_matches_truth(analysis, rig, Well::Positive);
 }
 
 TEST(EdcAnalysis, LiveBlocksGiveTheOfflineLevels) {
@@ -121,7 +121,8 @@ TEST(EdcAnalysis, VibrometerVelocityAndUnknownMassStillGiveTheEnergy) {
   const double m = paper_model().mass_kg();
   for (std::size_t i = 0; i < 2; ++i) {
     const double truth_per_kg = rig.levels[i].edc_j / m;
-    EXPECT_EQ(analysis.levels[i].well, "positive");  // from the hint: a velocity has no position
+    EXPECT_EQ(analysis.levels[i].well,
+              Well::Positive);  // from the hint: a velocity has no position
     EXPECT_NEAR(analysis.levels[i].edc_mean_j, truth_per_kg,
                 0.005 * truth_per_kg + 5.0 * analysis.levels[i].edc_noise_floor_j);
   }

@@ -417,7 +417,7 @@ std::vector<EdcTableRow> edc_rows() {
   std::vector<EdcTableRow> rows;
   for (int i = 0; i < 3; ++i) {
     analysis::LevelResult level;
-    level.well = i == 2 ? "negative" : "positive";
+    level.well = i == 2 ? analysis::Well::Negative : analysis::Well::Positive;
     level.f0_n = 0.2 + 0.1 * i;
     level.edc_mean_j = 1e-4 * (i + 1);
     level.edc_std_j = 1e-6 * (i + 1);
