@@ -321,7 +321,8 @@ void IdentificationPanel::start(bool diagnosis) {
   analysis::FitSetup setup;
   try {
     setup = settings_form_->fit_setup();
-  } catch (const InputError& error) {  // a model file that cannot be read
+    if (!diagnosis) analysis::validate(fit_options, "");
+  } catch (const InputError& error) {  // a model file that cannot be read, a bad search setting
     status_label_->setText(tr("Error: %1").arg(QString::fromStdString(error.what())));
     return;
   }
