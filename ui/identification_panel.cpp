@@ -179,6 +179,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   tabs_->addTab(convergence_plot_, tr("Convergence"));
   tabs_->addTab(diagnosis_view_, tr("Diagnosis"));
   tabs_->addTab(diagnosis_view_->residual_page(), tr("Residuals"));
+  tabs_->addTab(diagnosis_view_->missing_energy_page(), tr("Missing energy"));
   tabs_->addTab(diagnosis_view_->budget_page(), tr("\u03c3 budget"));
 
   auto* layout = new QVBoxLayout(this);

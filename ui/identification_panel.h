@@ -100,6 +100,8 @@ class IdentificationPanel : public QWidget {
   QLabel* verdict_label() const { return diagnosis_view_->verdict_label(); }
   QCustomPlot* edc_plot() const { return edc_plot_; }
   QCustomPlot* residual_plot() const { return diagnosis_view_->residual_plot(); }
+  /// The energy the baseline misses against |Z1| (figures::missing_energy_figure).
+  QCustomPlot* missing_energy_plot() const { return diagnosis_view_->missing_energy_plot(); }
   /// Best χ² against model evaluations, growing while a fit runs (Fig. 14).
   QCustomPlot* convergence_plot() const { return convergence_plot_; }
   QTabWidget* tabs() const { return tabs_; }
