@@ -85,6 +85,8 @@ DiagnosisView::DiagnosisView(QWidget* parent) : QWidget(parent) {
 
   // A page of its own (residual_page()): one panel per well (figures::residual_figure).
   residual_plot_ = new QCustomPlot(this);
+  // A page of its own (missing_energy_page()): figures::missing_energy_figure.
+  missing_energy_plot_ = new QCustomPlot(this);
 
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(verdict_label_);
@@ -96,6 +98,8 @@ DiagnosisView::DiagnosisView(QWidget* parent) : QWidget(parent) {
 }
 
 QWidget* DiagnosisView::residual_page() const { return residual_plot_; }
+
+QWidget* DiagnosisView::missing_energy_page() const { return missing_energy_plot_; }
 
 void DiagnosisView::show_result(const analysis::DiagnosisResult& r, double bic_threshold) {
   verdict_label_->setText(
@@ -110,6 +114,7 @@ void DiagnosisView::show_result(const analysis::DiagnosisResult& r, double bic_t
       verdict_details(r));
   show_steps(r, bic_threshold);
   show_residuals(r);
+  show_missing_energy(r);
   show_budget(r);
 }
 
@@ -152,6 +157,15 @@ void DiagnosisView::show_residuals(const analysis::DiagnosisResult& r) {
   figure.title.clear();                                  // the verdict above says what it is
   render_figure(*residual_plot_, figure);
   residual_plot_->replot();
+}
+
+void DiagnosisView::show_missing_energy(const analysis::DiagnosisResult& r) {
+  // The figure of `diagnose`'s missing_energy.png; the tab names it and the panel's title says
+  // what the slope means.
+  figures::Figure figure = figures::missing_energy_figure(r);
+  figure.title.clear();
+  render_figure(*missing_energy_plot_, figure);
+  missing_energy_plot_->replot();
 }
 
 void DiagnosisView::show_budget(const analysis::DiagnosisResult& r) {

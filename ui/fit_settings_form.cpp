@@ -21,18 +21,22 @@ FitSettingsForm::FitSettingsForm(QWidget* parent)
   method_box_->setObjectName("method");
   method_box_->addItem(tr("CMA-ES + BOBYQA polish"), "cmaes");
   method_box_->addItem(tr("genetic algorithm (paper)"), "ga");
+  // The defaults and lower limits are the analysis core's (as `oscilab-cli fit` and Python).
+  const analysis::FitOptions defaults;
+  method_box_->setCurrentIndex(std::max(0, method_box_->findData(QString::fromStdString(
+                                               analysis::fit_method_name(defaults.method)))));
   evaluations_box_ = new QSpinBox;
   evaluations_box_->setObjectName("evaluations");
-  evaluations_box_->setRange(10, 100000);
-  evaluations_box_->setValue(2000);
+  evaluations_box_->setRange(static_cast<int>(analysis::kMinFitEvaluations), 100000);
+  evaluations_box_->setValue(static_cast<int>(defaults.max_evaluations));
   population_box_ = new QSpinBox;
   population_box_->setObjectName("population");
-  population_box_->setRange(2, 10000);
-  population_box_->setValue(100);
+  population_box_->setRange(analysis::kMinGeneticPopulation, 10000);
+  population_box_->setValue(defaults.genetic.population);
   generations_box_ = new QSpinBox;
   generations_box_->setObjectName("generations");
   generations_box_->setRange(0, 10000);
-  generations_box_->setValue(20);
+  generations_box_->setValue(defaults.genetic.generations);
   // What `oscilab-cli fit` offers besides the search: the base model, the stiffness source and
   // how the levels are weighed (analysis::FitSetup).
   model_edit_ = new QLineEdit(QStringLiteral("paper"));
@@ -84,9 +88,8 @@ FitSettingsForm::FitSettingsForm(QWidget* parent)
 analysis::FitSetup FitSettingsForm::fit_setup() const {
   analysis::FitSetup setup;
   setup.base_model = analysis::model_from_spec(model_edit_->text().trimmed().toStdString());
-  setup.stiffness = stiffness_box_->currentData().toString() == "rfs"
-                        ? analysis::StiffnessSource::Rfs
-                        : analysis::StiffnessSource::Model;
+  setup.stiffness = analysis::parse_stiffness_source(
+      stiffness_box_->currentData().toString().toStdString(), "Stiffness");
   // The spin box's minimum reads "σ budget" (a negative floor, as --model-error takes it).
   setup.cost = analysis::cost_settings(
       harmonics_box_->value(), analysis::EdcCostSettings().max_harmonics,
@@ -98,8 +101,7 @@ analysis::FitSetup FitSettingsForm::fit_setup() const {
 
 analysis::FitOptions FitSettingsForm::fit_options() const {
   analysis::FitOptions options;
-  options.method = method_box_->currentData().toString() == "ga" ? analysis::FitMethod::Genetic
-                                                                 : analysis::FitMethod::Cmaes;
+  options.method = analysis::parse_fit_method(method_box_->currentData().toString().toStdString());
   options.max_evaluations = evaluations_box_->value();
   options.genetic.population = population_box_->value();
   options.genetic.generations = generations_box_->value();

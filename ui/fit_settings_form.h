@@ -27,7 +27,8 @@ class FitSettingsForm : public QGroupBox {
   /// The base model, stiffness source and cost settings shown (throws InputError for a model
   /// file that cannot be read).
   analysis::FitSetup fit_setup() const;
-  /// The search shown: method, budget, GA population and generations with the default elite.
+  /// The search shown: method, budget, GA population and generations with the default elite;
+  /// the rest as analysis::FitOptions' defaults. Check it with analysis::validate.
   analysis::FitOptions fit_options() const;
   /// Method "cmaes" or "ga"; evaluations of CMA-ES; the GA's population and generations.
   void set_search(const std::string& method, int evaluations, int population, int generations);

@@ -1,7 +1,6 @@
 #include "ui/identification_panel.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <exception>
 
@@ -13,7 +12,6 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QListWidget>
-#include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QTabWidget>
@@ -24,13 +22,11 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/figures/fit_figures.h"
-#include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/fit_setup.h"
 #include "analysis/model/reference_models.h"
-#include "daq/recording/campaign_reader.h"
-#include "daq/recording/fit_json.h"
-#include "ui/background_job.h"
+#include "ui/diagnosis_job.h"
 #include "ui/diagnosis_view.h"
+#include "ui/figure_data_job.h"
 #include "ui/figure_dialog.h"
 #include "ui/fit_settings_form.h"
 #include "ui/response_dialog.h"
@@ -38,41 +34,12 @@
 
 namespace oscilab::ui {
 
-/// What a job hands back to the UI thread (written by the worker, read after finished()).
-struct IdentificationPanel::Outcome {
-  bool diagnosis = false;
-  std::string error;  // InputError text: bad recordings
-  std::shared_ptr<const analysis::EdcObjective> objective;
-  analysis::FitResult fit;
-  analysis::DiagnosisResult diagnosis_result;
-  std::vector<std::string> records;  // the recordings fitted, as given
-  std::vector<std::string> notes;    // how the base model was set up (campaign_model)
-};
-
 namespace {
 
 const QColor kWellColor[2] = {QColor(0, 114, 178), QColor(213, 94, 0)};  // z+*, z-*
 
 QTableWidgetItem* cell(const QString& text) { return read_only_cell(text); }
 QString number(double value, int digits = 4) { return number_text(value, digits); }
-
-// The live EDC curve is redrawn at most 5 times a second.
-constexpr auto kPreviewInterval = std::chrono::milliseconds(200);
-
-// S^mod of the model at θ at every measured level, per group (0 where it is not solved), J. Runs
-// on the fit's worker: about one model evaluation (the level responses of both wells, ~3 ms),
-// through edc_at so that the fit's own evaluation count stays that of the search.
-std::vector<std::vector<double>> model_edc(const analysis::EdcObjective& objective,
-                                           const Eigen::VectorXd& theta) {
-  std::vector<std::vector<double>> out;
-  const analysis::Model model = objective.form().build(theta);  // InputError: caught by caller
-  for (const analysis::EdcGroup& group : objective.data().groups) {
-    std::vector<double> f0_n;
-    for (const analysis::MeasuredLevel& level : group.levels) f0_n.push_back(level.f0_n);
-    out.push_back(objective.edc_at(model, group.positive_well, group.freq_hz, f0_n));
-  }
-  return out;
-}
 
 // A parameter of θ as Table 3 names it, with its unit (other forms' names as they are).
 QString table3_label(const std::string& name) {
@@ -99,13 +66,23 @@ QString figure_tab_name(const std::string& stem) {
 }  // namespace
 
 IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
-  qRegisterMetaType<std::shared_ptr<const FitPreview>>();
+  const auto show_progress = [this](double f) { progress_->setValue(static_cast<int>(1000 * f)); };
+  fit_job_ = new FitJob(this);
+  connect(fit_job_, &FitJob::progress, this, show_progress);
+  connect(fit_job_, &FitJob::convergence_point, this, &IdentificationPanel::add_convergence_point);
+  // Still on the worker thread; drawn on the UI thread through the queued connection below.
+  connect(fit_job_, &FitJob::preview, this, &IdentificationPanel::fit_preview,
+          Qt::DirectConnection);
+  connect(fit_job_, &FitJob::finished, this, &IdentificationPanel::on_fit_finished);
   connect(this, &IdentificationPanel::fit_preview, this, &IdentificationPanel::show_preview,
           Qt::QueuedConnection);
-  job_ = new BackgroundJob(this);
-  connect(job_, &BackgroundJob::progress, this,
-          [this](double f) { progress_->setValue(static_cast<int>(1000 * f)); });
-  connect(job_, &BackgroundJob::finished, this, &IdentificationPanel::on_finished);
+  diagnosis_job_ = new DiagnosisJob(this);
+  connect(diagnosis_job_, &DiagnosisJob::progress, this, show_progress);
+  connect(diagnosis_job_, &DiagnosisJob::finished, this,
+          &IdentificationPanel::on_diagnosis_finished);
+  figure_data_job_ = new FigureDataJob(this);
+  connect(figure_data_job_, &FigureDataJob::finished, this,
+          &IdentificationPanel::on_figure_data_finished);
 
   auto* records = new QGroupBox(tr("Stepped-sine recordings (both wells)"));
   record_list_ = new QListWidget;
@@ -202,6 +179,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   tabs_->addTab(convergence_plot_, tr("Convergence"));
   tabs_->addTab(diagnosis_view_, tr("Diagnosis"));
   tabs_->addTab(diagnosis_view_->residual_page(), tr("Residuals"));
+  tabs_->addTab(diagnosis_view_->missing_energy_page(), tr("Missing energy"));
   tabs_->addTab(diagnosis_view_->budget_page(), tr("\u03c3 budget"));
 
   auto* layout = new QVBoxLayout(this);
@@ -215,9 +193,13 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   update_result_buttons();
 }
 
-// The worker emits fit_preview on this object: it must have ended before anything of the panel
-// goes (BackgroundJob's destructor cancels and joins).
-IdentificationPanel::~IdentificationPanel() { delete job_; }
+// The fit's worker emits fit_preview on this object: the workers must have ended before anything
+// of the panel goes (the jobs' destructors cancel and join).
+IdentificationPanel::~IdentificationPanel() {
+  delete fit_job_;
+  delete diagnosis_job_;
+  delete figure_data_job_;
+}
 
 void IdentificationPanel::set_recordings(const std::vector<std::string>& paths) {
   record_list_->clear();
@@ -254,13 +236,14 @@ void IdentificationPanel::set_diagnosis_budget(long baseline_evaluations,
   candidate_evaluations_ = candidate_evaluations;
 }
 
-bool IdentificationPanel::busy() const { return job_->running(); }
-
-void IdentificationPanel::start_fit() { start(false); }
-void IdentificationPanel::start_diagnosis() { start(true); }
+bool IdentificationPanel::busy() const {
+  return fit_job_->running() || diagnosis_job_->running() || figure_data_job_->running();
+}
 
 void IdentificationPanel::cancel() {
-  job_->cancel();
+  fit_job_->cancel();
+  diagnosis_job_->cancel();
+  figure_data_job_->cancel();
   status_label_->setText(tr("Cancelling\u2026"));
 }
 
@@ -296,127 +279,71 @@ void IdentificationPanel::add_convergence_point(long evaluations, double best_we
   convergence_plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 
-void IdentificationPanel::start(bool diagnosis) {
-  if (job_->running()) return;
-  const std::vector<std::string> paths = recordings();
+bool IdentificationPanel::job_inputs(std::vector<std::string>& paths, analysis::FitSetup& setup) {
+  if (busy()) return false;
+  paths = recordings();
   if (paths.empty()) {
     status_label_->setText(tr("No recordings: add the stepped-sine records of both wells."));
-    return;
+    return false;
   }
-  auto outcome = std::make_shared<Outcome>();
-  outcome->diagnosis = diagnosis;
-  const analysis::FitOptions fit_options = settings_form_->fit_options();
-  analysis::DiagnosisOptions diagnosis_options;
-  diagnosis_options.baseline_evaluations = baseline_evaluations_;
-  diagnosis_options.candidate_evaluations = candidate_evaluations_;
-  outcome->records = paths;
-  outcome_ = outcome;
-  job_kind_ = diagnosis ? JobKind::Diagnosis : JobKind::Fit;
-  convergence_plot_->graph(0)->data()->clear();
-  progress_->setRange(0, 1000);
-  set_busy(true);
-  QPointer<IdentificationPanel> self(this);
-  IdentificationPanel* panel = this;  // outlives the worker (see the destructor)
-  status_label_->setText(diagnosis ? tr("Diagnosing\u2026") : tr("Fitting\u2026"));
-  analysis::FitSetup setup;
   try {
     setup = settings_form_->fit_setup();
   } catch (const InputError& error) {  // a model file that cannot be read
     status_label_->setText(tr("Error: %1").arg(QString::fromStdString(error.what())));
-    return;
+    return false;
   }
-  job_->start([outcome, paths, fit_options, diagnosis_options, setup, self, panel](
-                  const ProgressFn& progress, const CancelToken& cancel) {
-    try {
-      const analysis::CampaignAnalysis campaign =
-          daq::analyze_recordings(paths, {}, {}, {}, cancel);
-      if (campaign.status == JobStatus::Cancelled) return;  // reported as cancelled, no error
-      if (outcome->diagnosis) {
-        const analysis::ModelForm form = analysis::fit_form(campaign, setup, outcome->notes);
-        outcome->diagnosis_result =
-            analysis::diagnose(campaign, form, diagnosis_options, progress, cancel);
-        const auto& r = outcome->diagnosis_result;
-        if (r.final_form) {
-          outcome->objective = std::make_shared<const analysis::EdcObjective>(
-              *r.final_form, analysis::edc_dataset(campaign), r.final_cost);
-        }
-      } else {
-        analysis::FitSetup fit_setup = setup;
-        fit_setup.cost.cancel = cancel;  // the σ budget's calibration stops with the job
-        analysis::PreparedFit prepared = analysis::prepare_fit(campaign, fit_setup);
-        const std::shared_ptr<const analysis::EdcObjective> objective = prepared.objective;
-        outcome->objective = objective;
-        outcome->notes = std::move(prepared.notes);
-        const auto budget = static_cast<double>(analysis::evaluation_budget(fit_options));
-        // The convergence curve gets a point at most every 50 ms (20 redraws a second), the
-        // live EDC curve of the best θ every 200 ms. The searches call this one at a time.
-        const auto long_ago = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-        auto last_point = long_ago;
-        auto last_preview = long_ago;
-        outcome->fit = analysis::fit_edc(
-            *objective, fit_options,
-            [&](const analysis::FitProgress& p) {
-              if (p.stage == analysis::FitStage::Uncertainty) return;
-              progress(std::min(0.95, static_cast<double>(p.evaluations) / budget));
-              const auto now = std::chrono::steady_clock::now();
-              if (now - last_preview >= kPreviewInterval && !cancel.cancelled() &&
-                  p.best_theta.size() == objective->form().size()) {
-                auto preview = std::make_shared<FitPreview>();
-                preview->evaluations = p.evaluations;
-                preview->best_weighted_cost = p.best_weighted_cost;
-                preview->theta = p.best_theta;
-                preview->objective = objective;
-                try {
-                  preview->edc_mod_j = model_edc(*objective, p.best_theta);
-                  Q_EMIT panel->fit_preview(std::move(preview));
-                } catch (const InputError&) {
-                  // θ outside a term's domain: no curve this time.
-                }
-                // From the end of this one, so that sent previews are ≥ 200 ms apart.
-                last_preview = std::chrono::steady_clock::now();
-              }
-              if (now - last_point < std::chrono::milliseconds(50)) return;
-              last_point = now;
-              QMetaObject::invokeMethod(
-                  self.data(),
-                  [self, evaluations = p.evaluations, cost = p.best_weighted_cost] {
-                    if (self) self->add_convergence_point(evaluations, cost);
-                  },
-                  Qt::QueuedConnection);
-            },
-            cancel);
-      }
-    } catch (const InputError& error) {
-      outcome->error = error.what();
-    } catch (const std::exception& error) {
-      outcome->error = std::string("internal error: ") + error.what();
-    }
-  });
+  return true;
 }
 
-void IdentificationPanel::on_finished(bool cancelled) {
-  if (job_kind_ == JobKind::FigureData) {
-    on_figure_data_finished(cancelled);
+void IdentificationPanel::start_fit() {
+  std::vector<std::string> paths;
+  analysis::FitSetup setup;
+  if (!job_inputs(paths, setup)) return;
+  const analysis::FitOptions options = settings_form_->fit_options();
+  try {
+    analysis::validate(options, "");
+  } catch (const InputError& error) {
+    status_label_->setText(tr("Error: %1").arg(QString::fromStdString(error.what())));
     return;
   }
-  const std::shared_ptr<Outcome> outcome = outcome_;
-  if (!cancelled && outcome->error.empty() && !outcome->diagnosis &&
+  convergence_plot_->graph(0)->data()->clear();
+  progress_->setRange(0, 1000);
+  set_busy(true);
+  status_label_->setText(tr("Fitting\u2026"));
+  fit_job_->start(std::move(paths), std::move(setup), options);
+}
+
+void IdentificationPanel::start_diagnosis() {
+  std::vector<std::string> paths;
+  analysis::FitSetup setup;
+  if (!job_inputs(paths, setup)) return;
+  analysis::DiagnosisOptions options;
+  options.baseline_evaluations = baseline_evaluations_;
+  options.candidate_evaluations = candidate_evaluations_;
+  convergence_plot_->graph(0)->data()->clear();
+  progress_->setRange(0, 1000);
+  set_busy(true);
+  status_label_->setText(tr("Diagnosing\u2026"));
+  diagnosis_job_->start(std::move(paths), std::move(setup), options);
+}
+
+void IdentificationPanel::end_job() {
+  set_busy(false);
+  progress_->setValue(1000);
+}
+
+void IdentificationPanel::on_fit_finished(std::shared_ptr<const FitOutcome> outcome) {
+  if (!outcome->cancelled && outcome->error.empty() &&
       outcome->fit.status != JobStatus::Cancelled) {
     fitted_ = outcome;  // the figures and dialogs follow the new fit
     figure_data_.reset();
   }
-  set_busy(false);
-  progress_->setValue(1000);
+  end_job();
   QString message;
   if (!outcome->error.empty()) {
     message = tr("Error: %1").arg(QString::fromStdString(outcome->error));
-  } else if (cancelled) {
+  } else if (outcome->cancelled) {
     message = tr("Cancelled.");
-  } else if (outcome->diagnosis) {
-    show_diagnosis(*outcome);
-    message = tr("Diagnosis: %1 (%2 s)")
-                  .arg(QString::fromStdString(outcome->diagnosis_result.verdict))
-                  .arg(outcome->diagnosis_result.seconds, 0, 'f', 1);
   } else {
     show_fit(*outcome);
     // A well without levels has no deviation (NaN).
@@ -444,7 +371,24 @@ void IdentificationPanel::on_finished(bool cancelled) {
   Q_EMIT job_finished(message);
 }
 
-void IdentificationPanel::show_fit(const Outcome& outcome) {
+void IdentificationPanel::on_diagnosis_finished(std::shared_ptr<const DiagnosisOutcome> outcome) {
+  end_job();
+  QString message;
+  if (!outcome->error.empty()) {
+    message = tr("Error: %1").arg(QString::fromStdString(outcome->error));
+  } else if (outcome->cancelled) {
+    message = tr("Cancelled.");
+  } else {
+    show_diagnosis(*outcome);
+    message = tr("Diagnosis: %1 (%2 s)")
+                  .arg(QString::fromStdString(outcome->result.verdict))
+                  .arg(outcome->result.seconds, 0, 'f', 1);
+  }
+  status_label_->setText(message);
+  Q_EMIT job_finished(message);
+}
+
+void IdentificationPanel::show_fit(const FitOutcome& outcome) {
   const analysis::FitResult& fit = outcome.fit;
   parameter_table_->setRowCount(static_cast<int>(fit.names.size()));
   for (int i = 0; i < static_cast<int>(fit.names.size()); ++i) {
@@ -476,8 +420,8 @@ void IdentificationPanel::show_fit(const Outcome& outcome) {
   tabs_->setCurrentIndex(0);
 }
 
-void IdentificationPanel::show_diagnosis(const Outcome& outcome) {
-  const analysis::DiagnosisResult& r = outcome.diagnosis_result;
+void IdentificationPanel::show_diagnosis(const DiagnosisOutcome& outcome) {
+  const analysis::DiagnosisResult& r = outcome.result;
   diagnosis_view_->show_result(r, bic_threshold_);
   if (outcome.objective) {
     plot_edc(*outcome.objective, r.final_evaluation.edc_mod_j,
@@ -489,10 +433,7 @@ void IdentificationPanel::show_diagnosis(const Outcome& outcome) {
 void IdentificationPanel::show_preview(std::shared_ptr<const FitPreview> preview) {
   // A preview queued before its fit ended arrives before the fit's result; one of an older job
   // is dropped.
-  if (!preview || job_kind_ != JobKind::Fit || !job_->running() || !outcome_ ||
-      outcome_->objective != preview->objective) {
-    return;
-  }
+  if (!preview || !fit_job_->is_current(*preview)) return;
   plot_edc(*preview->objective, preview->edc_mod_j,
            tr("best so far (%1 evaluations)").arg(preview->evaluations));
 }
@@ -542,7 +483,7 @@ void IdentificationPanel::with_figure_data(std::function<void()> then, const QSt
     if (!export_dir.isEmpty()) Q_EMIT export_finished(status_label_->text(), false);
     return;
   }
-  if (job_->running()) {
+  if (busy()) {
     status_label_->setText(tr("Busy: wait for the running job or cancel it."));
     if (!export_dir.isEmpty()) Q_EMIT export_finished(status_label_->text(), false);
     return;
@@ -551,55 +492,35 @@ void IdentificationPanel::with_figure_data(std::function<void()> then, const QSt
     then();
     return;
   }
-  job_kind_ = JobKind::FigureData;
   after_figure_data_ = std::move(then);
-  export_dir_ = export_dir;
-  const std::shared_ptr<const Outcome> fitted = fitted_;
-  const std::shared_ptr<const figures::FitFigureData> existing = figure_data_;
-  auto data = std::make_shared<figures::FitFigureData>();
-  auto error = std::make_shared<std::string>();
-  figure_data_job_ = data;
-  figure_data_error_ = error;
-  const std::string dir = export_dir.toStdString();
   progress_->setRange(0, 0);  // busy indicator: the slices and curves report no fraction
   set_busy(true);
-  status_label_->setText(existing ? tr("Writing the results\u2026")
-                                  : tr("Computing the cost slices and sensitivity curves\u2026"));
-  job_->start([fitted, existing, data, error, dir](const ProgressFn&, const CancelToken& cancel) {
-    try {
-      *data = existing ? *existing
-                       : figures::fit_figure_data(*fitted->objective, fitted->fit.theta, 0, cancel);
-      if (!dir.empty() && !cancel.cancelled()) {
-        daq::write_fit_json(dir + "/fit.json", fitted->fit, *fitted->objective, fitted->records,
-                            fitted->notes);
-        figures::write_fit_figures(dir, fitted->fit, *fitted->objective, *data, true);
-      }
-    } catch (const std::exception& e) {  // InputError: a file that cannot be written
-      *error = e.what();
-    }
-  });
+  status_label_->setText(figure_data_
+                             ? tr("Writing the results\u2026")
+                             : tr("Computing the cost slices and sensitivity curves\u2026"));
+  figure_data_job_->start(fitted_, figure_data_, export_dir.toStdString());
 }
 
-void IdentificationPanel::on_figure_data_finished(bool cancelled) {
-  job_kind_ = JobKind::Fit;
+void IdentificationPanel::on_figure_data_finished(
+    std::shared_ptr<const FigureDataOutcome> outcome) {
   progress_->setRange(0, 1000);
   set_busy(false);
   progress_->setValue(1000);
-  const bool exporting = !export_dir_.isEmpty();
+  const bool exporting = !outcome->export_dir.empty();
   std::function<void()> then = std::move(after_figure_data_);
   after_figure_data_ = nullptr;
-  if (!figure_data_error_->empty()) {
-    const QString message = tr("Error: %1").arg(QString::fromStdString(*figure_data_error_));
+  if (!outcome->error.empty()) {
+    const QString message = tr("Error: %1").arg(QString::fromStdString(outcome->error));
     status_label_->setText(message);
     if (exporting) Q_EMIT export_finished(message, false);
     return;
   }
-  if (cancelled) {
+  if (outcome->cancelled) {
     status_label_->setText(tr("Cancelled."));
     if (exporting) Q_EMIT export_finished(tr("Cancelled."), false);
     return;
   }
-  figure_data_ = figure_data_job_;
+  figure_data_ = outcome->data;
   status_label_->clear();
   if (then) then();
 }

@@ -5,13 +5,13 @@
 #include <string>
 #include <vector>
 
-#include <QMetaType>
 #include <QWidget>
 
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/fit_setup.h"
 #include "ui/diagnosis_view.h"
+#include "ui/fit_job.h"
 
 class QComboBox;
 class QCustomPlot;
@@ -30,29 +30,21 @@ struct FitFigureData;
 
 namespace oscilab::ui {
 
-class BackgroundJob;
+struct DiagnosisOutcome;
+struct FigureDataOutcome;
+class DiagnosisJob;
+class FigureDataJob;
 class FigureDialog;
 class FitSettingsForm;
 class ResponseDialog;
 
-/// The best model of a running fit so far, made on the fit's worker thread and handed to the UI
-/// thread by a queued signal: its EDC at every measured level (live progress).
-struct FitPreview {
-  long evaluations = 0;
-  double best_weighted_cost = 0.0;  // χ² of the best θ so far
-  Eigen::VectorXd theta;            // the best θ so far
-  /// The measured levels (immutable; shared with the worker, which only evaluates it).
-  std::shared_ptr<const analysis::EdcObjective> objective;
-  /// S^mod at the best θ, per group and level of objective->data() (0: not solved), J.
-  std::vector<std::vector<double>> edc_mod_j;
-};
-
 /// The fit and model-gap panel: recordings of a stepped-sine campaign, a fit of
 /// the paper's θ (eq. (9)) by CMA-ES or the paper's GA, and a diagnosis that names the missing
-/// effect; both run on a worker thread with progress and cancel. Results: the identified
-/// parameters with standard errors and 95 % intervals (Table 3 style), the EDC per well measured
-/// against the model (Fig. 15), the diagnosis's verdict and steps with the EDC residuals in σ
-/// before and after. The computing is the analysis core's (fit_edc, diagnose); the panel shows.
+/// effect; each runs on a worker thread with progress and cancel (ui/fit_job, ui/diagnosis_job).
+/// Results: the identified parameters with standard errors and 95 % intervals (Table 3 style),
+/// the EDC per well measured against the model (Fig. 15), the diagnosis's verdict and steps with
+/// the EDC residuals in σ before and after. The computing is the analysis core's (fit_edc,
+/// diagnose); the panel shows.
 ///
 /// While a fit runs, the EDC tab draws the model EDC of the best θ so far over the measured
 /// points, at most 5 times a second (the worker computes it and sends a FitPreview). After a
@@ -60,7 +52,7 @@ struct FitPreview {
 /// FIT JSON of `oscilab-cli fit` and the figures as PNG + CSV into a folder, "HBM branch…" and
 /// "Bifurcation map…" open the fitted model's branches and map (ResponseDialog). The data the
 /// figures need beyond the fit (cost slices, sensitivity curves) is computed once, on demand, on
-/// the worker with progress and cancel.
+/// the worker with progress and cancel (ui/figure_data_job).
 ///
 /// Thread-safety: UI thread only; fit_preview is emitted from the worker thread (queued).
 class IdentificationPanel : public QWidget {
@@ -108,6 +100,8 @@ class IdentificationPanel : public QWidget {
   QLabel* verdict_label() const { return diagnosis_view_->verdict_label(); }
   QCustomPlot* edc_plot() const { return edc_plot_; }
   QCustomPlot* residual_plot() const { return diagnosis_view_->residual_plot(); }
+  /// The energy the baseline misses against |Z1| (figures::missing_energy_figure).
+  QCustomPlot* missing_energy_plot() const { return diagnosis_view_->missing_energy_plot(); }
   /// Best χ² against model evaluations, growing while a fit runs (Fig. 14).
   QCustomPlot* convergence_plot() const { return convergence_plot_; }
   QTabWidget* tabs() const { return tabs_; }
@@ -131,35 +125,34 @@ class IdentificationPanel : public QWidget {
   void export_finished(const QString& message, bool ok);
 
  private:
-  struct Outcome;
-  enum class JobKind { Fit, Diagnosis, FigureData };
-  void start(bool diagnosis);
-  void on_finished(bool cancelled);
+  /// The recordings and the base model to fit or diagnose, or false with the reason shown.
+  bool job_inputs(std::vector<std::string>& paths, analysis::FitSetup& setup);
   void set_busy(bool busy);
   void update_result_buttons();
+  void on_fit_finished(std::shared_ptr<const FitOutcome> outcome);
+  void on_diagnosis_finished(std::shared_ptr<const DiagnosisOutcome> outcome);
+  /// The buttons and the progress bar after a fit or a diagnosis.
+  void end_job();
   /// Runs `then` once the figure data of the last fit exists (at once, or after the worker
   /// computed it; not at all when that is cancelled). With `export_dir`, the worker also writes
   /// the FIT JSON, the CSV tables and the PNG figures there.
   void with_figure_data(std::function<void()> then, const QString& export_dir = {});
-  void on_figure_data_finished(bool cancelled);
+  void on_figure_data_finished(std::shared_ptr<const FigureDataOutcome> outcome);
   void show_preview(std::shared_ptr<const oscilab::ui::FitPreview> preview);
   ResponseDialog* open_response_dialog(bool map);
   /// A fit's best χ² so far (called on the UI thread, from the worker's queued reports).
   void add_convergence_point(long evaluations, double best_weighted_cost);
-  void show_fit(const Outcome& outcome);
-  void show_diagnosis(const Outcome& outcome);
+  void show_fit(const FitOutcome& outcome);
+  void show_diagnosis(const DiagnosisOutcome& outcome);
   void plot_edc(const analysis::EdcObjective& objective,
                 const std::vector<std::vector<double>>& edc_mod_j, const QString& model_name);
 
-  BackgroundJob* job_ = nullptr;
-  JobKind job_kind_ = JobKind::Fit;
-  std::shared_ptr<Outcome> outcome_;
-  std::shared_ptr<const Outcome> fitted_;  // the last finished fit, for figures and dialogs
+  FitJob* fit_job_ = nullptr;
+  DiagnosisJob* diagnosis_job_ = nullptr;
+  FigureDataJob* figure_data_job_ = nullptr;
+  std::shared_ptr<const FitOutcome> fitted_;  // the last finished fit, for figures and dialogs
   std::shared_ptr<const figures::FitFigureData> figure_data_;  // of fitted_, once computed
-  std::shared_ptr<figures::FitFigureData> figure_data_job_;    // written by the worker
-  std::shared_ptr<std::string> figure_data_error_;             // written by the worker
   std::function<void()> after_figure_data_;
-  QString export_dir_;
   FigureDialog* figures_dialog_ = nullptr;
   long baseline_evaluations_ = analysis::DiagnosisOptions{}.baseline_evaluations;
   long candidate_evaluations_ = analysis::DiagnosisOptions{}.candidate_evaluations;
@@ -185,5 +178,3 @@ class IdentificationPanel : public QWidget {
 };
 
 }  // namespace oscilab::ui
-
-Q_DECLARE_METATYPE(std::shared_ptr<const oscilab::ui::FitPreview>)

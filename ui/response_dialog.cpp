@@ -20,24 +20,14 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/figures/hbm_figures.h"
-#include "ui/background_job.h"
+#include "ui/bifurcation_map_job.h"
+#include "ui/branch_job.h"
 #include "ui/figure_renderer.h"
 #include "ui/plot_context_menu.h"
 
 namespace oscilab::ui {
 
-/// What the worker hands back (read on the UI thread after finished()).
-struct ResponseDialog::Result {
-  std::string error;  // InputError text: settings the core rejects
-  std::vector<analysis::Branch> branches;
-  analysis::BifurcationMap map;
-  int harmonics = 7;
-};
-
 namespace {
-
-// Share of the progress bar the branches take before a map (they take ~0.1 s, the map seconds).
-constexpr double kBranchShareOfMap = 0.1;
 
 const char* well_label(bool positive) { return positive ? "z+* well" : "z-* well"; }
 
@@ -67,10 +57,22 @@ ResponseDialog::ResponseDialog(Kind kind, Setup setup, QWidget* parent)
       kind_ == Kind::Branch
           ? tr("HBM branches of the %1").arg(QString::fromStdString(setup_.model_name))
           : tr("Bifurcation map of the %1").arg(QString::fromStdString(setup_.model_name)));
-  job_ = new BackgroundJob(this);
-  connect(job_, &BackgroundJob::progress, this,
-          [this](double f) { progress_->setValue(static_cast<int>(1000 * f)); });
-  connect(job_, &BackgroundJob::finished, this, &ResponseDialog::on_finished);
+  const auto show_progress = [this](double f) { progress_->setValue(static_cast<int>(1000 * f)); };
+  if (kind_ == Kind::Branch) {
+    branch_job_ = new BranchJob(this);
+    connect(branch_job_, &BranchJob::progress, this, show_progress);
+    connect(branch_job_, &BranchJob::finished, this,
+            [this](std::shared_ptr<const BranchOutcome> outcome) {
+              show_outcome(outcome->error, outcome->cancelled, outcome->branches, {});
+            });
+  } else {
+    map_job_ = new BifurcationMapJob(this);
+    connect(map_job_, &BifurcationMapJob::progress, this, show_progress);
+    connect(map_job_, &BifurcationMapJob::finished, this,
+            [this](std::shared_ptr<const BifurcationMapOutcome> outcome) {
+              show_outcome(outcome->error, outcome->cancelled, outcome->branches, outcome->map);
+            });
+  }
 
   start_box_ = number_box(0.0, 1000.0, setup_.start_n, 3, 0.1, tr(" N"));
   end_box_ = number_box(0.001, 1000.0, setup_.end_n, 3, 0.1, tr(" N"));
@@ -155,8 +157,11 @@ ResponseDialog::ResponseDialog(Kind kind, Setup setup, QWidget* parent)
   set_busy(false);
 }
 
-// The worker reads setup_ and must end before the dialog goes.
-ResponseDialog::~ResponseDialog() { delete job_; }
+// The workers must end before the dialog goes (the jobs' destructors cancel and join).
+ResponseDialog::~ResponseDialog() {
+  delete branch_job_;
+  delete map_job_;
+}
 
 void ResponseDialog::set_f0_range(double start_n, double end_n) {
   start_box_->setValue(start_n);
@@ -203,7 +208,9 @@ analysis::BifurcationMapOptions ResponseDialog::map_options() const {
   return options;
 }
 
-bool ResponseDialog::busy() const { return job_->running(); }
+bool ResponseDialog::busy() const {
+  return (branch_job_ && branch_job_->running()) || (map_job_ && map_job_->running());
+}
 
 void ResponseDialog::set_busy(bool busy) {
   compute_button_->setEnabled(!busy);
@@ -214,56 +221,39 @@ void ResponseDialog::set_busy(bool busy) {
 }
 
 void ResponseDialog::cancel() {
-  job_->cancel();
+  if (branch_job_) branch_job_->cancel();
+  if (map_job_) map_job_->cancel();
   status_label_->setText(tr("Cancelling\u2026"));
 }
 
 void ResponseDialog::start() {
-  if (job_->running() || !setup_.model) return;
-  std::vector<analysis::ContinuationOptions> branch_options;
-  for (const Well& well : setup_.wells) branch_options.push_back(continuation_options(well));
-  const analysis::BifurcationMapOptions map = map_options();
-  const bool with_map = kind_ == Kind::Map;
-  auto result = std::make_shared<Result>();
-  result->harmonics = harmonics_box_->value();
-  result_ = result;
-  const std::shared_ptr<const analysis::Model> model = setup_.model;
+  if (busy() || !setup_.model) return;
+  std::vector<analysis::ContinuationOptions> continuations;
+  for (const Well& well : setup_.wells) continuations.push_back(continuation_options(well));
+  harmonics_computing_ = harmonics_box_->value();
   progress_->setValue(0);
-  status_label_->setText(with_map ? tr("Following the branches, then simulating the map\u2026")
-                                  : tr("Following the branches\u2026"));
-  job_->start([result, model, branch_options, map, with_map](const ProgressFn& progress,
-                                                             const CancelToken& cancel) {
-    try {
-      const double branch_share = with_map ? kBranchShareOfMap : 1.0;
-      const double n = static_cast<double>(branch_options.size());
-      for (std::size_t i = 0; i < branch_options.size() && !cancel.cancelled(); ++i) {
-        result->branches.push_back(analysis::continue_branch(
-            *model, branch_options[i],
-            [&](double f) { progress(branch_share * (static_cast<double>(i) + f) / n); }, cancel));
-      }
-      if (with_map && !cancel.cancelled()) {
-        result->map = analysis::bifurcation_map(
-            *model, map, [&](double f) { progress(branch_share + (1.0 - branch_share) * f); },
-            cancel);
-      }
-    } catch (const std::exception& error) {  // InputError: options the core rejects
-      result->error = error.what();
-    }
-  });
+  if (map_job_) {
+    status_label_->setText(tr("Following the branches, then simulating the map\u2026"));
+    map_job_->start(setup_.model, std::move(continuations), map_options());
+  } else {
+    status_label_->setText(tr("Following the branches\u2026"));
+    branch_job_->start(setup_.model, std::move(continuations));
+  }
   set_busy(true);
 }
 
-void ResponseDialog::on_finished(bool cancelled) {
-  const std::shared_ptr<Result> result = result_;
+void ResponseDialog::show_outcome(const std::string& error, bool cancelled,
+                                  const std::vector<analysis::Branch>& branches,
+                                  const analysis::BifurcationMap& map) {
   QString message;
-  if (!result->error.empty()) {
-    message = tr("Error: %1").arg(QString::fromStdString(result->error));
+  if (!error.empty()) {
+    message = tr("Error: %1").arg(QString::fromStdString(error));
   } else if (cancelled) {
     message = tr("Cancelled.");
   } else {
-    branches_ = std::move(result->branches);
-    map_ = std::move(result->map);
-    harmonics_shown_ = result->harmonics;
+    branches_ = branches;
+    map_ = map;
+    harmonics_shown_ = harmonics_computing_;
     QStringList parts;
     for (const analysis::Branch& b : branches_) {
       QString part = tr("%1: %2 points").arg(well_label(b.positive_well)).arg(b.points.size());

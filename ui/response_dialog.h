@@ -21,7 +21,8 @@ class QSpinBox;
 
 namespace oscilab::ui {
 
-class BackgroundJob;
+class BifurcationMapJob;
+class BranchJob;
 
 /// The response of a model (the fitted one, from the fit panel) in a window of its own:
 ///
@@ -33,7 +34,8 @@ class BackgroundJob;
 ///   once per forcing period at each level, over the HBM orbit of the same branches.
 ///
 /// The settings (f0 range, harmonics, step; for the map: level step, periods per level, periods
-/// sampled) sit above the plot; Compute runs the work on a worker thread with progress and cancel,
+/// sampled) sit above the plot; Compute runs the work on a worker thread with progress and cancel
+/// (ui/branch_job, ui/bifurcation_map_job),
 /// "Export CSV…" writes the branch CSV (docs/contracts.md §3, a `well` column with two wells) or
 /// the map CSV. The dialog shows; the computing is the analysis core's. UI thread only.
 class ResponseDialog : public QDialog {
@@ -92,19 +94,22 @@ class ResponseDialog : public QDialog {
   void computed(const QString& message);
 
  private:
-  struct Result;
-  void on_finished(bool cancelled);
+  /// Shows how a computation ended: the branches (and the map) when it finished.
+  void show_outcome(const std::string& error, bool cancelled,
+                    const std::vector<analysis::Branch>& branches,
+                    const analysis::BifurcationMap& map);
   void set_busy(bool busy);
   void draw();
   std::string title() const;
 
   Kind kind_;
   Setup setup_;
-  BackgroundJob* job_ = nullptr;
-  std::shared_ptr<Result> result_;  // written by the worker
+  BranchJob* branch_job_ = nullptr;       // Kind::Branch
+  BifurcationMapJob* map_job_ = nullptr;  // Kind::Map
   std::vector<analysis::Branch> branches_;
   analysis::BifurcationMap map_;
-  int harmonics_shown_ = 7;  // of the branches shown (the title names it)
+  int harmonics_computing_ = 7;  // of the computation that runs
+  int harmonics_shown_ = 7;      // of the branches shown (the title names it)
 
   QDoubleSpinBox* start_box_ = nullptr;
   QDoubleSpinBox* end_box_ = nullptr;

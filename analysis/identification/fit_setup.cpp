@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "analysis/common/input_error.h"
 #include "analysis/identification/edc_dataset.h"
@@ -32,6 +33,28 @@ PreparedFit prepare_fit(const CampaignAnalysis& campaign, const FitSetup& setup)
   prepared.objective =
       std::make_shared<const EdcObjective>(form, edc_dataset(campaign), setup.cost);
   return prepared;
+}
+
+void validate(const FitOptions& options, const std::string& option_prefix) {
+  const auto fail = [&](const std::string& name, const std::string& rule) {
+    throw InputError(option_prefix + name + ": " + rule);
+  };
+  if (options.uncertainty.bootstrap_replicates < 0) fail("bootstrap", "must be ≥ 0");
+  if (options.max_evaluations < kMinFitEvaluations) {
+    fail("evaluations", "must be at least " + std::to_string(kMinFitEvaluations));
+  }
+  const double mutation = options.genetic.mutation_rate;
+  if (!(mutation >= 0.0 && mutation <= 1.0)) fail("mutation", "must lie in [0, 1]");
+  if (options.genetic.population < kMinGeneticPopulation) {
+    fail("population", "must be at least " + std::to_string(kMinGeneticPopulation));
+  }
+  if (options.genetic.generations < 0) fail("generations", "must be ≥ 0");
+}
+
+StiffnessSource parse_stiffness_source(const std::string& name, const std::string& option_name) {
+  if (name == "model") return StiffnessSource::Model;
+  if (name == "rfs") return StiffnessSource::Rfs;
+  throw InputError(option_name + ": \"" + name + "\" is not model or rfs");
 }
 
 int default_elite(int population) {

@@ -53,6 +53,22 @@ ModelForm fit_form(const CampaignAnalysis& campaign, const FitSetup& setup,
 /// budget). Throws InputError as those do (no mass, no usable level, bad cost settings).
 PreparedFit prepare_fit(const CampaignAnalysis& campaign, const FitSetup& setup);
 
+/// The fewest model evaluations and the smallest GA population a fit accepts (validate).
+inline constexpr long kMinFitEvaluations = 10;
+inline constexpr int kMinGeneticPopulation = 2;
+
+/// Checks a fit's search settings as a user gives them (the CLI's --evaluations, --mutation,
+/// --population, --generations and --bootstrap, the app's form, Python's keywords): at least
+/// kMinFitEvaluations evaluations, a mutation rate in [0, 1], a population of at least
+/// kMinGeneticPopulation, no negative generations or bootstrap replicates. Throws InputError
+/// naming the first bad choice as the front end spells it: `option_prefix` before the name
+/// ("--" on the command line, "" in Python), e.g. "--population: must be at least 2".
+void validate(const FitOptions& options, const std::string& option_prefix);
+
+/// The stiffness source a user names: "model" (the model's K(z)) or "rfs" (the cubic of the
+/// records' restoring-force slice). Throws InputError naming `option_name` for any other name.
+StiffnessSource parse_stiffness_source(const std::string& name, const std::string& option_name);
+
 /// The GA's elite for a population: 5 % of it, at least one (2000 evaluations for the paper's
 /// population of 100 over 20 generations, genetic_algorithm.h).
 int default_elite(int population);

@@ -29,19 +29,14 @@ struct FitCommandOptions {
   std::vector<std::string> recordings;
   std::string model_form = "paper";
   std::string model = "paper";
-  std::string method = "cmaes";
+  std::string method = analysis::fit_method_name(analysis::FitOptions{}.method);
   std::string stiffness = "model";
   std::string out_path;
   std::string figures_dir;
-  int population = 100;
-  int generations = 20;
-  double mutation = 0.2;
-  long evaluations = 2000;
-  bool polish_ga = false;
-  unsigned long long seed = 1;
-  int threads = 0;
+  // The search as the options set it, from analysis::FitOptions' defaults (method and elite are
+  // set in run()).
+  analysis::FitOptions search;
   CostOptions cost;
-  int bootstrap = 0;
   double freq_hz = 0.0;
   bool no_png = false;
 };
@@ -92,14 +87,12 @@ void run(const FitCommandOptions& o) {
   if (o.model_form != "paper") {
     throw InputError("--model-form: unknown form \"" + o.model_form + "\" (paper)");
   }
-  if (o.bootstrap < 0) throw InputError("--bootstrap: must be ≥ 0");
-  if (o.evaluations < 10) throw InputError("--evaluations: must be at least 10");
-  if (!(o.mutation >= 0.0 && o.mutation <= 1.0)) throw InputError("--mutation: must lie in [0, 1]");
-  if (o.population < 2) throw InputError("--population: must be at least 2");
-  if (o.generations < 0) throw InputError("--generations: must be ≥ 0");
-  const analysis::FitMethod method = analysis::parse_fit_method(o.method);
+  analysis::validate(o.search, "--");
+  analysis::FitOptions options = o.search;
+  options.method = analysis::parse_fit_method(o.method);
+  options.genetic.elite = analysis::default_elite(options.genetic.population);
   const analysis::StiffnessSource stiffness =
-      o.stiffness == "rfs" ? analysis::StiffnessSource::Rfs : analysis::StiffnessSource::Model;
+      analysis::parse_stiffness_source(o.stiffness, "--stiffness");
   if (!o.figures_dir.empty()) {
     std::error_code error;
     std::filesystem::create_directories(o.figures_dir, error);
@@ -128,17 +121,6 @@ void run(const FitCommandOptions& o) {
   for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());
   print_sigma_budget(objective);
 
-  analysis::FitOptions options;
-  options.method = method;
-  options.seed = o.seed;
-  options.threads = o.threads;
-  options.max_evaluations = o.evaluations;
-  options.genetic.population = o.population;
-  options.genetic.generations = o.generations;
-  options.genetic.mutation_rate = o.mutation;
-  options.genetic.elite = analysis::default_elite(o.population);
-  options.polish_after_genetic = o.polish_ga;
-  options.uncertainty.bootstrap_replicates = o.bootstrap;
   analysis::FitResult fit;
   {
     ProgressBar bar("fit");
@@ -157,7 +139,8 @@ void run(const FitCommandOptions& o) {
 
   if (o.figures_dir.empty()) return;
   figures::write_fit_figures(o.figures_dir, fit, objective,
-                             figures::fit_figure_data(objective, fit.theta, o.threads), !o.no_png);
+                             figures::fit_figure_data(objective, fit.theta, options.threads),
+                             !o.no_png);
   std::printf("figures and tables written to %s/\n", o.figures_dir.c_str());
 }
 
@@ -179,19 +162,25 @@ void add_fit_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--method", o->method, "ga (the paper's), cmaes (with polish) or local")
       ->capture_default_str();
-  command->add_option("--population", o->population, "GA population")->capture_default_str();
-  command->add_option("--generations", o->generations, "GA generations")->capture_default_str();
-  command->add_option("--mutation", o->mutation, "GA mutation rate")->capture_default_str();
-  command->add_flag("--polish", o->polish_ga, "polish the GA's best with BOBYQA");
+  command->add_option("--population", o->search.genetic.population, "GA population")
+      ->capture_default_str();
+  command->add_option("--generations", o->search.genetic.generations, "GA generations")
+      ->capture_default_str();
+  command->add_option("--mutation", o->search.genetic.mutation_rate, "GA mutation rate")
+      ->capture_default_str();
+  command->add_flag("--polish", o->search.polish_after_genetic, "polish the GA's best with BOBYQA");
   command
-      ->add_option("--evaluations", o->evaluations,
+      ->add_option("--evaluations", o->search.max_evaluations,
                    "model evaluations of cmaes (search + polish) or local")
       ->capture_default_str();
-  command->add_option("--seed", o->seed, "random seed (same seed, same result)")
+  command->add_option("--seed", o->search.seed, "random seed (same seed, same result)")
       ->capture_default_str();
-  command->add_option("--threads", o->threads, "threads (0: all cores)")->capture_default_str();
+  command->add_option("--threads", o->search.threads, "threads (0: all cores)")
+      ->capture_default_str();
   add_cost_options(command, o->cost);
-  command->add_option("--bootstrap", o->bootstrap, "bootstrap replicates over levels (0: none)")
+  command
+      ->add_option("--bootstrap", o->search.uncertainty.bootstrap_replicates,
+                   "bootstrap replicates over levels (0: none)")
       ->capture_default_str();
   command->add_option("--stiffness", o->stiffness, "K(z) from the model or from the records' RFS")
       ->check(CLI::IsMember({"model", "rfs"}))

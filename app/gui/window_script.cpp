@@ -5,6 +5,7 @@
 
 #include <QApplication>
 #include <QEventLoop>
+#include <QTabWidget>
 #include <QTimer>
 
 #include <qcustomplot.h>
@@ -41,6 +42,10 @@ void WindowScript::add_options(QCommandLineParser& parser) {
        "save its picture instead: hbm (the HBM branches) | map (the bifurcation map) | figures. "
        "Without --run: mapping (the dialog File > Open shows for a file without a sidecar).",
        "dialog"},
+      {"panel-tab",
+       "With --run and --screenshot: the fit panel's tab the picture shows once the job ended, "
+       "by its name, e.g. \"Missing energy\" (default: the one the job shows).",
+       "name"},
       {"live",
        "With --screenshot: show the Live tab running <source>: rig (the virtual rig stepping "
        "0.2 to 2.7 N at 20x) or a recording to replay at 10x; the picture is taken after 7 s.",
@@ -54,6 +59,7 @@ WindowScript::WindowScript(const QCommandLineParser& parser)
       size_given_(parser.isSet("size")),
       job_(parser.value("run")),
       dialog_(parser.value("dialog")),
+      panel_tab_(parser.value("panel-tab")),
       live_source_(parser.value("live")) {}
 
 void WindowScript::prepare(ui::MainWindow& window) {
@@ -131,6 +137,10 @@ int WindowScript::run(ui::MainWindow& window, bool analysing,
   if (run_job) {
     QObject::connect(panel, &ui::IdentificationPanel::job_finished, &window, [&] {
       if (dialog_.isEmpty() || job_ != "fit") {
+        QTabWidget* tabs = panel->tabs();
+        for (int i = 0; i < tabs->count(); ++i) {
+          if (tabs->tabText(i) == panel_tab_) tabs->setCurrentIndex(i);
+        }
         done();
       } else {
         open_dialog();

@@ -13,10 +13,10 @@ class MainWindow;
 namespace oscilab::gui {
 
 /// The app run as a script, for pictures of it (the README's screenshots, scripts/screenshot.sh):
-/// `--screenshot OUT.png [--size WxH] [--run fit|diagnose [--dialog hbm|map|figures]]
-/// [--live rig|REC] [--dialog mapping]` opens the window, does what is asked, saves a picture of
-/// the window (or of the dialog) once everything asked has finished, and exits. Kept apart from the
-/// app's own start-up, which only opens the window on recordings or a session.
+/// `--screenshot OUT.png [--size WxH] [--run fit|diagnose [--dialog hbm|map|figures]
+/// [--panel-tab NAME]] [--live rig|REC] [--dialog mapping]` opens the window, does what is asked,
+/// saves a picture of the window (or of the dialog) once everything asked has finished, and exits.
+/// Kept apart from the app's own start-up, which only opens the window on recordings or a session.
 class WindowScript {
  public:
   /// Adds the script's options to the app's parser.
@@ -49,6 +49,7 @@ class WindowScript {
   bool size_given_ = false;
   QString job_;
   QString dialog_;
+  QString panel_tab_;
   QString live_source_;
   bool picture_taken_ = false;
   int status_ = 0;

@@ -56,15 +56,12 @@ std::shared_ptr<const analysis::CampaignAnalysis> campaign_of(const py::object& 
 FitProblem make_problem(const py::object& recordings, const py::object& model,
                         const std::string& stiffness, int harmonics, int max_harmonics,
                         double model_error, const py::object& freq_hz, const py::object& progress) {
-  if (stiffness != "model" && stiffness != "rfs") {
-    throw InputError("stiffness: \"" + stiffness + "\" is not model or rfs");
-  }
+  const analysis::StiffnessSource source = analysis::parse_stiffness_source(stiffness, "stiffness");
   FitProblem problem;
   problem.campaign = campaign_of(recordings, freq_hz, progress, problem.records);
   analysis::FitSetup setup;
   setup.base_model = model_argument(model);
-  setup.stiffness =
-      stiffness == "rfs" ? analysis::StiffnessSource::Rfs : analysis::StiffnessSource::Model;
+  setup.stiffness = source;
   setup.cost =
       analysis::cost_settings(harmonics, max_harmonics, model_error, "harmonics", "max_harmonics");
   // The σ budget's calibration (harmonic balance sweeps) polls the cost's token: Ctrl-C stops it.
@@ -81,22 +78,18 @@ FitProblem make_problem(const py::object& recordings, const py::object& model,
 py::dict run_fit(const FitProblem& problem, const std::string& method, int population,
                  int generations, double mutation, long evaluations, bool polish,
                  std::uint64_t seed, int threads, int bootstrap, const py::object& progress) {
-  if (bootstrap < 0) throw InputError("bootstrap: must be ≥ 0");
-  if (evaluations < 10) throw InputError("evaluations: must be at least 10");
-  if (!(mutation >= 0.0 && mutation <= 1.0)) throw InputError("mutation: must lie in [0, 1]");
-  if (population < 2) throw InputError("population: must be at least 2");
-  if (generations < 0) throw InputError("generations: must be ≥ 0");
   analysis::FitOptions options;
-  options.method = analysis::parse_fit_method(method);
   options.seed = seed;
   options.threads = threads;
   options.max_evaluations = evaluations;
   options.genetic.population = population;
   options.genetic.generations = generations;
   options.genetic.mutation_rate = mutation;
-  options.genetic.elite = analysis::default_elite(population);
   options.polish_after_genetic = polish;
   options.uncertainty.bootstrap_replicates = bootstrap;
+  analysis::validate(options, "");
+  options.method = analysis::parse_fit_method(method);
+  options.genetic.elite = analysis::default_elite(population);
   const analysis::EdcObjective& objective = *problem.prepared.objective;
   const long budget = analysis::evaluation_budget(options);
   analysis::FitResult fit;
@@ -126,6 +119,8 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
 }  // namespace
 
 void bind_fit(py::module_& m) {
+  // The search's defaults are analysis::FitOptions' (as `oscilab-cli fit` and the app's form).
+  const analysis::FitOptions kSearch;
   py::class_<FitProblem>(m, "FitProblem", R"doc(
 A friction fit's problem (fit_setup.h's prepare_fit): the paper's model form (eq. (7), θ of
 eq. (9)) of the base model with the recordings' mass and the chosen stiffness, the usable EDC
@@ -192,10 +187,15 @@ levels of both wells, and the objective: eq. (8) and the σ-weighted cost. Made 
             return run_fit(p, method, population, generations, mutation, evaluations, polish, seed,
                            threads, bootstrap, progress);
           },
-          py::kw_only(), py::arg("method") = "cmaes", py::arg("population") = 100,
-          py::arg("generations") = 20, py::arg("mutation") = 0.2, py::arg("evaluations") = 2000,
-          py::arg("polish") = false, py::arg("seed") = 1, py::arg("threads") = 0,
-          py::arg("bootstrap") = 0, py::arg("progress") = py::none(),
+          py::kw_only(), py::arg("method") = analysis::fit_method_name(kSearch.method),
+          py::arg("population") = kSearch.genetic.population,
+          py::arg("generations") = kSearch.genetic.generations,
+          py::arg("mutation") = kSearch.genetic.mutation_rate,
+          py::arg("evaluations") = kSearch.max_evaluations,
+          py::arg("polish") = kSearch.polish_after_genetic, py::arg("seed") = kSearch.seed,
+          py::arg("threads") = kSearch.threads,
+          py::arg("bootstrap") = kSearch.uncertainty.bootstrap_replicates,
+          py::arg("progress") = py::none(),
           "Runs the fit on this problem; arguments and result as oscilab.fit().");
 
   m.def(
@@ -228,13 +228,18 @@ oscilab.fit(); `progress` reports the analysis of paths.)doc");
         return run_fit(problem, method, population, generations, mutation, evaluations, polish,
                        seed, threads, bootstrap, progress);
       },
-      py::arg("recordings"), py::kw_only(), py::arg("model") = "paper", py::arg("method") = "cmaes",
-      py::arg("population") = 100, py::arg("generations") = 20, py::arg("mutation") = 0.2,
-      py::arg("evaluations") = 2000, py::arg("polish") = false, py::arg("seed") = 1,
-      py::arg("threads") = 0, py::arg("harmonics") = 7, py::arg("max_harmonics") = 63,
-      py::arg("model_error") = -1.0, py::arg("bootstrap") = 0, py::arg("stiffness") = "model",
-      py::arg("freq_hz") = py::none(), py::arg("model_form") = "paper",
-      py::arg("progress") = py::none(),
+      py::arg("recordings"), py::kw_only(), py::arg("model") = "paper",
+      py::arg("method") = analysis::fit_method_name(kSearch.method),
+      py::arg("population") = kSearch.genetic.population,
+      py::arg("generations") = kSearch.genetic.generations,
+      py::arg("mutation") = kSearch.genetic.mutation_rate,
+      py::arg("evaluations") = kSearch.max_evaluations,
+      py::arg("polish") = kSearch.polish_after_genetic, py::arg("seed") = kSearch.seed,
+      py::arg("threads") = kSearch.threads, py::arg("harmonics") = 7, py::arg("max_harmonics") = 63,
+      py::arg("model_error") = -1.0,
+      py::arg("bootstrap") = kSearch.uncertainty.bootstrap_replicates,
+      py::arg("stiffness") = "model", py::arg("freq_hz") = py::none(),
+      py::arg("model_form") = "paper", py::arg("progress") = py::none(),
       R"doc(Identifies the friction model from the EDCs of stepped-sine records (`oscilab-cli fit`):
 θ of eq. (9) by the paper's genetic algorithm ('ga'), CMA-ES with a BOBYQA polish ('cmaes') or
 BOBYQA alone ('local').

@@ -1,10 +1,12 @@
 // GUI test of the fit and diagnosis panel, driving the real widgets under the
 // offscreen platform on the bundled samples: a fit fills the parameter table and the EDC plot, a
 // running fit draws the best model's EDC as it goes and a cancelled one says so (while the
-// recordings are analysed and during the search), a diagnosis of the paper's own model says none,
-// a bad recording is reported, and File ▸ Open feeds the panel. How fast a cancel comes back and
-// how smooth the event loop stays during a fit are measured by tests/bench/fit_panel_benchmark.
+// recordings are analysed and during the search), a diagnosis of the paper's own model says none
+// and draws its residual and missing-energy figures, a bad recording is reported, and File ▸ Open
+// feeds the panel. How fast a cancel comes back and how smooth the event loop stays during a fit
+// are measured by tests/bench/fit_panel_benchmark.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <mutex>
 #include <vector>
@@ -175,6 +177,28 @@ class IdentificationPanelTest : public QObject {
     // residuals and the ±3σ band (two curves: it breaks at NaN between +3σ and −3σ).
     QCOMPARE(panel.residual_plot()->axisRectCount(), 2);
     QCOMPARE(panel.residual_plot()->plottableCount(), 2 * (1 + 1 + 2));
+    // figures::missing_energy_figure on a page of its own, as `diagnose` writes missing_energy.png:
+    // one panel, a series each for the levels the baseline under- and over-predicts, together a
+    // point for every level of both wells (none is predicted exactly), at log10 |Z1| of a
+    // response between 1 µm and 10 cm and log10 of a missing energy below 1 J.
+    QCustomPlot* missing = panel.missing_energy_plot();
+    QCOMPARE(panel.tabs()->tabText(panel.tabs()->indexOf(missing)), QString("Missing energy"));
+    QCOMPARE(missing->axisRectCount(), 1);
+    QCOMPARE(missing->plottableCount(), 2);
+    QCOMPARE(missing->axisRect(0)->axis(QCPAxis::atBottom)->label(),
+             QString("log10 amplitude |Z1| [m]"));
+    int points = 0;
+    for (int p = 0; p < missing->plottableCount(); ++p) {
+      auto* curve = qobject_cast<QCPCurve*>(missing->plottable(p));
+      QVERIFY(curve != nullptr);
+      for (auto it = curve->data()->constBegin(); it != curve->data()->constEnd(); ++it) {
+        QVERIFY2(it->key > -6.0 && it->key < -1.0, qPrintable(QString::number(it->key)));
+        QVERIFY2(std::isfinite(it->value) && it->value < 0.0,
+                 qPrintable(QString::number(it->value)));
+        ++points;
+      }
+    }
+    QCOMPARE(points, panel.budget_table()->rowCount());
     QCOMPARE(panel.tabs()->tabText(panel.tabs()->currentIndex()), QString("Diagnosis"));
   }
 

@@ -1,7 +1,11 @@
 // The fit's set-up that the CLI, the app and the Python module share: the cost settings from the
-// user's three choices, the GA's default elite and the progress budget, checked against the
-// rules their documentation states.
+// user's three choices, the checks of the search settings, the stiffness source's names, the GA's
+// default elite and the progress budget, checked against the rules their documentation states.
 #include "analysis/identification/fit_setup.h"
+
+#include <cmath>
+#include <functional>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -46,6 +50,60 @@ TEST(FitSetup, TheProgressBudgetIsEveryGenerationOfTheGaOrTheEvaluationLimit) {
   options.method = FitMethod::Cmaes;
   options.max_evaluations = 2000;
   EXPECT_EQ(evaluation_budget(options), 2000);
+}
+
+TEST(FitSetup, TheDefaultSearchIsValidAndSoAreTheBoundaryValues) {
+  EXPECT_EQ(input_error_of([] { validate(FitOptions{}, "--"); }), "");
+  FitOptions edge;
+  edge.max_evaluations = kMinFitEvaluations;
+  edge.genetic.population = kMinGeneticPopulation;
+  edge.genetic.generations = 0;
+  edge.genetic.mutation_rate = 1.0;
+  edge.uncertainty.bootstrap_replicates = 0;
+  EXPECT_EQ(input_error_of([&] { validate(edge, ""); }), "");
+  edge.genetic.mutation_rate = 0.0;
+  EXPECT_EQ(input_error_of([&] { validate(edge, ""); }), "");
+}
+
+// Each bad choice is named as the front end spells it: "--" before it on the command line.
+TEST(FitSetup, ValidateNamesTheFirstBadChoiceAsTheFrontEndSpellsIt) {
+  const auto error_with = [](const std::function<void(FitOptions&)>& change,
+                             const std::string& prefix) {
+    FitOptions options;
+    change(options);
+    return input_error_of([&] { validate(options, prefix); });
+  };
+  EXPECT_EQ(error_with([](FitOptions& o) { o.max_evaluations = 9; }, "--"),
+            "--evaluations: must be at least 10");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.genetic.mutation_rate = 1.5; }, "--"),
+            "--mutation: must lie in [0, 1]");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.genetic.mutation_rate = -0.1; }, ""),
+            "mutation: must lie in [0, 1]");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.genetic.mutation_rate = std::nan(""); }, ""),
+            "mutation: must lie in [0, 1]");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.genetic.population = 1; }, ""),
+            "population: must be at least 2");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.genetic.generations = -1; }, "--"),
+            "--generations: must be ≥ 0");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.uncertainty.bootstrap_replicates = -1; }, "--"),
+            "--bootstrap: must be ≥ 0");
+  // Several bad choices: the first in the command line's order of checks is named.
+  EXPECT_EQ(error_with(
+                [](FitOptions& o) {
+                  o.genetic.population = 0;
+                  o.max_evaluations = 0;
+                },
+                "--"),
+            "--evaluations: must be at least 10");
+}
+
+TEST(FitSetup, StiffnessSourceNamesRoundTripAndOthersAreRejectedByName) {
+  EXPECT_EQ(parse_stiffness_source("model", "--stiffness"), StiffnessSource::Model);
+  EXPECT_EQ(parse_stiffness_source("rfs", "--stiffness"), StiffnessSource::Rfs);
+  EXPECT_EQ(input_error_of([] { parse_stiffness_source("RFS", "stiffness"); }),
+            "stiffness: \"RFS\" is not model or rfs");
+  EXPECT_EQ(input_error_of([] { parse_stiffness_source("", "--stiffness"); }),
+            "--stiffness: \"\" is not model or rfs");
 }
 
 }  // namespace
