@@ -306,10 +306,7 @@ void IdentificationPanel::start_fit() {
     status_label_->setText(tr("Error: %1").arg(QString::fromStdString(error.what())));
     return;
   }
-  convergence_plot_->graph(0)->data()->clear();
-  progress_->setRange(0, 1000);
-  set_busy(true);
-  status_label_->setText(tr("Fitting\u2026"));
+  begin_job(tr("Fitting\u2026"));
   fit_job_->start(std::move(paths), std::move(setup), options);
 }
 
@@ -320,11 +317,15 @@ void IdentificationPanel::start_diagnosis() {
   analysis::DiagnosisOptions options;
   options.baseline_evaluations = baseline_evaluations_;
   options.candidate_evaluations = candidate_evaluations_;
+  begin_job(tr("Diagnosing\u2026"));
+  diagnosis_job_->start(std::move(paths), std::move(setup), options);
+}
+
+void IdentificationPanel::begin_job(const QString& status) {
   convergence_plot_->graph(0)->data()->clear();
   progress_->setRange(0, 1000);
   set_busy(true);
-  status_label_->setText(tr("Diagnosing\u2026"));
-  diagnosis_job_->start(std::move(paths), std::move(setup), options);
+  status_label_->setText(status);
 }
 
 void IdentificationPanel::end_job() {

@@ -132,6 +132,7 @@ class IdentificationPanel : public QWidget {
   void on_fit_finished(std::shared_ptr<const FitOutcome> outcome);
   void on_diagnosis_finished(std::shared_ptr<const DiagnosisOutcome> outcome);
   /// The buttons and the progress bar after a fit or a diagnosis.
+  void begin_job(const QString& status);  // a search starts: plots cleared, buttons busy
   void end_job();
   /// Runs `then` once the figure data of the last fit exists (at once, or after the worker
   /// computed it; not at all when that is cancelled). With `export_dir`, the worker also writes
