@@ -54,6 +54,8 @@ FaultCounts FaultCounts::merged(const daq::AcquisitionStatus& s) const {
   m.overflowed_blocks = std::max(overflowed_blocks, s.overflowed_blocks);
   m.alarms = std::max(alarms, s.alarms);
   m.errors = std::max(errors, s.malformed_frames + s.layout_mismatches);
+  m.sound_card =
+      std::max(sound_card, s.xruns + s.server_losses + s.port_disconnections + s.rate_changes);
   return m;
 }
 
@@ -66,7 +68,8 @@ std::map<std::string, std::uint64_t> FaultTracker::fault_values(const FaultCount
           {"saturated", c.saturated_samples},
           {"overflow", c.overflowed_blocks},
           {"alarms", c.alarms},
-          {"errors", c.errors}};
+          {"errors", c.errors},
+          {"card", c.sound_card}};
 }
 
 void FaultTracker::update(const FaultCounts& counts, double now_s) {

@@ -21,6 +21,8 @@ struct FaultCounts {
   std::uint64_t gaps = 0, gap_samples = 0, duplicates = 0, reordered = 0, late = 0;
   std::uint64_t non_finite_samples = 0, saturated_samples = 0, overflowed_blocks = 0;
   std::uint64_t alarms = 0, errors = 0;
+  /// A sound card's faults (JACK): xruns, server losses, ports disconnected, rate changes.
+  std::uint64_t sound_card = 0;
 
   /// Adds what one logged event says (gap: data.samples; non-finite, saturated: data.samples;
   /// overflow: data.blocks when given, else 1; alarm, error, malformed-frame,
@@ -42,7 +44,7 @@ class FaultTracker {
   Severity severity(const std::string& name, double now_s) const;
 
   /// The counters by name: gaps, duplicates, reordered, late, nan, saturated, overflow,
-  /// alarms, errors (gaps counts samples: what the operator lost).
+  /// alarms, errors, card (gaps counts samples: what the operator lost).
   static std::map<std::string, std::uint64_t> fault_values(const FaultCounts& counts);
 
  private:

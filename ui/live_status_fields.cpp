@@ -82,6 +82,15 @@ std::vector<StatusField> status_fields(const daq::AcquisitionStatus& s, const Fa
       "Alarm limits crossed (|z|, |b| drift, |f|)");
   add("errors", "errors", count_text(faults.errors), fault("errors"),
       "Source errors, malformed frames and refused senders");
+  // A sound card's own faults; each is also an event, and what it cost shows as gaps.
+  const bool sound_card = s.source.rfind("JACK", 0) == 0;
+  add("card", "card",
+      sound_card || faults.sound_card > 0 ? count_text(faults.sound_card) : "\u2014", fault("card"),
+      "Sound card (JACK) faults: " + count_text(s.xruns) + " xrun(s), " +
+          count_text(s.server_losses) + " server loss(es), " + count_text(s.port_disconnections) +
+          " port(s) disconnected, " + count_text(s.rate_changes) + " rate change(s); " +
+          count_text(s.dropped_frames) + " frame(s) dropped, " + count_text(s.clipped_samples) +
+          " input sample(s) clipped, " + count_text(s.reconnections) + " reconnection(s)");
   return fields;
 }
 

@@ -19,8 +19,10 @@ struct StatusField {
 
 /// The status strip: rate (and × real time), stream time, samples, gaps, duplicates, reordered,
 /// NaN, saturated, overflow, queue fill / capacity, recording (and seconds recorded), cycles
-/// (excluded), levels, last EDC latency, alarms. Fault counters take their severity from
-/// `tracker`; a queue over 3/4 full is a Warning, a recorder error a Fault.
+/// (excluded), levels, last EDC latency, alarms, errors, a sound card's faults (xruns, server
+/// losses, ports disconnected, rate changes; the rest of its counters in the tooltip). Fault
+/// counters take their severity from `tracker`; a queue over 3/4 full is a Warning, a recorder
+/// error a Fault.
 std::vector<StatusField> status_fields(const daq::AcquisitionStatus& status,
                                        const FaultCounts& faults, const FaultTracker& tracker,
                                        double now_s, double samples_per_s);

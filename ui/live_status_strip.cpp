@@ -72,11 +72,12 @@ LiveStatusStrip::LiveStatusStrip(QWidget* parent)
       {"levels", "levels 000"},
       {"latency", "EDC latency 0000 ms"},
       {"alarms", "alarms 000"},
-      {"errors", "errors 000"}};
+      {"errors", "errors 000"},
+      {"card", "card 000"}};
   const std::vector<StatusField> fields =
       status_fields({}, {}, fault_tracker_, 0.0, 0.0);  // the keys, in order
-  // The source on the left over both rows (it wraps), the other figures in two rows of 8.
-  constexpr int kPerRow = 8;
+  // The source on the left over both rows (it wraps), the other figures in two rows of 9.
+  constexpr int kPerRow = 9;
   std::vector<int> column_width(kPerRow, 0);
   for (std::size_t i = 1; i < fields.size(); ++i) {
     const auto text = widest.find(fields[i].key);

@@ -31,9 +31,9 @@ TEST(StatusFields, ShowEveryFigureOfTheIssueWithItsSeverity) {
   const auto fields = status_fields(s, faults, tracker, 1.0, 5120.0);
   std::map<std::string, StatusField> by_key;
   for (const auto& f : fields) by_key[f.key] = f;
-  for (const char* key :
-       {"source", "rate", "time", "samples", "gaps", "duplicates", "reordered", "nan", "saturated",
-        "overflow", "queue", "recording", "cycles", "levels", "latency", "alarms", "errors"}) {
+  for (const char* key : {"source", "rate", "time", "samples", "gaps", "duplicates", "reordered",
+                          "nan", "saturated", "overflow", "queue", "recording", "cycles", "levels",
+                          "latency", "alarms", "errors", "card"}) {
     EXPECT_EQ(by_key.count(key), 1u) << key;
   }
   EXPECT_EQ(by_key["rate"].value, "512 Hz \u00d710");
@@ -47,6 +47,42 @@ TEST(StatusFields, ShowEveryFigureOfTheIssueWithItsSeverity) {
   EXPECT_EQ(by_key["recording"].value, "\u25cf 2.0 s");    // 1024 samples at 512 Hz
   EXPECT_EQ(by_key["cycles"].value, "90 (2 excl.)");
   EXPECT_EQ(by_key["latency"].value, "31 ms");
+  EXPECT_EQ(by_key["card"].value, "\u2014");  // not a sound card
+}
+
+// A sound card's faults: xruns, a lost server, a pulled cable and a rate change in one figure,
+// red while fresh, every counter of the source in its tooltip.
+TEST(StatusFields, ShowASoundCardsFaults) {
+  daq::AcquisitionStatus s;
+  s.source = "JACK default";
+  s.running = true;
+  FaultTracker tracker;
+  auto card = [&](double now_s) {
+    const FaultCounts faults = FaultCounts().merged(s);
+    tracker.update(faults, now_s);
+    for (const StatusField& f : status_fields(s, faults, tracker, now_s, 0.0)) {
+      if (f.key == "card") return f;
+    }
+    return StatusField{};
+  };
+  StatusField f = card(1.0);
+  EXPECT_EQ(f.value, "0");
+  EXPECT_EQ(f.severity, Severity::Normal);
+  s.xruns = 2;
+  s.server_losses = 1;
+  s.port_disconnections = 1;
+  s.rate_changes = 1;
+  s.dropped_frames = 480;
+  s.clipped_samples = 7;
+  s.reconnections = 1;
+  f = card(2.0);
+  EXPECT_EQ(f.value, "5");
+  EXPECT_EQ(f.severity, Severity::Fault);
+  EXPECT_NE(f.tooltip.find("2 xrun(s)"), std::string::npos) << f.tooltip;
+  EXPECT_NE(f.tooltip.find("480 frame(s) dropped"), std::string::npos) << f.tooltip;
+  EXPECT_NE(f.tooltip.find("7 input sample(s) clipped"), std::string::npos) << f.tooltip;
+  EXPECT_NE(f.tooltip.find("1 reconnection(s)"), std::string::npos) << f.tooltip;
+  EXPECT_EQ(card(10.0).severity, Severity::Warning);  // no longer fresh, still non-zero
 }
 
 }  // namespace
