@@ -1,0 +1,108 @@
+// The JACK path allocates nothing once it runs: the process callback (the real-time thread, which
+// must never allocate) and the source's thread draining its ring through the resampler into the
+// queue. This binary replaces the global operator new and counts the allocations of every thread
+// but the test's own (which drains the queue) while a steady stream passes through a real jackd
+// (dummy backend); the test player's process callback is a JACK client in this process too and
+// is counted with them.
+#include <pthread.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "daq/live/block_queue.h"
+#include "tests/daq/live/jack_test_helpers.h"
+
+namespace {
+
+std::atomic<bool> counting{false};
+std::atomic<std::uint64_t> allocations{0};
+std::thread::id test_thread;
+char first_thread_name[32] = "";  // the first thread that allocated (no allocation to say so)
+
+void count() {
+  if (!counting.load(std::memory_order_relaxed)) return;
+  if (std::this_thread::get_id() == test_thread) return;
+  if (allocations.fetch_add(1) == 0) {
+    pthread_getname_np(pthread_self(), first_thread_name, sizeof first_thread_name);
+  }
+}
+
+}  // namespace
+
+// GCC sees malloc'd memory freed by this binary's own operator delete (which calls free) as a
+// mismatch; here new and delete are a pair by construction.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+void* operator new(std::size_t size) {
+  count();
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace oscilab::daq {
+namespace {
+
+using testing::jack_options;
+using testing::JackTestPlayer;
+using testing::JackTestServer;
+using testing::kRateHz;
+
+// Takes blocks off the queue until `samples` more have come (a minute at most).
+std::uint64_t drain(BlockQueue& queue, std::uint64_t samples) {
+  std::uint64_t taken = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (taken < samples && std::chrono::steady_clock::now() < deadline) {
+    while (RawBlock* block = queue.front()) {
+      taken += static_cast<std::uint64_t>(block->rows);
+      queue.pop();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return taken;
+}
+
+TEST(JackSourceAllocations, TheProcessCallbackAndTheResamplerAllocateNothingOnceRunning) {
+  test_thread = std::this_thread::get_id();
+  JackTestServer server;
+  JackTestPlayer player(server.name(), 2);
+  player.play_sines({{0.5, 9.0, 0.3}, {0.25, 37.0, -1.1}});
+  auto source = std::make_unique<JackSource>(jack_options(server, player));
+  BlockQueue queue(1024, source->max_block_rows(), 2);
+  source->start(queue);
+  ASSERT_GE(drain(queue, 2 * static_cast<std::uint64_t>(kRateHz)), 2 * kRateHz) << "warm-up";
+  // A window of 2 s of stream with no fault: an xrun (which a loaded machine can cause) is an
+  // event, and an event's text is allocated; a window it falls in is measured again.
+  std::uint64_t counted = 0, seen = 0, windows = 0, faulty_windows = 0;
+  while (windows < 10) {
+    ++windows;
+    const SourceCounters before = source->counters();
+    allocations.store(0);
+    counting.store(true);
+    counted = drain(queue, 2 * static_cast<std::uint64_t>(kRateHz));
+    counting.store(false);
+    seen = allocations.load();
+    const SourceCounters after = source->counters();
+    if (after.xruns == before.xruns && after.dropped_frames == before.dropped_frames &&
+        after.server_losses == before.server_losses && after.port_disconnections == 0) {
+      break;
+    }
+    ++faulty_windows;
+  }
+  source->stop();
+  ASSERT_LT(faulty_windows, windows) << "no window without an xrun in " << windows;
+  EXPECT_GE(counted, 2 * kRateHz) << "2 s of stream passed while counting";
+  EXPECT_EQ(seen, 0u) << "the first by thread \"" << first_thread_name << "\"";
+}
+
+}  // namespace
+}  // namespace oscilab::daq
