@@ -277,6 +277,76 @@ TEST(JackSource, AKilledServerIsReportedAndTheSourceReconnectsWhenItComesBack) {
   EXPECT_EQ(count_events(events, "error"), 0u);
 }
 
+// The frequency of channel 0 over the newest `samples` of a drain: positive-going zero crossings,
+// interpolated linearly between samples, timed only between crossings with no gap between them
+// (an xrun, which a loaded machine can cause, withholds samples). 0 when there are none.
+double frequency_of_newest(const Drain& drain, std::size_t samples) {
+  if (drain.index.size() < samples) return 0.0;
+  double last = -1.0, timed_s = 0.0;
+  int periods = 0;
+  for (std::size_t i = drain.index.size() - samples + 1; i < drain.index.size(); ++i) {
+    if (drain.index[i] != drain.index[i - 1] + 1) {
+      last = -1.0;  // a gap: the next crossing starts afresh
+      continue;
+    }
+    const double a = drain.values[2 * (i - 1)], b = drain.values[2 * i];
+    if (a < 0.0 && b >= 0.0) {
+      const double t = (static_cast<double>(drain.index[i - 1]) + a / (a - b)) / kRateHz;
+      if (last >= 0) timed_s += t - last, ++periods;
+      last = t;
+    }
+  }
+  return periods > 0 ? periods / timed_s : 0.0;
+}
+
+// A server that comes back at another rate (44.1 kHz after 48 kHz, as after a restart with other
+// settings): the source opens its resampler for the new rate, so the stream stays at 512 Hz and a
+// 9 Hz sine stays 9 Hz (a resampler left at 48 kHz would make it 9 × 48 / 44.1 = 9.80 Hz).
+TEST(JackSource, AServerBackAtAnotherRateIsResampledFromItsNewRate) {
+  JackTestServer server;
+  auto player = std::make_unique<JackTestPlayer>(server.name(), 2);
+  player->play_sines({{0.5, 9.0, 0.0}, {0.5, 9.0, 1.0}});
+  JackSource::Options options = jack_options(server, *player);
+  options.reconnect_interval_s = 0.1;
+  auto source = std::make_unique<JackSource>(options);
+  BlockQueue queue(1024, source->max_block_rows(), 2);
+  source->start(queue);
+  Drain before;
+  ASSERT_TRUE(wait_for(
+      [&] {
+        before.take(queue);
+        return before.index.size() > 3 * 512;
+      },
+      60));
+  EXPECT_NEAR(frequency_of_newest(before, 1024), 9.0, 0.01);
+  server.stop(SIGKILL);
+  ASSERT_TRUE(wait_for([&] { return source->counters().server_losses == 1; }, 10));
+  ASSERT_TRUE(wait_for([&] { return player->gone(); }, 10));
+  player.reset();
+  server.set_rate_hz(44100);
+  server.start();
+  JackTestPlayer back(server.name(), 2);
+  back.play_sines({{0.5, 9.0, 0.0}, {0.5, 9.0, 1.0}});
+  ASSERT_TRUE(wait_for([&] { return source->counters().reconnections == 1; }, 10));
+  EXPECT_EQ(source->server_rate_hz(), 44100.0);
+  Drain after;
+  before.take(queue);  // what the first server delivered before it went
+  ASSERT_TRUE(wait_for(
+      [&] {
+        after.take(queue);
+        return after.index.size() > 3 * 512;
+      },
+      60));
+  source->stop();
+  EXPECT_NEAR(frequency_of_newest(after, 1024), 9.0, 0.01);
+  EXPECT_GT(after.index.front(), before.index.back()) << "the stream clock runs on";
+  bool reported = false;
+  for (const StreamEvent& e : source->take_events()) {
+    if (e.kind == EventKind::Reconnected) reported = e.data.at("server_rate_hz") == 44100;
+  }
+  EXPECT_TRUE(reported) << "the reconnected event names the new rate";
+}
+
 TEST(JackSource, AServerGoneForGoodEndsCleanlyOnStop) {
   JackTestServer server;
   JackTestPlayer player(server.name(), 2);

@@ -59,6 +59,8 @@ class JackTestServer {
 
   const std::string& name() const { return name_; }
   int rate_hz() const { return rate_hz_; }
+  /// The rate of the next start() (a server that comes back at another rate).
+  void set_rate_hz(int rate_hz) { rate_hz_ = rate_hz; }
 
   void start() {
     const std::string rate = std::to_string(rate_hz_), period = std::to_string(period_);
