@@ -4,45 +4,18 @@
 // thread but the test's and the source's) while a steady stream passes.
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 #include <thread>
 
 #include <gtest/gtest.h>
 
 #include "daq/live/acquisition.h"
-
-namespace {
-
-std::atomic<bool> counting{false};
-std::atomic<std::uint64_t> allocations{0};
-std::thread::id test_thread, source_thread;
-
-void count() {
-  if (!counting.load(std::memory_order_relaxed)) return;
-  const std::thread::id self = std::this_thread::get_id();
-  if (self != test_thread && self != source_thread) allocations.fetch_add(1);
-}
-
-}  // namespace
-
-// GCC sees malloc'd memory freed by this binary's own operator delete (which calls free) as a
-// mismatch; here new and delete are a pair by construction.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-void* operator new(std::size_t size) {
-  count();
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/allocation_counter.h"
 
 namespace oscilab::daq {
 namespace {
+
+using oscilab::testing::allocation_counter;
+std::atomic<std::thread::id> source_thread;
 
 constexpr double kRateHz = 512.0;
 constexpr int kRows = 16;
@@ -119,7 +92,6 @@ void wait_for_samples(const Acquisition& acquisition, std::uint64_t samples) {
 // ten-minute history ring all run; the EDC pipeline is off (the layout names no excitation
 // frequency): a cycle's harmonic fit is per cycle, not per block, and allocates its own work.
 TEST(AcquisitionAllocations, ACleanBlockAllocatesNothingOnceWarm) {
-  test_thread = std::this_thread::get_id();
   const std::uint64_t warm_up = 256, measured = 2048;  // 8 s, then 64 s of stream
   auto owned = std::make_unique<SteadySource>(warm_up, measured);
   SteadySource* source = owned.get();
@@ -130,13 +102,13 @@ TEST(AcquisitionAllocations, ACleanBlockAllocatesNothingOnceWarm) {
   Acquisition acquisition(std::move(owned), options);
   acquisition.start();
   wait_for_samples(acquisition, warm_up * kRows);
-  counting.store(true);
+  allocation_counter.start(std::this_thread::get_id(), source_thread.load());
   source->go.store(true);
   wait_for_samples(acquisition, (warm_up + measured) * kRows);
-  counting.store(false);
-  const std::uint64_t seen = allocations.load();
+  const std::uint64_t seen = allocation_counter.stop();
   acquisition.stop();
-  EXPECT_EQ(seen, 0u) << "allocations on the acquisition thread over " << measured << " blocks";
+  EXPECT_EQ(seen, 0u) << "allocations on the acquisition thread over " << measured
+                      << " blocks, the first by \"" << allocation_counter.first_thread_name << "\"";
   // The chain did its work meanwhile: derived z in the history, no fault, no alarm.
   TraceHistory h;
   acquisition.history(60.0, 70.0, 100000, h);
@@ -150,8 +122,6 @@ TEST(AcquisitionAllocations, ACleanBlockAllocatesNothingOnceWarm) {
 // signals start (2 × 2 s of filter to fill, inside the counted stretch) allocates the alarm's
 // text and event, so a zero above is not a counter that never counts.
 TEST(AcquisitionAllocations, TheCounterSeesTheAllocationsOfAnAlarm) {
-  test_thread = std::this_thread::get_id();
-  allocations.store(0);
   auto owned = std::make_unique<SteadySource>(64, 256);  // 2 s, then 8 s
   SteadySource* source = owned.get();
   AcquisitionOptions options;
@@ -160,12 +130,12 @@ TEST(AcquisitionAllocations, TheCounterSeesTheAllocationsOfAnAlarm) {
   acquisition.start();
   wait_for_samples(acquisition, 64 * kRows);
   EXPECT_EQ(acquisition.status().alarms, 0u);
-  counting.store(true);
+  allocation_counter.start(std::this_thread::get_id(), source_thread.load());
   source->go.store(true);
   wait_for_samples(acquisition, 320 * kRows);
-  counting.store(false);
+  const std::uint64_t seen = allocation_counter.stop();
   acquisition.stop();
-  EXPECT_GT(allocations.load(), 0u);
+  EXPECT_GT(seen, 0u);
   EXPECT_EQ(acquisition.status().alarms, 1u);
 }
 

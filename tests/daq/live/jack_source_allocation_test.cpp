@@ -4,54 +4,18 @@
 // but the test's own (which drains the queue) while a steady stream passes through a real jackd
 // (dummy backend); the test player's process callback is a JACK client in this process too and
 // is counted with them.
-#include <pthread.h>
-
-#include <atomic>
-#include <cstdlib>
-#include <cstring>
-#include <new>
 #include <thread>
 
 #include <gtest/gtest.h>
 
 #include "daq/live/block_queue.h"
+#include "tests/allocation_counter.h"
 #include "tests/daq/live/jack_test_helpers.h"
-
-namespace {
-
-std::atomic<bool> counting{false};
-std::atomic<std::uint64_t> allocations{0};
-std::thread::id test_thread;
-char first_thread_name[32] = "";  // the first thread that allocated (no allocation to say so)
-
-void count() {
-  if (!counting.load(std::memory_order_relaxed)) return;
-  if (std::this_thread::get_id() == test_thread) return;
-  if (allocations.fetch_add(1) == 0) {
-    pthread_getname_np(pthread_self(), first_thread_name, sizeof first_thread_name);
-  }
-}
-
-}  // namespace
-
-// GCC sees malloc'd memory freed by this binary's own operator delete (which calls free) as a
-// mismatch; here new and delete are a pair by construction.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-void* operator new(std::size_t size) {
-  count();
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace oscilab::daq {
 namespace {
 
+using oscilab::testing::allocation_counter;
 using testing::jack_options;
 using testing::JackTestPlayer;
 using testing::JackTestServer;
@@ -72,7 +36,6 @@ std::uint64_t drain(BlockQueue& queue, std::uint64_t samples) {
 }
 
 TEST(JackSourceAllocations, TheProcessCallbackAndTheResamplerAllocateNothingOnceRunning) {
-  test_thread = std::this_thread::get_id();
   JackTestServer server;
   JackTestPlayer player(server.name(), 2);
   player.play_sines({{0.5, 9.0, 0.3}, {0.25, 37.0, -1.1}});
@@ -86,11 +49,9 @@ TEST(JackSourceAllocations, TheProcessCallbackAndTheResamplerAllocateNothingOnce
   while (windows < 10) {
     ++windows;
     const SourceCounters before = source->counters();
-    allocations.store(0);
-    counting.store(true);
+    allocation_counter.start(std::this_thread::get_id());
     counted = drain(queue, 2 * static_cast<std::uint64_t>(kRateHz));
-    counting.store(false);
-    seen = allocations.load();
+    seen = allocation_counter.stop();
     const SourceCounters after = source->counters();
     if (after.xruns == before.xruns && after.dropped_frames == before.dropped_frames &&
         after.server_losses == before.server_losses && after.port_disconnections == 0) {
@@ -101,7 +62,7 @@ TEST(JackSourceAllocations, TheProcessCallbackAndTheResamplerAllocateNothingOnce
   source->stop();
   ASSERT_LT(faulty_windows, windows) << "no window without an xrun in " << windows;
   EXPECT_GE(counted, 2 * kRateHz) << "2 s of stream passed while counting";
-  EXPECT_EQ(seen, 0u) << "the first by thread \"" << first_thread_name << "\"";
+  EXPECT_EQ(seen, 0u) << "the first by thread \"" << allocation_counter.first_thread_name << "\"";
 }
 
 }  // namespace
