@@ -328,6 +328,11 @@ void IdentificationPanel::begin_job(const QString& status) {
   status_label_->setText(status);
 }
 
+QString IdentificationPanel::ended_text(const std::string& error, bool cancelled) const {
+  if (!error.empty()) return tr("Error: %1").arg(QString::fromStdString(error));
+  return cancelled ? tr("Cancelled.") : QString();
+}
+
 void IdentificationPanel::end_job() {
   set_busy(false);
   progress_->setValue(1000);
@@ -340,12 +345,8 @@ void IdentificationPanel::on_fit_finished(std::shared_ptr<const FitOutcome> outc
     figure_data_.reset();
   }
   end_job();
-  QString message;
-  if (!outcome->error.empty()) {
-    message = tr("Error: %1").arg(QString::fromStdString(outcome->error));
-  } else if (outcome->cancelled) {
-    message = tr("Cancelled.");
-  } else {
+  QString message = ended_text(outcome->error, outcome->cancelled);
+  if (message.isEmpty()) {
     show_fit(*outcome);
     // A well without levels has no deviation (NaN).
     const auto deviation = [this](double pct) {
@@ -374,12 +375,8 @@ void IdentificationPanel::on_fit_finished(std::shared_ptr<const FitOutcome> outc
 
 void IdentificationPanel::on_diagnosis_finished(std::shared_ptr<const DiagnosisOutcome> outcome) {
   end_job();
-  QString message;
-  if (!outcome->error.empty()) {
-    message = tr("Error: %1").arg(QString::fromStdString(outcome->error));
-  } else if (outcome->cancelled) {
-    message = tr("Cancelled.");
-  } else {
+  QString message = ended_text(outcome->error, outcome->cancelled);
+  if (message.isEmpty()) {
     show_diagnosis(*outcome);
     message = tr("Diagnosis: %1 (%2 s)")
                   .arg(QString::fromStdString(outcome->result.verdict))

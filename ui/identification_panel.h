@@ -134,6 +134,8 @@ class IdentificationPanel : public QWidget {
   /// The buttons and the progress bar after a fit or a diagnosis.
   void begin_job(const QString& status);  // a search starts: plots cleared, buttons busy
   void end_job();
+  /// "Error: …" or "Cancelled." for a job that ended so; empty when it finished.
+  QString ended_text(const std::string& error, bool cancelled) const;
   /// Runs `then` once the figure data of the last fit exists (at once, or after the worker
   /// computed it; not at all when that is cancelled). With `export_dir`, the worker also writes
   /// the FIT JSON, the CSV tables and the PNG figures there.

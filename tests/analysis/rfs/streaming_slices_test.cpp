@@ -92,18 +92,29 @@ TEST(StreamingSlices, TakesOnlyFiniteNewSamplesAndKeepsTheNewestPoints) {
 // the streaming slices in one piece, with a window of cycles that holds the whole record, make
 // the band of the offline stiffness slice (ε_s = 0.02 p99(|ż|) over the same samples) and so
 // select exactly the same (z, R) points, in the same order: the comparison is exact.
-TEST(StreamingSlices, SelectTheOfflineStiffnessSliceOfARecording) {
+// A stepped sine of `levels_n` held `hold_s` each after a 1 s lead-in.
+SteppedSineSchedule stepped(std::vector<double> levels_n, double hold_s) {
   SteppedSineSchedule schedule;
-  schedule.levels_n = {0.5, 1.5};
-  schedule.hold_s = 4.0;
+  schedule.levels_n = std::move(levels_n);
+  schedule.hold_s = hold_s;
   schedule.lead_in_s = 1.0;
+  return schedule;
+}
+
+// The offline analysis of the virtual rig's recording of `schedule` (sensor noise seed `seed`).
+CampaignAnalysis rig_campaign(const SteppedSineSchedule& schedule, std::uint64_t seed,
+                              const PipelineSettings& settings) {
   daq::RigSpec spec;
-  spec.seed = 8;
+  spec.seed = seed;
+  return analyze_campaign({daq::measurement_channels(
+                              daq::record_stepped_sine(paper_model(), schedule, spec).recording)},
+                          settings);
+}
+
+TEST(StreamingSlices, SelectTheOfflineStiffnessSliceOfARecording) {
+  const SteppedSineSchedule schedule = stepped({0.5, 1.5}, 4.0);
   const PipelineSettings settings;
-  const CampaignAnalysis campaign =
-      analyze_campaign({daq::measurement_channels(
-                           daq::record_stepped_sine(paper_model(), schedule, spec).recording)},
-                       settings);
+  const CampaignAnalysis campaign = rig_campaign(schedule, 8, settings);
   ASSERT_TRUE(campaign.stiffness.has_value()) << campaign.rfs_message;
   const MotionSignals& motion = campaign.records.at(0).motion;
 
@@ -157,17 +168,9 @@ TEST(StreamingSlices, SelectTheOfflineStiffnessSliceOfARecording) {
 // |ż| is spread evenly below the band: a relative band difference δ leaves about δ of the
 // selected samples between them. The test allows twice that, plus two for counting noise.
 TEST(StreamingSlices, FedInBlocksSelectTheOfflineStiffnessSliceOfASteadyLevel) {
-  SteppedSineSchedule schedule;
-  schedule.levels_n = {1.5};
-  schedule.hold_s = 30.0;
-  schedule.lead_in_s = 1.0;
-  daq::RigSpec spec;
-  spec.seed = 9;
+  const SteppedSineSchedule schedule = stepped({1.5}, 30.0);
   const PipelineSettings settings;
-  const CampaignAnalysis campaign =
-      analyze_campaign({daq::measurement_channels(
-                           daq::record_stepped_sine(paper_model(), schedule, spec).recording)},
-                       settings);
+  const CampaignAnalysis campaign = rig_campaign(schedule, 9, settings);
   ASSERT_TRUE(campaign.stiffness.has_value()) << campaign.rfs_message;
   const MotionSignals& motion = campaign.records.at(0).motion;
   // Compared once the window of 30 cycles lies within the steady level.
