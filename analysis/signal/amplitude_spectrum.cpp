@@ -4,10 +4,9 @@
 #include <complex>
 #include <numbers>
 
-#include <fftw3.h>
-
 #include "analysis/signal/fft_size.h"
 #include "analysis/signal/fftw_planner.h"
+#include "analysis/signal/real_fft.h"
 
 namespace oscilab::analysis {
 namespace {
@@ -44,8 +43,7 @@ ZSpectrum z_spectrum(const std::vector<double>& z_m, double sample_rate_hz, doub
   }
   const int size = static_cast<int>(x.size());
   FftwVector<std::complex<double>> spectrum(x.size() / 2 + 1);
-  fftw_execute_dft_r2c(cached_r2c_plan(size), x.data(),
-                       reinterpret_cast<fftw_complex*>(spectrum.data()));
+  RealFft::of_size(size).forward(x.data(), spectrum.data());
   out.freq_hz.resize(spectrum.size());
   out.amplitude_m.resize(spectrum.size());
   for (std::size_t k = 0; k < spectrum.size(); ++k) {

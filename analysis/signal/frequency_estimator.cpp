@@ -5,10 +5,9 @@
 #include <numbers>
 #include <vector>
 
-#include <fftw3.h>
-
 #include "analysis/signal/fft_size.h"
 #include "analysis/signal/fftw_planner.h"
+#include "analysis/signal/real_fft.h"
 
 namespace oscilab::analysis {
 
@@ -27,8 +26,7 @@ DominantTone dominant_tone(const Eigen::VectorXd& x, double sample_rate_hz, doub
   }
   const Eigen::Index bins = n_fft / 2 + 1;
   FftwVector<std::complex<double>> spectrum(static_cast<std::size_t>(bins));
-  fftw_execute_dft_r2c(cached_r2c_plan(static_cast<int>(n_fft)), buffer.data(),
-                       reinterpret_cast<fftw_complex*>(spectrum.data()));
+  RealFft::of_size(static_cast<int>(n_fft)).forward(buffer.data(), spectrum.data());
 
   const double df = sample_rate_hz / static_cast<double>(n_fft);
   const auto first = static_cast<Eigen::Index>(std::ceil(min_hz / df));

@@ -5,11 +5,9 @@
 #include <numbers>
 #include <vector>
 
-#include <fftw3.h>
-
 #include "analysis/common/input_error.h"
 #include "analysis/signal/fft_size.h"
-#include "analysis/signal/fftw_planner.h"
+#include "analysis/signal/real_fft.h"
 
 namespace oscilab::analysis {
 namespace {
@@ -49,8 +47,8 @@ SpectralRecord::SpectralRecord(const Eigen::VectorXd& x, double sample_rate_hz)
     buffer[static_cast<std::size_t>(2 * n_ - 1 - i)] = x[i];
   }
   spectrum_.resize(static_cast<std::size_t>(bins_));
-  fftw_execute_dft_r2c(cached_r2c_plan(static_cast<int>(size_)), buffer.data(),
-                       reinterpret_cast<fftw_complex*>(spectrum_.data()));
+  transform_ = &RealFft::of_size(static_cast<int>(size_));
+  transform_->forward(buffer.data(), spectrum_.data());
 }
 
 void SpectralRecord::accumulate(Spectrum& spectrum, double gain, int order,
@@ -78,8 +76,7 @@ Eigen::VectorXd SpectralRecord::inverse(Spectrum& spectrum) const {
   // first-touch faults against 2 ms of FFT for 270000 points on the 2-core CI machine).
   thread_local FftwVector<double> buffer;
   buffer.resize(static_cast<std::size_t>(size_));
-  fftw_execute_dft_c2r(cached_c2r_plan(static_cast<int>(size_)),
-                       reinterpret_cast<fftw_complex*>(spectrum.data()), buffer.data());
+  transform_->inverse(spectrum.data(), buffer.data());
   return Eigen::Map<const Eigen::VectorXd>(buffer.data(), n_);
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "analysis/signal/fftw_planner.h"
+#include "analysis/signal/real_fft.h"
 
 #include <Eigen/Core>
 
@@ -35,7 +36,7 @@ double spectral_window(double f_hz, const SpectralOptions& options, bool integra
 /// then a multiplication and one inverse transform each.
 class SpectralRecord {
  public:
-  using Spectrum = FftwVector<std::complex<double>>;  // aligned for the cached plans
+  using Spectrum = FftwVector<std::complex<double>>;  // aligned for RealFft
 
   SpectralRecord(const Eigen::VectorXd& x, double sample_rate_hz);  // throws InputError
 
@@ -54,6 +55,7 @@ class SpectralRecord {
   Eigen::Index size_ = 0;  // transform length (≥ 2n, fast)
   Eigen::Index bins_ = 0;
   double sample_rate_hz_ = 0.0;
+  const RealFft* transform_ = nullptr;  // of length size_
   Spectrum spectrum_;
 };
 

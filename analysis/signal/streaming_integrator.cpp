@@ -7,6 +7,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/signal/fftw_planner.h"
+#include "analysis/signal/real_fft.h"
 #include "analysis/signal/spectral_calculus.h"
 
 namespace oscilab::analysis {
@@ -44,8 +45,7 @@ StreamingIntegrator::StreamingIntegrator(const Options& options)
     response[k] = value / static_cast<double>(grid);
   }
   FftwVector<double> impulse(static_cast<std::size_t>(grid));
-  fftw_execute_dft_c2r(cached_c2r_plan(grid), reinterpret_cast<fftw_complex*>(response.data()),
-                       impulse.data());
+  RealFft::of_size(grid).inverse(response.data(), impulse.data());
   taps_.resize(static_cast<std::size_t>(taps));
   for (int j = -half_width_; j <= half_width_; ++j) {
     // Tukey taper: flat over the inner half, raised-cosine to zero over the outer quarters, so

@@ -3,11 +3,15 @@
 // core). Records come from the virtual rig once, outside the timed loops.
 #include <cstdio>
 #include <ctime>
+#include <mutex>
+#include <optional>
 
 #include <benchmark/benchmark.h>
 
 #include "analysis/model/reference_models.h"
 #include "analysis/pipeline/offline_analysis.h"
+#include "analysis/signal/fftw_planner.h"
+#include "analysis/signal/real_fft.h"
 #include "daq/recording/measurement_mapping.h"
 #include "daq/rig/virtual_rig.h"
 
@@ -98,6 +102,53 @@ void BM_LivePipeline(benchmark::State& state) {
   state.SetLabel(label);
 }
 BENCHMARK(BM_LivePipeline)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// What a fresh process pays at the first real transform of a record's length: plans made, then
+// one forward and one inverse transform. RealFft (a complex plan of half the length and a
+// twiddle table) against FFTW's own r2c and c2r plans (FFTW_ESTIMATE), in the same process, at
+// the length of the offline analysis's even extension of a 262.5 s record at 512 Hz. FFTW keeps
+// what its planner learnt for the rest of a process (a later plan of the same problem is found
+// at once), so each iteration forgets it.
+constexpr int kRecordTransformLength = 268800;
+
+void BM_RealFftFirstUse(benchmark::State& state) {
+  FftwVector<double> x(kRecordTransformLength, 1.0), back(kRecordTransformLength);
+  FftwVector<std::complex<double>> spectrum(kRecordTransformLength / 2 + 1);
+  for (auto _ : state) {
+    std::optional<RealFft> fft;
+    {
+      const std::lock_guard lock(fftw_planner_mutex());
+      fftw_forget_wisdom();  // as in a fresh process
+      fft.emplace(kRecordTransformLength);
+    }
+    fft->forward(x.data(), spectrum.data());
+    fft->inverse(spectrum.data(), back.data());
+    const std::lock_guard lock(fftw_planner_mutex());
+    fft.reset();
+  }
+}
+BENCHMARK(BM_RealFftFirstUse)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_FftwRealPlansFirstUse(benchmark::State& state) {
+  FftwVector<double> x(kRecordTransformLength, 1.0), back(kRecordTransformLength);
+  FftwVector<std::complex<double>> spectrum(kRecordTransformLength / 2 + 1);
+  auto* bins = reinterpret_cast<fftw_complex*>(spectrum.data());
+  for (auto _ : state) {
+    fftw_plan r2c = nullptr, c2r = nullptr;
+    {
+      const std::lock_guard lock(fftw_planner_mutex());
+      fftw_forget_wisdom();  // as in a fresh process
+      r2c = fftw_plan_dft_r2c_1d(kRecordTransformLength, x.data(), bins, FFTW_ESTIMATE);
+      c2r = fftw_plan_dft_c2r_1d(kRecordTransformLength, bins, back.data(), FFTW_ESTIMATE);
+    }
+    fftw_execute(r2c);
+    fftw_execute(c2r);
+    const std::lock_guard lock(fftw_planner_mutex());
+    fftw_destroy_plan(r2c);
+    fftw_destroy_plan(c2r);
+  }
+}
+BENCHMARK(BM_FftwRealPlansFirstUse)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
