@@ -70,13 +70,17 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   }
   // AᵀA as a symmetric rank update (its lower triangle, which is all LLT reads): half the
   // products of a general AᵀA, without the general product's blocking overhead at these sizes.
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(columns, columns);
-  gram.selfadjointView<Eigen::Lower>().rankUpdate(window.transpose());
-  const Eigen::MatrixXd projections = window.transpose() * values;
+  Eigen::MatrixXd gram(columns, columns);
+  Eigen::MatrixXd projections(columns, 2);
+  for (int c = 0; c < columns; ++c) {
+    for (int r = c; r < columns; ++r) gram(r, c) = window.col(r).dot(window.col(c));
+    projections(c, 0) = window.col(c).dot(values.col(0));
+    projections(c, 1) = window.col(c).dot(values.col(1));
+  }
   const Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> cholesky(gram);
   if (cholesky.info() != Eigen::Success) return false;
   Eigen::MatrixXd coefficients = cholesky.solve(projections);
-  const Eigen::MatrixXd residual = window * coefficients - values;
+  const Eigen::MatrixXd residual = window.lazyProduct(coefficients) - values;
   coefficients(0, 0) += base_offset;
   coefficients(0, 1) += mass_offset;
   // Residual rms with the degrees of freedom of the fit removed (unbiased for white noise).
@@ -128,8 +132,8 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   const double y_mean = mass_order == 0 ? coefficients(0, 1) : 0.0;
   const double b_mean = base_order == 0 ? coefficients(0, 0) : 0.0;
   out.z_mean_m = input.mass_is_relative ? y_mean : y_mean - b_mean;
-  const Eigen::VectorXd z_fit = basis * z_disp;  // harmonic part at lo..hi
-  const Eigen::VectorXd b_fit = basis * b_disp;
+  const Eigen::VectorXd z_fit = basis.lazyProduct(z_disp);  // harmonic part at lo..hi
+  const Eigen::VectorXd b_fit = basis.lazyProduct(b_disp);
   out.z_min_m = out.z_mean_m + z_fit.segment(first - lo, n).minCoeff();
   out.z_max_m = out.z_mean_m + z_fit.segment(first - lo, n).maxCoeff();
 
@@ -137,7 +141,8 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   // acceleration (f = −m b̈) and z = y − b_fit where the mass channel is a displacement;
   // otherwise the fitted signal stands in. Partial intervals at the window edges are
   // interpolated linearly between the samples outside and inside.
-  const Eigen::VectorXd b_acc_fit = base_order == 2 ? Eigen::VectorXd() : basis * b_acc;
+  const Eigen::VectorXd b_acc_fit =
+      base_order == 2 ? Eigen::VectorXd() : Eigen::VectorXd(basis.lazyProduct(b_acc));
   const auto force_at = [&](int i) {
     return excitation_force_n(input.mass_kg, base_order == 2 ? base[i] : b_acc_fit[i - lo]);
   };

@@ -4,6 +4,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include "analysis/common/input_error.h"
 #include "analysis/common/parallel_for.h"
@@ -92,8 +93,15 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
 
   // Samples of invalid intervals (a live recording's gaps, bad samples) may be non-finite: fill
   // them for the whole-record processing, and leave out every result that touches them.
-  MeasurementChannels filled = channels;
-  const long filled_samples = fill_non_finite(filled.base) + fill_non_finite(filled.mass);
+  // The copy is made only for a record that has such samples.
+  const auto all_finite = [](const Eigen::VectorXd& x) { return x.array().isFinite().all(); };
+  std::optional<MeasurementChannels> filled_copy;
+  long filled_samples = 0;
+  if (!all_finite(channels.base) || !all_finite(channels.mass)) {
+    filled_copy = channels;
+    filled_samples = fill_non_finite(filled_copy->base) + fill_non_finite(filled_copy->mass);
+  }
+  const MeasurementChannels& filled = filled_copy ? *filled_copy : channels;
   if (!channels.excluded.empty()) {
     out.notes.push_back(std::to_string(channels.excluded.size()) +
                         " invalid interval(s) in the sidecar left out (" +
@@ -184,10 +192,13 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
   } else {
     try {
       campaign.stiffness = stiffness_slice(signals, settings);
-      for (double z : stable_zeros(campaign.stiffness->fit, campaign.stiffness->z_min_m,
-                                   campaign.stiffness->z_max_m)) {
-        campaign.damping.push_back(damping_slice(signals, *campaign.stiffness, z, settings));
-      }
+      // One damping slice per stable zero, each over every sample: one per thread.
+      const std::vector<double> zeros = stable_zeros(
+          campaign.stiffness->fit, campaign.stiffness->z_min_m, campaign.stiffness->z_max_m);
+      campaign.damping.resize(zeros.size());
+      parallel_for(zeros.size(), 0, [&](std::size_t i) {
+        campaign.damping[i] = damping_slice(signals, *campaign.stiffness, zeros[i], settings);
+      });
     } catch (const InputError& error) {
       campaign.rfs_message = error.what();
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "analysis/common/input_error.h"
 #include "analysis/common/quantile.h"
@@ -33,13 +34,17 @@ std::vector<SliceBin> bin_samples(const std::vector<double>& x, const std::vecto
 
 StiffnessSlice stiffness_slice(const std::vector<const MotionSignals*>& records,
                                const PipelineSettings& settings, int degree) {
+  Eigen::Index total = 0;
+  for (const MotionSignals* s : records) total += s->t_s.size();
   std::vector<double> speeds;
+  speeds.reserve(static_cast<std::size_t>(total));
   for (const MotionSignals* s : records) {
     for_each_slice_sample(*s, settings.edge_trim_s,
                           [&](Eigen::Index i) { speeds.push_back(std::abs(s->z_dot_m_s[i])); });
   }
   StiffnessSlice slice;
-  slice.velocity_band_m_s = settings.stiffness_velocity_band_rel * quantile(speeds, 0.99);
+  slice.velocity_band_m_s =
+      settings.stiffness_velocity_band_rel * quantile(std::move(speeds), 0.99);
   std::vector<double> z, r;
   for (const MotionSignals* s : records) {
     for_each_slice_sample(*s, settings.edge_trim_s, [&](Eigen::Index i) {

@@ -1,12 +1,16 @@
 // Sound containers through libsndfile: read (the sidecar's channels are the file's channels in
 // order, integer formats as their counts) and written (64-bit float, or 24-bit FLAC).
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <string_view>
+#include <system_error>
 
 #include <sndfile.h>
 
@@ -97,6 +101,16 @@ Recording read_sound(const std::string& path, const Sidecar& sidecar,
   StoredSamples stored;
   constexpr sf_count_t kBlockFrames = 8192;
   std::vector<double> block(static_cast<std::size_t>(kBlockFrames) * channels);
+  // The header's frame count sizes the samples at once, up to what the file's bytes can hold
+  // (a header that claims more does not reserve memory for it: a truncated file fails below,
+  // and a file that decodes to more, as a near-constant FLAC signal can, grows the vector).
+  if (info.frames > 0 && info.frames != std::numeric_limits<sf_count_t>::max()) {
+    std::error_code error;
+    const std::uintmax_t bytes = std::filesystem::file_size(path, error);
+    constexpr std::uintmax_t kMaxSamplesPerByte = 64;
+    const std::uintmax_t claimed = static_cast<std::uintmax_t>(info.frames) * channels;
+    if (!error) stored.values.reserve(std::min(claimed, kMaxSamplesPerByte * bytes));
+  }
   sf_count_t frames = 0;
   for (;;) {
     const sf_count_t got = sf_readf_double(file.get(), block.data(), kBlockFrames);
