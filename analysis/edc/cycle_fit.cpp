@@ -1,4 +1,5 @@
 #include "analysis/edc/cycle_fit.h"
+#include "analysis/edc/harmonic_gram.h"
 #include "analysis/model/excitation_force.h"
 
 #include <algorithm>
@@ -18,6 +19,18 @@ std::complex<double> to_displacement(std::complex<double> x, double h_omega, int
   return x;
 }
 
+// Whether t[j] = t[0] + j dt for j < n, to 1e-7 dt: a recording's timestamps j / rate are, to
+// rounding, for records up to 10⁹ samples. Taken as even, a sample's phase at order k is off by
+// at most 1e-7 kΔθ (Δθ = ω dt), far below what a cycle's fit resolves.
+bool evenly_spaced(const double* t, int n, double dt) {
+  if (!(dt > 0)) return false;
+  const double tolerance = 1e-7 * dt;
+  for (int j = 1; j < n - 1; ++j) {
+    if (std::abs(t[j] - (t[0] + j * dt)) > tolerance) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, const double* base,
@@ -35,16 +48,23 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
 
   // Basis rows for the samples lo..hi: the window plus one neighbour on each side (for the
   // trapezoid's partial intervals). Columns: 1, t − t_mid, then cos(hωτ), −sin(hωτ) for
-  // h = 1..H, τ = t − t_ref, by the angle-addition recurrence from one sincos per sample.
+  // h = 1..H, τ = t − t_ref, by the angle-addition recurrence from e^{iωτ}. That is one sincos
+  // per sample, or for evenly spaced samples one per cycle, advanced by e^{iω dt} from sample to
+  // sample (rounding grows as the row count times ε: 1e-13 at 0.1 Hz and 10 kHz).
   const int lo = std::max(0, first - 1), hi = std::min(count - 1, last);
   const int rows = hi - lo + 1;
   const int columns = 2 + 2 * harmonics;
   const double t_mid = start_s + 0.5 * period;
+  const double dt = (t_s[hi] - t_s[lo]) / (rows - 1);
+  const bool even = evenly_spaced(t_s + lo, rows, dt);
+  const std::complex<double> step = std::polar(1.0, omega * dt);
+  std::complex<double> phasor = std::polar(1.0, omega * (t_s[lo] - input.t_ref_s));
   Eigen::MatrixXd basis(rows, columns);
   for (int r = 0; r < rows; ++r) {
     const double t = t_s[lo + r];
-    const double c1 = std::cos(omega * (t - input.t_ref_s));
-    const double s1 = std::sin(omega * (t - input.t_ref_s));
+    if (!even && r > 0) phasor = std::polar(1.0, omega * (t - input.t_ref_s));
+    const double c1 = phasor.real(), s1 = phasor.imag();
+    if (even) phasor *= step;
     basis(r, 0) = 1.0;
     basis(r, 1) = t - t_mid;
     double c = c1, sn = s1;
@@ -71,10 +91,18 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   // AᵀA's lower triangle (all LLT reads) and Aᵀv as dot products of the basis columns: half the
   // products of a general AᵀA, and at these sizes (some 60 × 18) without a general product's
   // packing and blocking (6 % less time for the whole EDC path, BM_OfflineEdc).
-  Eigen::MatrixXd gram(columns, columns);
+  // Evenly spaced samples (a recording's, a gap-free stream's) give AᵀA in closed form
+  // (harmonic_gram.h), otherwise it is summed.
+  Eigen::MatrixXd gram;
+  if (!even || !harmonic_gram_evenly_spaced(n, omega * (t_s[first] - input.t_ref_s), omega * dt,
+                                            t_s[first] - t_mid, dt, harmonics, gram)) {
+    gram.resize(columns, columns);
+    for (int c = 0; c < columns; ++c) {
+      for (int r = c; r < columns; ++r) gram(r, c) = window.col(r).dot(window.col(c));
+    }
+  }
   Eigen::MatrixXd projections(columns, 2);
   for (int c = 0; c < columns; ++c) {
-    for (int r = c; r < columns; ++r) gram(r, c) = window.col(r).dot(window.col(c));
     projections(c, 0) = window.col(c).dot(values.col(0));
     projections(c, 1) = window.col(c).dot(values.col(1));
   }
