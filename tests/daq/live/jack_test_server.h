@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <jack/jack.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -26,10 +27,18 @@
 
 namespace oscilab::daq::testing {
 
-/// `jackd --no-realtime -n NAME -d dummy -r RATE -p PERIOD`, a name of its own per instance, up
-/// until a client can open on it; stopped (SIGTERM, then SIGKILL) at destruction. A server that
-/// does not come up within 10 s throws std::runtime_error with jackd's own output, so the test
-/// fails with the reason (nothing is skipped).
+/// `jackd --no-realtime -n NAME -d dummy -r RATE -p PERIOD`, up until a client can open on it;
+/// stopped (SIGTERM, then SIGKILL) at destruction. A server that does not come up within 10 s
+/// throws std::runtime_error with jackd's own output, so the test fails with the reason (nothing
+/// is skipped).
+///
+/// Names: "oscilab-test-<slot>-<n>", n counting this process's servers and the slot one that no
+/// other running test process holds (a lock file, released when the process ends). A server
+/// killed with SIGKILL (as the tests of a lost server do) keeps its entry in JACK's registry of 8
+/// servers until a server of the same name starts again; with a name of its own per process, a
+/// machine that had run the tests a few times refused every new server ("Too many servers
+/// already active"). Names from a small set reclaim those entries on later runs, and the slot
+/// keeps two test processes that run at once (ctest -j) off each other's servers.
 class JackTestServer {
  public:
   explicit JackTestServer(int rate_hz = 48000, int period = 256)
@@ -38,7 +47,7 @@ class JackTestServer {
     jack_set_error_function(+[](const char*) {});
     jack_set_info_function(+[](const char*) {});
     static std::atomic<int> counter{0};
-    name_ = "oscilab-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    name_ = "oscilab-test-" + std::to_string(process_slot()) + "-" + std::to_string(counter++);
     log_ = (std::filesystem::temp_directory_path() / (name_ + ".log")).string();
     start();
   }
@@ -125,6 +134,25 @@ class JackTestServer {
     std::stringstream text;
     text << in.rdbuf();
     return text.str();
+  }
+
+  /// The first of 16 slots whose lock file this process could lock; it keeps the lock (and the
+  /// file descriptor) until it exits.
+  static int process_slot() {
+    static const int slot = [] {
+      constexpr int kSlots = 16;
+      for (int k = 0; k < kSlots; ++k) {
+        const std::string path = (std::filesystem::temp_directory_path() /
+                                  ("oscilab-jack-test-" + std::to_string(k) + ".lock"))
+                                     .string();
+        const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+        if (fd < 0) continue;
+        if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return k;
+        ::close(fd);
+      }
+      throw std::runtime_error("jack test server: all 16 slots are held by running tests");
+    }();
+    return slot;
   }
 
   int rate_hz_, period_;
