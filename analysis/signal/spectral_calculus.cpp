@@ -56,6 +56,20 @@ void SpectralRecord::accumulate(Spectrum& spectrum, double gain, int order,
   const double df = sample_rate_hz_ / static_cast<double>(size_);
   const bool integrating = order < 0;
   const double scale = gain / static_cast<double>(size_);  // FFTW's round trip multiplies by size
+  // (iω)^order = ω^order i^order: a real factor and |order| quarter turns (i^−1 = −i).
+  const int quarter_turns = ((order % 4) + 4) % 4;
+  const auto turn = [quarter_turns](std::complex<double> x) {
+    switch (quarter_turns) {
+      case 1:
+        return std::complex<double>(-x.imag(), x.real());
+      case 2:
+        return -x;
+      case 3:
+        return std::complex<double>(x.imag(), -x.real());
+      default:
+        return x;
+    }
+  };
   for (Eigen::Index k = 0; k < bins_; ++k) {
     const double f = static_cast<double>(k) * df;
     const double w = spectral_window(f, options, integrating);
@@ -63,10 +77,10 @@ void SpectralRecord::accumulate(Spectrum& spectrum, double gain, int order,
     // The Nyquist bin of an even-length real signal is real; a derivative of odd order would
     // make it imaginary, which the c2r transform cannot represent: drop it.
     if (k == bins_ - 1 && size_ % 2 == 0 && std::abs(order) % 2 == 1) continue;
-    const std::complex<double> iw(0.0, 2.0 * std::numbers::pi * f);
-    std::complex<double> factor = w * scale;
-    for (int i = 0; i < std::abs(order); ++i) factor = order > 0 ? factor * iw : factor / iw;
-    spectrum[static_cast<std::size_t>(k)] += factor * spectrum_[static_cast<std::size_t>(k)];
+    const double omega = 2.0 * std::numbers::pi * f;
+    double factor = w * scale;
+    for (int i = 0; i < std::abs(order); ++i) factor = order > 0 ? factor * omega : factor / omega;
+    spectrum[static_cast<std::size_t>(k)] += turn(factor * spectrum_[static_cast<std::size_t>(k)]);
   }
 }
 
