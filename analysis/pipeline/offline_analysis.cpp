@@ -1,5 +1,6 @@
 #include "analysis/pipeline/offline_analysis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -113,11 +114,14 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
     for (const TimeInterval& interval : channels.excluded) {
       pipeline.exclude(interval.start_s, interval.end_s);
     }
-    SampleBlock block;
-    block.samples.resize(channels.base.size(), 2);
-    block.samples.col(0) = filled.base;
-    block.samples.col(1) = filled.mass;
-    pipeline.push(block);
+    // Streamed in chunks straight from the channels, as a live stream arrives (the result does
+    // not depend on the chunks), so the pipeline holds no copy of the record.
+    constexpr Eigen::Index kChunk = 8192;
+    const Eigen::Index n = filled.base.size();
+    for (Eigen::Index first = 0; first < n; first += kChunk) {
+      pipeline.push(first, filled.base.data() + first, filled.mass.data() + first,
+                    static_cast<int>(std::min(kChunk, n - first)));
+    }
     pipeline.finish();
     out.cycles = pipeline.cycles();
     out.levels = pipeline.levels();
