@@ -18,10 +18,10 @@ namespace oscilab::analysis {
 /// and the same steps backwards for the inverse (the classic real-FFT by a half-length complex
 /// FFT). The reason is the cost of planning in a fresh process, where each record length is met
 /// once: FFTW_ESTIMATE searches its real-data solvers for the r2c and c2r plans, which at the
-/// length of two stepped-sine records' even extension (268 800 points) costs several times the
-/// complex plan of half that length, while the transforms themselves cost about the same
-/// (analysis_benchmark: BM_RealFftFirstUse against BM_FftwRealPlansFirstUse). Odd n uses FFTW's
-/// r2c and c2r plans directly.
+/// length of a 262.5 s stepped-sine record's even extension at 512 Hz (268 800 points) costs
+/// several times the complex plan of half that length, while the transforms themselves cost
+/// about the same (analysis_benchmark: BM_RealFftFirstUse against BM_FftwRealPlansFirstUse).
+/// Odd n uses FFTW's r2c and c2r plans directly.
 ///
 /// Arrays must be aligned as fftw_malloc aligns them (FftwVector), like the plans they run.
 /// Thread-safe: one object serves every thread (FFTW's new-array execute functions are).
