@@ -162,8 +162,9 @@ FitUncertainty fit_uncertainty(const EdcObjective& objective, const Eigen::Vecto
         for (double v : values) var += (v - mean) * (v - mean);
         out.parameters[i].bootstrap_std =
             values.size() > 1 ? std::sqrt(var / (values.size() - 1)) : 0.0;
-        out.parameters[i].bootstrap_lower_95 = quantile(values, 0.025);
-        out.parameters[i].bootstrap_upper_95 = quantile(values, 0.975);
+        const std::vector<double> interval = quantiles(values, {0.025, 0.975});
+        out.parameters[i].bootstrap_lower_95 = interval[0];
+        out.parameters[i].bootstrap_upper_95 = interval[1];
       }
     }
   }

@@ -46,6 +46,8 @@ StiffnessSlice stiffness_slice(const std::vector<const MotionSignals*>& records,
   slice.velocity_band_m_s =
       settings.stiffness_velocity_band_rel * quantile(std::move(speeds), 0.99);
   std::vector<double> z, r;
+  z.reserve(static_cast<std::size_t>(total));  // an upper bound: pages beyond the band's untouched
+  r.reserve(static_cast<std::size_t>(total));
   for (const MotionSignals* s : records) {
     for_each_slice_sample(*s, settings.edge_trim_s, [&](Eigen::Index i) {
       if (std::abs(s->z_dot_m_s[i]) < slice.velocity_band_m_s) {
@@ -59,8 +61,9 @@ StiffnessSlice stiffness_slice(const std::vector<const MotionSignals*>& records,
                      " samples with |z_dot| < " + std::to_string(slice.velocity_band_m_s) +
                      " m/s: too few for the stiffness slice");
   }
-  slice.z_min_m = quantile(z, 0.01);
-  slice.z_max_m = quantile(z, 0.99);
+  const std::vector<double> z_range = quantiles(z, {0.01, 0.99});
+  slice.z_min_m = z_range[0];
+  slice.z_max_m = z_range[1];
   slice.bins = bin_samples(z, r, slice.z_min_m, slice.z_max_m, settings.stiffness_bins);
   slice.fit = fit_polynomial(
       Eigen::Map<const Eigen::VectorXd>(z.data(), static_cast<Eigen::Index>(z.size())),
@@ -85,7 +88,8 @@ DampingSlice damping_slice(const std::vector<const MotionSignals*>& records,
     });
   }
   if (v.size() < 10) return slice;
-  const double extent = std::max(std::abs(quantile(v, 0.01)), std::abs(quantile(v, 0.99)));
+  const std::vector<double> v_range = quantiles(v, {0.01, 0.99});
+  const double extent = std::max(std::abs(v_range[0]), std::abs(v_range[1]));
   slice.bins = bin_samples(v, d, -extent, extent, settings.damping_bins);
   return slice;
 }

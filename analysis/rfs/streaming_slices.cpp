@@ -60,8 +60,9 @@ std::size_t StreamingSlices::add(const std::vector<double>& t_s, const std::vect
   const std::vector<double> z(recent_z_.begin(), recent_z_.end());
   velocity_band_m_s_ =
       options_.velocity_band_rel * quantile({recent_z_dot_.begin(), recent_z_dot_.end()}, 0.99);
-  centre_m_ = quantile(z, 0.5);
-  position_band_m_ = options_.position_band_rel * (quantile(z, 0.99) - quantile(z, 0.01));
+  const std::vector<double> z_levels = quantiles(z, {0.01, 0.5, 0.99});
+  centre_m_ = z_levels[1];
+  position_band_m_ = options_.position_band_rel * (z_levels[2] - z_levels[0]);
 
   for (const Sample& s : fresh) {
     const bool positive = s.z > options_.well_boundary_m;

@@ -69,6 +69,22 @@ void BM_OfflineAnalyzeRecord(benchmark::State& state) {
 }
 BENCHMARK(BM_OfflineAnalyzeRecord)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The restoring-force slices of a campaign (the stiffness slice and its fit, a damping slice
+// per stable zero) over two records' motion signals: the serial step after the records'
+// analyses.
+void BM_OfflineSlices(benchmark::State& state) {
+  const RecordAnalysis record = analyze_record(default_record(), PipelineSettings{});
+  const std::vector<const MotionSignals*> signals = {&record.motion, &record.motion};
+  const PipelineSettings settings;
+  for (auto _ : state) {
+    const StiffnessSlice stiffness = stiffness_slice(signals, settings);
+    const DampingSlice damping =
+        damping_slice(signals, stiffness, 0.5 * (stiffness.z_min_m + stiffness.z_max_m), settings);
+    benchmark::DoNotOptimize(damping.bins.data());
+  }
+}
+BENCHMARK(BM_OfflineSlices)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Live: the same record pushed in 64-sample blocks (8 blocks a second at 512 Hz). The counter
 // `core_pct_at_512hz` is the share of one core the pipeline needs to keep up in real time.
 void BM_LivePipeline(benchmark::State& state) {

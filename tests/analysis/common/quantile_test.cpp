@@ -44,6 +44,37 @@ TEST(Quantile, EqualsTheSortedDefinitionOnRandomData) {
   }
 }
 
+// Several quantiles from one copy, asked in any order and with repeats, equal each asked
+// alone; on data with many ties too (where a selection that restarts in the wrong place would
+// pick a value from the wrong side).
+TEST(Quantiles, EqualEachQuantileAskedAloneInAnyOrder) {
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> small(0, 6);
+  std::normal_distribution<double> normal;
+  const std::vector<double> qs = {0.99, 0.01, 0.5, 0.5, 1.0, 0.0, 0.975, 0.025, 0.3};
+  for (bool ties : {false, true}) {
+    for (int n : {1, 2, 3, 10, 101, 1000}) {
+      std::vector<double> v(static_cast<std::size_t>(n));
+      for (double& x : v) x = ties ? small(rng) : normal(rng);
+      const std::vector<double> together = quantiles(v, qs);
+      ASSERT_EQ(together.size(), qs.size());
+      for (std::size_t i = 0; i < qs.size(); ++i) {
+        EXPECT_EQ(together[i], quantile(v, qs[i])) << "n " << n << " q " << qs[i];
+        // and the definition, independently of quantile():
+        std::vector<double> sorted = v;
+        std::sort(sorted.begin(), sorted.end());
+        const double position = qs[i] * (n - 1);
+        const auto k = static_cast<std::size_t>(position);
+        const double expected = k + 1 < sorted.size()
+                                    ? sorted[k] + (position - k) * (sorted[k + 1] - sorted[k])
+                                    : sorted[k];
+        EXPECT_NEAR(together[i], expected, 1e-15) << "n " << n << " q " << qs[i];
+      }
+    }
+  }
+  EXPECT_EQ(quantiles({}, {0.2, 0.8}), (std::vector<double>{0.0, 0.0}));
+}
+
 TEST(Median, IsTheMiddleValueOrTheMeanOfTheMiddleTwo) {
   EXPECT_EQ(median({}), 0.0);
   EXPECT_EQ(median({4.0}), 4.0);
