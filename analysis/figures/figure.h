@@ -48,6 +48,9 @@ struct FigurePanel {
   Corner legend_corner = Corner::TopLeft;  // where the legend sits inside the axes
 };
 
+/// The height of a figure's title row (figure_height_px).
+inline constexpr int kFigureTitleRowPx = 30;
+
 struct Figure {
   std::string title;
   std::vector<FigurePanel> panels;

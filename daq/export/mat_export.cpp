@@ -1,17 +1,16 @@
+// The MAT-file export the program sees: the variables are laid out here, and written by
+// oscilab_hdf5_module (mat_file_writer.cpp, matio), which is loaded on the first export.
 #include "daq/export/mat_export.h"
 
-#include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <memory>
+#include <deque>
 #include <set>
-
-#include <matio.h>
 
 #include "analysis/common/input_error.h"
 #include "analysis/pipeline/result_units.h"
+#include "daq/hdf5_module/hdf5_module_loader.h"
 #include "daq/recording/temporary_file.h"
 
 namespace oscilab::daq {
@@ -30,136 +29,72 @@ const std::set<std::string> kFixedNames = {"t_s",          "sample_rate_hz", "ma
                                            "sidecar_json", "channel_names",  "channel_variables",
                                            "channel_units"};
 
-struct MatVarFree {
-  void operator()(matvar_t* variable) const { Mat_VarFree(variable); }
-};
-using MatVar = std::unique_ptr<matvar_t, MatVarFree>;
-
-// UTF-8 to UTF-16 code units, which is how MATLAB stores char arrays (miUINT16). A byte that does
-// not start a valid sequence becomes U+FFFD, so any std::string can be written.
-std::u16string utf16_of(const std::string& utf8) {
-  std::u16string out;
-  out.reserve(utf8.size());
-  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(utf8[i]); };
-  std::size_t i = 0;
-  while (i < utf8.size()) {
-    const unsigned char lead = byte(i);
-    int length = 0;
-    char32_t code = 0;
-    if (lead < 0x80) {
-      length = 1;
-      code = lead;
-    } else if ((lead & 0xE0) == 0xC0) {
-      length = 2;
-      code = lead & 0x1F;
-    } else if ((lead & 0xF0) == 0xE0) {
-      length = 3;
-      code = lead & 0x0F;
-    } else if ((lead & 0xF8) == 0xF0) {
-      length = 4;
-      code = lead & 0x07;
-    }
-    bool valid = length > 0 && i + length <= utf8.size();
-    for (int k = 1; valid && k < length; ++k) {
-      valid = (byte(i + k) & 0xC0) == 0x80;
-      code = (code << 6) | (byte(i + k) & 0x3F);
-    }
-    // Overlong forms, surrogates and values beyond U+10FFFF are not valid UTF-8.
-    static constexpr char32_t kMinimum[5] = {0, 0, 0x80, 0x800, 0x10000};
-    if (valid &&
-        (code < kMinimum[length] || code > 0x10FFFF || (code >= 0xD800 && code < 0xE000))) {
-      valid = false;
-    }
-    if (!valid) {
-      out.push_back(u'\uFFFD');
-      ++i;
-      continue;
-    }
-    if (code >= 0x10000) {
-      code -= 0x10000;
-      out.push_back(static_cast<char16_t>(0xD800 + (code >> 10)));
-      out.push_back(static_cast<char16_t>(0xDC00 + (code & 0x3FF)));
-    } else {
-      out.push_back(static_cast<char16_t>(code));
-    }
-    i += length;
-  }
-  return out;
-}
-
-// A 1×k char array (name may be null for a cell element). matio copies the data.
-MatVar char_variable(const char* name, const std::string& text) {
-  std::u16string units = utf16_of(text);
-  std::size_t dims[2] = {1, units.size()};
-  return MatVar(Mat_VarCreate(name, MAT_C_CHAR, MAT_T_UINT16, 2, dims, units.data(), 0));
-}
-
-// An n×1 double column that points at `values` (matio neither copies nor frees it), so `values`
-// must outlive the write.
-MatVar double_column(const std::string& name, const double* values, std::size_t n) {
-  std::size_t dims[2] = {n, 1};
-  return MatVar(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
-                              const_cast<double*>(values), MAT_F_DONT_COPY_DATA));
-}
-
-MatVar double_scalar(const std::string& name, double value) {
-  std::size_t dims[2] = {1, 1};
-  return MatVar(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, &value, 0));
-}
-
-// n×1 cell of char. The cell owns its elements and frees them with itself.
-MatVar string_cell(const std::string& name, const std::vector<std::string>& texts) {
-  std::size_t dims[2] = {texts.size(), 1};
-  MatVar cell(Mat_VarCreate(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0));
-  if (!cell) return cell;
-  for (std::size_t i = 0; i < texts.size(); ++i) {
-    MatVar element = char_variable(nullptr, texts[i]);
-    if (!element) return MatVar();
-    Mat_VarSetCell(cell.get(), static_cast<int>(i), element.release());
-  }
-  return cell;
-}
-
-MatVar logical_column(const std::string& name, const std::vector<std::uint8_t>& values) {
-  std::size_t dims[2] = {values.size(), 1};
-  return MatVar(Mat_VarCreate(name.c_str(), MAT_C_UINT8, MAT_T_UINT8, 2, dims,
-                              const_cast<std::uint8_t*>(values.data()), MAT_F_LOGICAL));
-}
-
-// A MAT-file being written to a temporary beside `target`; commit() closes and renames it.
-class MatWriter {
+// The variables of one MAT-file as the module's C interface takes them. It keeps the names,
+// scalars and text lists it is given; the arrays of `doubles` and `logicals` and the strings of
+// `texts` stay the caller's and must outlive write().
+class MatVariables {
  public:
-  explicit MatWriter(const std::string& target) : file_(target) {
-    errno = 0;
-    mat_ = Mat_CreateVer(file_.path().c_str(), nullptr, MAT_FT_MAT5);
-    if (!mat_) {
-      throw InputError(target + ": cannot write" +
-                       (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
-    }
+  void doubles(const std::string& name, const double* values, std::size_t n) {
+    add(name, kOscilabMatDoubles, n).doubles = values;
   }
-  MatWriter(const MatWriter&) = delete;
-  MatWriter& operator=(const MatWriter&) = delete;
-  ~MatWriter() {
-    if (mat_) Mat_Close(mat_);
+  void scalar(const std::string& name, double value) {
+    doubles(name, &scalars_.emplace_back(value), 1);
   }
-
-  void write(const std::string& name, const MatVar& variable) {
-    if (!variable) throw InputError(file_.target() + ": cannot create variable " + name);
-    if (Mat_VarWrite(mat_, variable.get(), MAT_COMPRESSION_ZLIB) != 0) {
-      throw InputError(file_.target() + ": write failed (variable " + name + ")");
-    }
+  void logicals(const std::string& name, const std::vector<std::uint8_t>& values) {
+    add(name, kOscilabMatLogicals, values.size()).logicals = values.data();
+  }
+  void text(const std::string& name, std::string text) {
+    const std::string& kept = owned_texts_.emplace_back(std::move(text));
+    add(name, kOscilabMatText, 1).texts = &text_lists_.emplace_back(1, c_text(kept)).front();
+  }
+  void texts(const std::string& name, const std::vector<std::string>& texts) {
+    std::vector<OscilabTextV1>& list = text_lists_.emplace_back();
+    for (const std::string& text : texts) list.push_back(c_text(text));
+    add(name, kOscilabMatTexts, texts.size()).texts = list.data();
   }
 
-  void commit() {
-    const int status = Mat_Close(mat_);
-    mat_ = nullptr;
-    if (status != 0) throw InputError(file_.target() + ": write failed");
-    file_.commit();
+  // Writes the file through the module, under a temporary name renamed into place.
+  void write(const std::string& path) const {
+    const OscilabHdf5ModuleV1& module = hdf5_module("writing " + path);
+    TemporaryFile file(path);
+    const OscilabMatWriteResultV1 result =
+        module.write_mat(file.path().c_str(), variables_.data(), variables_.size());
+    const auto variable = [&] { return names_.at(result.variable); };
+    switch (result.status) {
+      case kOscilabMatWritten:
+        break;
+      case kOscilabMatCannotCreate:
+        throw InputError(path + ": cannot write" +
+                         (result.error_number != 0
+                              ? std::string(": ") + std::strerror(result.error_number)
+                              : std::string()));
+      case kOscilabMatCannotMakeVariable:
+        throw InputError(path + ": cannot create variable " + variable());
+      case kOscilabMatCannotWriteVariable:
+        throw InputError(path + ": write failed (variable " + variable() + ")");
+      case kOscilabMatCannotClose:
+        throw InputError(path + ": write failed");
+      default:
+        throw InputError(path + ": write failed (out of memory)");
+    }
+    file.commit();
   }
 
  private:
-  TemporaryFile file_;
-  mat_t* mat_ = nullptr;
+  static OscilabTextV1 c_text(const std::string& text) { return {text.data(), text.size()}; }
+
+  OscilabMatVariableV1& add(const std::string& name, OscilabMatKindV1 kind, std::size_t rows) {
+    const std::string& kept = names_.emplace_back(name);
+    return variables_.emplace_back(
+        OscilabMatVariableV1{kept.c_str(), kind, rows, nullptr, nullptr, nullptr});
+  }
+
+  // Deques: what they hold stays where it is as they grow, so the pointers stay valid.
+  std::deque<std::string> names_;
+  std::deque<double> scalars_;
+  std::deque<std::string> owned_texts_;
+  std::deque<std::vector<OscilabTextV1>> text_lists_;
+  std::vector<OscilabMatVariableV1> variables_;
 };
 
 }  // namespace
@@ -218,19 +153,18 @@ void write_recording_mat(const Recording& recording, const std::string& path) {
     units.push_back(si_unit(channel.quantity));
   }
 
-  MatWriter mat(path);
-  mat.write("t_s", double_column("t_s", t_s.data(), n));
+  MatVariables mat;
+  mat.doubles("t_s", t_s.data(), n);
   for (Eigen::Index c = 0; c < channels; ++c) {
-    const std::string& name = variables[static_cast<std::size_t>(c)];
-    mat.write(name, double_column(name, recording.samples_si.col(c).data(), n));
+    mat.doubles(variables[static_cast<std::size_t>(c)], recording.samples_si.col(c).data(), n);
   }
-  mat.write("sample_rate_hz", double_scalar("sample_rate_hz", sidecar.sample_rate_hz));
-  if (sidecar.mass_kg) mat.write("mass_kg", double_scalar("mass_kg", *sidecar.mass_kg));
-  mat.write("sidecar_json", char_variable("sidecar_json", sidecar_to_json(sidecar).dump(2)));
-  mat.write("channel_names", string_cell("channel_names", names));
-  mat.write("channel_variables", string_cell("channel_variables", variables));
-  mat.write("channel_units", string_cell("channel_units", units));
-  mat.commit();
+  mat.scalar("sample_rate_hz", sidecar.sample_rate_hz);
+  if (sidecar.mass_kg) mat.scalar("mass_kg", *sidecar.mass_kg);
+  mat.text("sidecar_json", sidecar_to_json(sidecar).dump(2));
+  mat.texts("channel_names", names);
+  mat.texts("channel_variables", variables);
+  mat.texts("channel_units", units);
+  mat.write(path);
 }
 
 std::vector<EdcTableRow> edc_table_rows(const analysis::CampaignAnalysis& campaign) {
@@ -280,15 +214,15 @@ void write_edc_mat(const std::vector<EdcTableRow>& rows, const std::string& path
     for (std::size_t c = 0; c < std::size(kColumns); ++c) columns[c][i] = kColumns[c].value(level);
   }
 
-  MatWriter mat(path);
-  mat.write("well", string_cell("well", well));
+  MatVariables mat;
+  mat.texts("well", well);
   for (std::size_t c = 0; c < std::size(kColumns); ++c) {
-    mat.write(kColumns[c].name, double_column(kColumns[c].name, columns[c].data(), n));
+    mat.doubles(kColumns[c].name, columns[c].data(), n);
   }
-  mat.write("record", string_cell("record", record));
-  mat.write("flags", string_cell("flags", flags));
-  mat.write("usable", logical_column("usable", usable));
-  mat.commit();
+  mat.texts("record", record);
+  mat.texts("flags", flags);
+  mat.logicals("usable", usable);
+  mat.write(path);
 }
 
 }  // namespace oscilab::daq

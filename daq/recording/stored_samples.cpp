@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <system_error>
 
@@ -23,14 +22,6 @@ bool declared_invalid(const Sidecar& sidecar, Eigen::Index row) {
     }
   }
   return false;
-}
-
-std::string in_quotes(const std::string& text) { return "\"" + text + "\""; }
-
-std::string number_text(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
 }
 
 std::string lower_extension(const std::string& path) {

@@ -5,17 +5,14 @@
 
 #include <Eigen/Core>
 
+#include "daq/recording/message_text.h"
 #include "daq/recording/sidecar.h"
 
 // What every file-format reader shares: samples as a file stores them, their calibration into SI
 // with the sidecar, the check of a time axis against the sidecar's rate, and the wording of the
-// readers' messages.
+// readers' messages (message_text.h).
 namespace oscilab::daq {
 
-/// `"text"`, for names in messages.
-std::string in_quotes(const std::string& text);
-/// A number for messages, 6 significant digits.
-std::string number_text(double value);
 /// The file's extension in lower case, with its dot (".tdms"), or "".
 std::string lower_extension(const std::string& path);
 /// Throws InputError unless `path` is an existing regular file.

@@ -11,10 +11,13 @@
 // another thread held at that moment stays locked forever, so POSIX allows only
 // async-signal-safe functions until exec. The child here breaks that rule only where it cannot
 // be avoided, and each exception is safe for a reason:
-//   - The libraries' state is consistent and unlocked: the parent never calls matio, and calls
-//     libhdf5 only once, H5open under std::call_once before its first child (hdf5_format.h), so
-//     no parent thread can hold a libhdf5/matio lock or leave their globals half-updated at the
-//     moment of fork. Every other call is made in a child.
+//   - The libraries' state is consistent and unlocked: the parent loads them (dlopen of
+//     oscilab_hdf5_module, daq/hdf5_module/hdf5_module_loader.h) and calls H5open once, both under
+//     a lock before its first child, and makes no other libhdf5 call; it calls matio only to
+//     write MAT-files (mat_export.h), whose state is the file being written, not globals a child
+//     reads. So no parent thread can hold a libhdf5 lock or leave its globals half-updated at the
+//     moment of fork. Every reading call is made in a child, and the child loads nothing: every
+//     symbol of the module was bound when it was loaded (RTLD_NOW).
 //   - malloc/free: the libraries allocate. glibc's fork() takes every malloc arena lock before it
 //     forks and re-initialises them in the child, and likewise the stdio list lock and the
 //     dynamic loader's load lock, so the child's malloc, fopen (matio) and open/pread (libhdf5)
@@ -44,7 +47,7 @@
 #include <unistd.h>
 
 #include "analysis/common/input_error.h"
-#include "daq/recording/stored_samples.h"
+#include "daq/recording/message_text.h"
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
@@ -274,56 +277,6 @@ ChildLimits child_limits_for(const std::string& path, std::size_t max_reply_byte
   // (the library's buffer and the child's copy) and the file once (a compressed element).
   limits.memory_bytes = (std::size_t{512} << 20) + 2 * max_reply_bytes + size;
   return limits;
-}
-
-std::string contents_to_text(const FileContents& contents) {
-  nlohmann::json json;
-  json["container"] = contents.container;
-  json["properties"] = contents.properties;
-  json["signals"] = nlohmann::json::array();
-  for (const FileSignal& signal : contents.file_signals) {
-    nlohmann::json item;
-    item["name"] = signal.name;
-    item["sample_count"] = signal.sample_count;
-    item["columns"] = signal.columns;
-    item["unit"] = signal.unit;
-    item["sample_rate_hz"] =
-        signal.sample_rate_hz ? nlohmann::json(*signal.sample_rate_hz) : nlohmann::json(nullptr);
-    item["stored_type"] = signal.stored_type;
-    item["properties"] = signal.properties;
-    json["signals"].push_back(std::move(item));
-  }
-  // Names and attributes come from the file: invalid UTF-8 is replaced, never thrown.
-  return json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-}
-
-FileContents contents_from_text(const std::string& text, const std::string& path) {
-  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
-  const auto bad = [&] {
-    return InputError(path + ": the reading process replied an unreadable description");
-  };
-  if (json.is_discarded() || !json.is_object()) throw bad();
-  FileContents contents;
-  try {
-    contents.container = json.at("container").get<std::string>();
-    contents.properties = json.at("properties");
-    for (const nlohmann::json& item : json.at("signals")) {
-      FileSignal signal;
-      signal.name = item.at("name").get<std::string>();
-      signal.sample_count = item.at("sample_count").get<std::int64_t>();
-      signal.columns = item.at("columns").get<std::int64_t>();
-      signal.unit = item.at("unit").get<std::string>();
-      if (item.at("sample_rate_hz").is_number()) {
-        signal.sample_rate_hz = item.at("sample_rate_hz").get<double>();
-      }
-      signal.stored_type = item.at("stored_type").get<std::string>();
-      signal.properties = item.at("properties");
-      contents.file_signals.push_back(std::move(signal));
-    }
-  } catch (const nlohmann::json::exception&) {
-    throw bad();
-  }
-  return contents;
 }
 
 }  // namespace oscilab::daq

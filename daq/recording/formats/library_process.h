@@ -37,11 +37,6 @@ std::string run_in_child(const std::string& path, const std::string& library,
 /// the file's size and memory for the library proportional to the file and the reply.
 ChildLimits child_limits_for(const std::string& path, std::size_t max_reply_bytes);
 
-/// FileContents as JSON text for the child's reply, and back (throws InputError naming `path`
-/// when the text is not what contents_to_text writes).
-std::string contents_to_text(const FileContents& contents);
-FileContents contents_from_text(const std::string& text, const std::string& path);
-
 /// The maximum ratio of deflate (zlib) output to input, 1032:1: a bound on how many bytes a
 /// compressed element of a file can hold per byte of the file.
 inline constexpr std::size_t kMaxDeflateRatio = 1032;
