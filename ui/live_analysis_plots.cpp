@@ -311,8 +311,7 @@ void LiveAnalysisPlots::refresh_cycle(const daq::Acquisition& acquisition, doubl
         data[qsizetype(i)] = QCPCurveData(double(i), 1e3 * cycle.z_m[i], cycle.f_n[i]);
       }
       curve->data()->set(data, true);
-      const QColor colour =
-          well_colour(cycle.positive ? analysis::Well::Positive : analysis::Well::Negative);
+      const QColor colour = well_colour(analysis::well_of(cycle.positive));
       curve->setPen(QPen(colour, 1.5));
       curve->setBrush(QColor(colour.red(), colour.green(), colour.blue(), 40));
       curve->setName(

@@ -62,7 +62,7 @@ nlohmann::json LiveSettings::to_json() const {
            {{"f0_n", rig_f0_n},
             {"frequency_hz", rig_frequency_hz},
             {"step_n", rig_step_n},
-            {"well", rig_positive_well ? "positive" : "negative"}}},
+            {"well", analysis::to_string(analysis::well_of(rig_positive_well))}}},
           {"speed", speed},
           {"window_s", window_s},
           {"alarms",
