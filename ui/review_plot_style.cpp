@@ -3,29 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
-namespace oscilab::ui {
+#include "ui/plot_helpers.h"
 
-QCPTextElement* add_plot_title(QCustomPlot* plot, const QString& title) {
-  plot->plotLayout()->insertRow(0);
-  QFont font = plot->font();
-  font.setBold(true);
-  auto* element = new QCPTextElement(plot, title, font);
-  plot->plotLayout()->addElement(0, 0, element);
-  return element;
-}
+namespace oscilab::ui {
 
 QCustomPlot* make_review_plot(const QString& x_label, const QString& y_label) {
   auto* plot = new QCustomPlot;
   plot->setAutoAddPlottableToLegend(true);
-  plot->xAxis->setLabel(x_label);
-  plot->yAxis->setLabel(y_label);
-  plot->xAxis->setNumberFormat("gb");
-  plot->yAxis->setNumberFormat("gb");
-  for (QCPAxis* axis : {plot->xAxis2, plot->yAxis2}) {  // a frame: top and right as lines
-    axis->setVisible(true);
-    axis->setTicks(false);
-    axis->setTickLabels(false);
-  }
+  frame_axes(plot, x_label, y_label);
   plot->setMinimumSize(260, 200);
   return plot;
 }

@@ -9,12 +9,9 @@
 
 namespace oscilab::ui {
 
-/// The look the review's plots share: a plot with its axis labels, "gb" numbers and a frame (top
-/// and right axes as lines), at least 260 × 200 pixels.
+/// The look the review's plots share: a plot with its axis labels, "gb" numbers and a frame
+/// (frame_axes), listing its plottables in its legend, at least 260 × 200 pixels.
 QCustomPlot* make_review_plot(const QString& x_label, const QString& y_label);
-
-/// A bold title row above the axes of `plot`.
-QCPTextElement* add_plot_title(QCustomPlot* plot, const QString& title);
 
 /// Largest finite |value| of a set of vectors, to choose a display unit.
 double largest_abs(std::initializer_list<const std::vector<double>*> vectors);
