@@ -33,21 +33,8 @@ QCustomPlot* make_plot(const QString& name, const QString& title, const QString&
   auto* plot = new QCustomPlot;
   plot->setObjectName(name);
   plot->setMinimumSize(220, 160);
-  plot->plotLayout()->insertRow(0);
-  QFont font = plot->font();
-  font.setBold(true);
-  auto* heading = new QCPTextElement(plot, title, font);
-  heading->setMargins(QMargins(0, 2, 0, 0));
-  plot->plotLayout()->addElement(0, 0, heading);
-  plot->xAxis->setLabel(x_label);
-  plot->yAxis->setLabel(y_label);
-  plot->xAxis->setNumberFormat("gb");
-  plot->yAxis->setNumberFormat("gb");
-  for (QCPAxis* axis : {plot->xAxis2, plot->yAxis2}) {  // a frame: top and right as lines
-    axis->setVisible(true);
-    axis->setTicks(false);
-    axis->setTickLabels(false);
-  }
+  add_plot_title(plot, title)->setMargins(QMargins(0, 2, 0, 0));
+  frame_axes(plot, x_label, y_label);
   QFont legend_font = plot->font();
   legend_font.setPointSizeF(legend_font.pointSizeF() * 0.85);
   plot->legend->setFont(legend_font);
@@ -311,8 +298,7 @@ void LiveAnalysisPlots::refresh_cycle(const daq::Acquisition& acquisition, doubl
         data[qsizetype(i)] = QCPCurveData(double(i), 1e3 * cycle.z_m[i], cycle.f_n[i]);
       }
       curve->data()->set(data, true);
-      const QColor colour =
-          well_colour(cycle.positive ? analysis::Well::Positive : analysis::Well::Negative);
+      const QColor colour = well_colour(analysis::well_of(cycle.positive));
       curve->setPen(QPen(colour, 1.5));
       curve->setBrush(QColor(colour.red(), colour.green(), colour.blue(), 40));
       curve->setName(

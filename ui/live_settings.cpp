@@ -8,25 +8,26 @@
 #include "analysis/common/input_error.h"
 #include "analysis/edc/well.h"
 #include "analysis/simulation/stepped_levels.h"
+#include "daq/recording/json_field.h"
 #include "ui/live_timeline.h"
 #include "ui/number_text.h"
 
 namespace oscilab::ui {
 namespace {
 
-// A double field of `json`, if present: a number, else InputError naming it.
+using daq::json_excerpt;
+using daq::JsonField;
+
+// The number `name` of the object `json` at `field`, if present and not null.
 std::optional<double> number_field(const nlohmann::json& json, const char* name,
-                                   const std::string& path) {
-  if (!json.contains(name) || json.at(name).is_null()) return std::nullopt;
-  const nlohmann::json& value = json.at(name);
-  if (!value.is_number()) {
-    throw InputError(path + "." + name + ": expected a number, got " + value.dump());
-  }
-  return value.get<double>();
+                                   const JsonField& field) {
+  const nlohmann::json* value = JsonField::find(json, name);
+  if (value == nullptr || value->is_null()) return std::nullopt;
+  return (field / name).number(*value);
 }
 
-void require(bool ok, const std::string& field, double value, const char* why) {
-  if (!ok) throw InputError(field + ": " + number_text("%g", value) + " (" + why + ")");
+void require(bool ok, const JsonField& field, double value, const char* why) {
+  if (!ok) field.fail(number_text("%g", value) + " (" + why + ")");
 }
 
 }  // namespace
@@ -61,7 +62,7 @@ nlohmann::json LiveSettings::to_json() const {
            {{"f0_n", rig_f0_n},
             {"frequency_hz", rig_frequency_hz},
             {"step_n", rig_step_n},
-            {"well", rig_positive_well ? "positive" : "negative"}}},
+            {"well", analysis::to_string(analysis::well_of(rig_positive_well))}}},
           {"speed", speed},
           {"window_s", window_s},
           {"alarms",
@@ -73,7 +74,9 @@ nlohmann::json LiveSettings::to_json() const {
 LiveSettings LiveSettings::from_json(const nlohmann::json& json) {
   LiveSettings s;
   if (json.is_null()) return s;
-  if (!json.is_object()) throw InputError("live: expected an object, got " + json.dump());
+  // The settings are the session's "live" object: messages name their path from there.
+  const JsonField root("", "live");
+  root.object(json);
   if (json.contains("source")) {
     const nlohmann::json& v = json.at("source");
     const std::string name = v.is_string() ? v.get<std::string>() : v.dump();
@@ -86,57 +89,46 @@ LiveSettings LiveSettings::from_json(const nlohmann::json& json) {
     } else if (name == "jack") {
       s.source = LiveSourceKind::Jack;
     } else {
-      throw InputError("live.source: unknown source \"" + name +
-                       "\" (rig, replay, network or jack)");
+      (root / "source").fail("unknown source \"" + name + "\" (rig, replay, network or jack)");
     }
   }
-  if (json.contains("replay_path")) {
-    if (!json.at("replay_path").is_string()) {
-      throw InputError("live.replay_path: expected a string, got " + json.at("replay_path").dump());
-    }
-    s.replay_path = json.at("replay_path").get<std::string>();
+  if (const nlohmann::json* path = JsonField::find(json, "replay_path")) {
+    s.replay_path = (root / "replay_path").string(*path);
   }
-  if (json.contains("replay_loop")) {
-    if (!json.at("replay_loop").is_boolean()) {
-      throw InputError("live.replay_loop: expected true or false, got " +
-                       json.at("replay_loop").dump());
-    }
-    s.replay_loop = json.at("replay_loop").get<bool>();
+  if (const nlohmann::json* loop = JsonField::find(json, "replay_loop")) {
+    s.replay_loop = (root / "replay_loop").boolean(*loop);
   }
-  if (const auto port = number_field(json, "port", "live")) {
-    require(*port >= 0 && *port <= 65535 && *port == std::floor(*port), "live.port", *port,
+  if (const auto port = number_field(json, "port", root)) {
+    require(*port >= 0 && *port <= 65535 && *port == std::floor(*port), root / "port", *port,
             "a TCP port, 0 to 65535");
     s.port = static_cast<int>(*port);
   }
   if (json.contains("jack")) {
-    const nlohmann::json& jack = json.at("jack");
-    if (!jack.is_object()) throw InputError("live.jack: expected an object, got " + jack.dump());
+    const JsonField at = root / "jack";
+    const nlohmann::json& jack = at.object(json.at("jack"));
     const std::pair<const char*, std::string*> fields[] = {{"server", &s.jack_server},
                                                            {"base_port", &s.jack_base_port},
                                                            {"mass_port", &s.jack_mass_port},
                                                            {"calibration", &s.jack_calibration}};
     for (const auto& [name, field] : fields) {
-      if (!jack.contains(name)) continue;
-      if (!jack.at(name).is_string()) {
-        throw InputError(std::string("live.jack.") + name + ": expected a string, got " +
-                         jack.at(name).dump());
+      if (const nlohmann::json* value = JsonField::find(jack, name)) {
+        *field = (at / name).string(*value);
       }
-      *field = jack.at(name).get<std::string>();
     }
   }
   if (json.contains("rig")) {
-    const nlohmann::json& rig = json.at("rig");
-    if (!rig.is_object()) throw InputError("live.rig: expected an object, got " + rig.dump());
-    if (const auto v = number_field(rig, "f0_n", "live.rig")) {
-      require(*v >= 0, "live.rig.f0_n", *v, "must be >= 0");
+    const JsonField at = root / "rig";
+    const nlohmann::json& rig = at.object(json.at("rig"));
+    if (const auto v = number_field(rig, "f0_n", at)) {
+      require(*v >= 0, at / "f0_n", *v, "must be >= 0");
       s.rig_f0_n = *v;
     }
-    if (const auto v = number_field(rig, "frequency_hz", "live.rig")) {
-      require(*v > 0, "live.rig.frequency_hz", *v, "must be positive");
+    if (const auto v = number_field(rig, "frequency_hz", at)) {
+      require(*v > 0, at / "frequency_hz", *v, "must be positive");
       s.rig_frequency_hz = *v;
     }
-    if (const auto v = number_field(rig, "step_n", "live.rig")) {
-      require(*v > 0, "live.rig.step_n", *v, "must be positive");
+    if (const auto v = number_field(rig, "step_n", at)) {
+      require(*v > 0, at / "step_n", *v, "must be positive");
       s.rig_step_n = *v;
     }
     if (rig.contains("well")) {
@@ -144,32 +136,29 @@ LiveSettings LiveSettings::from_json(const nlohmann::json& json) {
       const std::optional<analysis::Well> parsed =
           well.is_string() ? analysis::parse_well(well.get<std::string>()) : std::nullopt;
       if (parsed != analysis::Well::Positive && parsed != analysis::Well::Negative) {
-        throw InputError("live.rig.well: expected \"positive\" or \"negative\", got " +
-                         well.dump());
+        (at / "well").fail("expected \"positive\" or \"negative\", got " + json_excerpt(well));
       }
       s.rig_positive_well = parsed == analysis::Well::Positive;
     }
   }
-  if (const auto v = number_field(json, "speed", "live")) {
-    require(*v >= 0, "live.speed", *v, "must be >= 0; 0: as fast as possible");
+  if (const auto v = number_field(json, "speed", root)) {
+    require(*v >= 0, root / "speed", *v, "must be >= 0; 0: as fast as possible");
     s.speed = *v;
   }
-  if (const auto v = number_field(json, "window_s", "live")) {
-    require(*v >= LiveTimeline::kMinWindowS && *v <= 600.0, "live.window_s", *v, "0.1 to 600 s");
+  if (const auto v = number_field(json, "window_s", root)) {
+    require(*v >= LiveTimeline::kMinWindowS && *v <= 600.0, root / "window_s", *v, "0.1 to 600 s");
     s.window_s = *v;
   }
   if (json.contains("alarms")) {
-    const nlohmann::json& alarms = json.at("alarms");
-    if (!alarms.is_object()) {
-      throw InputError("live.alarms: expected an object, got " + alarms.dump());
-    }
+    const JsonField at = root / "alarms";
+    const nlohmann::json& alarms = at.object(json.at("alarms"));
     const std::pair<const char*, std::optional<double>*> limits[] = {
         {"max_abs_z_m", &s.alarms.max_abs_z_m},
         {"max_abs_base_m", &s.alarms.max_abs_base_m},
         {"max_abs_force_n", &s.alarms.max_abs_force_n}};
     for (const auto& [name, limit] : limits) {
-      if (const auto v = number_field(alarms, name, "live.alarms")) {
-        require(*v > 0, std::string("live.alarms.") + name, *v, "must be positive, or null: off");
+      if (const auto v = number_field(alarms, name, at)) {
+        require(*v > 0, at / name, *v, "must be positive, or null: off");
         *limit = *v;
       }
     }

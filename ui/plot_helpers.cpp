@@ -23,4 +23,25 @@ QCPScatterStyle disc_markers(const QColor& colour, double size) {
   return QCPScatterStyle(QCPScatterStyle::ssDisc, colour, colour, size);
 }
 
+QCPTextElement* add_plot_title(QCustomPlot* plot, const QString& title) {
+  plot->plotLayout()->insertRow(0);
+  QFont font = plot->font();
+  font.setBold(true);
+  auto* element = new QCPTextElement(plot, title, font);
+  plot->plotLayout()->addElement(0, 0, element);
+  return element;
+}
+
+void frame_axes(QCustomPlot* plot, const QString& x_label, const QString& y_label) {
+  plot->xAxis->setLabel(x_label);
+  plot->yAxis->setLabel(y_label);
+  plot->xAxis->setNumberFormat("gb");
+  plot->yAxis->setNumberFormat("gb");
+  for (QCPAxis* axis : {plot->xAxis2, plot->yAxis2}) {  // a frame: top and right as lines
+    axis->setVisible(true);
+    axis->setTicks(false);
+    axis->setTickLabels(false);
+  }
+}
+
 }  // namespace oscilab::ui

@@ -14,4 +14,11 @@ void set_plot_hint(QCustomPlot* plot, const QString& message);
 /// Filled round markers of `colour` and `size` pixels, for scatter graphs.
 QCPScatterStyle disc_markers(const QColor& colour, double size);
 
+/// A bold title row above the axes of `plot`.
+QCPTextElement* add_plot_title(QCustomPlot* plot, const QString& title);
+
+/// The bottom and left axes labelled, with "gb" numbers, and the axes framed: the top and right
+/// axes drawn as plain lines.
+void frame_axes(QCustomPlot* plot, const QString& x_label, const QString& y_label);
+
 }  // namespace oscilab::ui

@@ -324,8 +324,7 @@ bool ResponseDialog::export_csv(const QString& path) {
     if (kind_ == Kind::Branch) {
       std::vector<figures::CsvBranch> csv;
       for (const analysis::Branch& b : branches_) {
-        csv.push_back(
-            {&b, b.positive_well ? analysis::Well::Positive : analysis::Well::Negative, 1});
+        csv.push_back({&b, analysis::well_of(b.positive_well), 1});
       }
       figures::write_branches_csv(csv, csv.size() > 1, false, path.toStdString());
     } else {

@@ -10,12 +10,11 @@
 
 #include "daq/recording/recording.h"
 #include "ui/annotation.h"
-#include "ui/display_units.h"
+#include "ui/review_cycle_plot.h"
+#include "ui/review_loop_plot.h"
 #include "ui/review_model.h"
+#include "ui/review_slice_plots.h"
 
-class QCPAbstractItem;
-class QCPItemStraightLine;
-class QCPLayoutGrid;
 class QComboBox;
 class QCustomPlot;
 class QLabel;
@@ -37,8 +36,10 @@ class RecordView;
 /// a click or a level selection moves it. Annotations are notes at a time of a recording, drawn
 /// as labelled lines on the time plots.
 ///
-/// The view shows; it computes nothing: the analysis comes ready-made (analyze_review, on a
-/// worker thread of the main window), rows and loops from review_model.h. UI thread only.
+/// The view holds the controls (record selector, level table, annotations, tabs) and ties the
+/// plots together (ReviewLoopPlot, ReviewCyclePlot, ReviewSlicePlots); it computes nothing: the
+/// analysis comes ready-made (analyze_review, on a worker thread of the main window), rows and
+/// loops from review_model.h. UI thread only.
 class ReviewView : public QWidget {
   Q_OBJECT
 
@@ -89,13 +90,13 @@ class ReviewView : public QWidget {
   LevelTable* level_table() const { return level_table_; }
   /// Fig. 9: f = −m b̈ against z, one QCPCurve per selected level, one axis rect per well
   /// (the first is the plot's default axisRect()).
-  QCustomPlot* loop_plot() const { return loop_plot_; }
+  QCustomPlot* loop_plot() const { return loops_.plot(); }
   /// EDC of every fitted cycle against time, the steady cycles of each level by well.
-  QCustomPlot* cycle_plot() const { return cycle_plot_; }
-  QCustomPlot* stiffness_plot() const { return stiffness_plot_; }
-  QCustomPlot* damping_plot() const { return damping_plot_; }
+  QCustomPlot* cycle_plot() const { return cycles_.plot(); }
+  QCustomPlot* stiffness_plot() const { return slices_.stiffness_plot(); }
+  QCustomPlot* damping_plot() const { return slices_.damping_plot(); }
   /// The fitted K(z) with standard errors.
-  QLabel* stiffness_label() const { return stiffness_label_; }
+  QLabel* stiffness_label() const { return slices_.stiffness_label(); }
   QListWidget* annotation_list() const { return annotation_list_; }
   QComboBox* record_box() const { return record_box_; }
   /// Analysis notes and errors above the plots (hidden when there are none).
@@ -116,19 +117,13 @@ class ReviewView : public QWidget {
   void levels_selected(const std::vector<oscilab::ui::LevelKey>& keys);
 
  private:
-  /// A force unit of the slice plots, per unit mass when the campaign has no mass ("mN/kg").
-  QString slice_force_unit(const DisplayUnit& unit) const;
   void on_levels_selected(const std::vector<LevelKey>& keys);
   void show_record_index(int index);
   int shown_record() const;  // index into analysis_->campaign.records, or -1
   void update_marks();
   void update_annotation_list();
-  void plot_loops(const std::vector<LevelKey>& keys);
   void plot_cycles();
   void plot_cycle_cursor();
-  /// The cycle plot shows the record view's time window, its EDC axis the values in it.
-  void follow_time_window(double start_s, double end_s);
-  void plot_slices();
   void go_to_annotation(int index);
 
   std::vector<Opened> recordings_;
@@ -144,15 +139,9 @@ class ReviewView : public QWidget {
   RecordView* record_view_ = nullptr;
   QTabWidget* tabs_ = nullptr;
   LevelTable* level_table_ = nullptr;
-  QCustomPlot* loop_plot_ = nullptr;
-  QCPLayoutGrid* loop_grid_ = nullptr;         // the loop plot's axis rects, one per well
-  std::vector<QCPAbstractItem*> loop_labels_;  // their well labels
-  QCustomPlot* cycle_plot_ = nullptr;
-  QCPItemStraightLine* cycle_cursor_ = nullptr;
-  std::vector<QCPAbstractItem*> cycle_marks_;
-  QCustomPlot* stiffness_plot_ = nullptr;
-  QCustomPlot* damping_plot_ = nullptr;
-  QLabel* stiffness_label_ = nullptr;
+  ReviewLoopPlot loops_;
+  ReviewCyclePlot cycles_;
+  ReviewSlicePlots slices_;
   QListWidget* annotation_list_ = nullptr;
 };
 

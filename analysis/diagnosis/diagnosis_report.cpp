@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "analysis/edc/well.h"
 #include "analysis/identification/sigma_budget_report.h"
 
 // The diagnosis report (docs/contracts.md §3) and the words for each candidate's outcome.
@@ -30,7 +31,7 @@ nlohmann::json slope_json(const LogSlope& s) {
 nlohmann::json maps_json(const DiscrepancyMaps& maps) {
   nlohmann::json levels = nlohmann::json::array();
   for (const LevelDiscrepancy& d : maps.levels) {
-    levels.push_back({{"well", d.positive_well ? "positive" : "negative"},
+    levels.push_back({{"well", to_string(well_of(d.positive_well))},
                       {"f0_n", d.f0_n},
                       {"amplitude_m", d.amplitude_m},
                       {"edc_mes_j", d.edc_mes_j},

@@ -169,7 +169,7 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
              options.mass_quantity == MotionQuantity::Displacement) {
     level.well = level.z_mean_m > options.well_boundary_m ? Well::Positive : Well::Negative;
   } else if (options.well_hint_positive) {
-    level.well = *options.well_hint_positive ? Well::Positive : Well::Negative;
+    level.well = well_of(*options.well_hint_positive);
   } else {
     level.well = Well::Unknown;
   }

@@ -16,6 +16,10 @@ enum class Well {
   Unclassified,  // a level without steady cycles (it never settled): no motion to judge
 };
 
+/// The well of a response around the positive (z₊*) or the negative (z₋*) equilibrium, for the
+/// many places that hold the side as a flag (`positive_well`).
+constexpr Well well_of(bool positive) { return positive ? Well::Positive : Well::Negative; }
+
 /// The well as every file, report and the Python module spell it: "positive", "negative",
 /// "cross-well", "unknown", and "" for Unclassified.
 std::string to_string(Well well);

@@ -7,6 +7,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/common/parallel_for.h"
+#include "analysis/edc/well.h"
 #include "analysis/figures/figure_png.h"
 #include "analysis/model/position_dependent_friction.h"
 
@@ -95,7 +96,7 @@ std::vector<NamedFigure> fit_figures(const analysis::FitResult& fit,
                                       {"cost_slices", cost_slice_figure(data.slices)}};
   for (bool positive : {true, false}) {
     if (objective.data().group(positive)) {
-      figures.push_back({std::string("sensitivity_") + (positive ? "positive" : "negative"),
+      figures.push_back({"sensitivity_" + analysis::to_string(analysis::well_of(positive)),
                          sensitivity_figure(data.curves, positive)});
     }
   }
@@ -258,8 +259,9 @@ void write_fit_tables(const std::string& dir, const analysis::FitResult& fit,
         const auto& m = groups[g].levels[i];
         const double mod = fit.evaluation.edc_mod_j[g][i];
         std::fprintf(out.get(), "%s,%.6g,%.9g,%.6g,%d,%.9g,%.4f\n",
-                     groups[g].positive_well ? "positive" : "negative", m.f0_n, m.edc_j,
-                     m.edc_std_j, m.cycles, mod, 100.0 * (mod - m.edc_j) / m.edc_j);
+                     analysis::to_string(analysis::well_of(groups[g].positive_well)).c_str(),
+                     m.f0_n, m.edc_j, m.edc_std_j, m.cycles, mod,
+                     100.0 * (mod - m.edc_j) / m.edc_j);
       }
     }
     out.close();
@@ -301,7 +303,8 @@ void write_fit_tables(const std::string& dir, const analysis::FitResult& fit,
     for (const auto& c : curves) {
       for (std::size_t k = 0; k < c.f0_n.size(); ++k) {
         std::fprintf(out.get(), "%s,%.3g,%s,%.6g,%.9g\n", c.parameter.c_str(), c.factor,
-                     c.positive_well ? "positive" : "negative", c.f0_n[k], c.edc_j[k]);
+                     analysis::to_string(analysis::well_of(c.positive_well)).c_str(), c.f0_n[k],
+                     c.edc_j[k]);
       }
     }
     out.close();

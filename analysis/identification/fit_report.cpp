@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/position_dependent_friction.h"
 
@@ -97,7 +98,7 @@ nlohmann::json fit_report_json(const FitResult& fit, const EdcObjective& objecti
     const EdcGroup& group = objective.data().groups[g];
     for (std::size_t i = 0; i < group.levels.size(); ++i, ++k) {
       const MeasuredLevel& m = group.levels[i];
-      levels.push_back({{"well", group.positive_well ? "positive" : "negative"},
+      levels.push_back({{"well", to_string(well_of(group.positive_well))},
                         {"freq_hz", group.freq_hz},
                         {"f0_n", m.f0_n},
                         {"edc_mes_j", m.edc_j},

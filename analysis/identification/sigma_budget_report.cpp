@@ -1,4 +1,5 @@
 #include "analysis/identification/sigma_budget_report.h"
+#include "analysis/edc/well.h"
 
 #include <cstdio>
 
@@ -20,7 +21,7 @@ nlohmann::json sigma_budget_json(const EdcObjective& objective) {
   const SigmaBudget& b = objective.budget();
   nlohmann::json levels = nlohmann::json::array();
   for_each_level(objective, [&](const EdcGroup& group, const MeasuredLevel& level, std::size_t k) {
-    levels.push_back({{"well", group.positive_well ? "positive" : "negative"},
+    levels.push_back({{"well", to_string(well_of(group.positive_well))},
                       {"freq_hz", group.freq_hz},
                       {"f0_n", level.f0_n},
                       {"edc_mes_j", level.edc_j},
@@ -67,7 +68,7 @@ std::vector<std::string> sigma_budget_lines(const EdcObjective& objective) {
   out.emplace_back(line);
   for_each_level(objective, [&](const EdcGroup& group, const MeasuredLevel& level, std::size_t k) {
     std::snprintf(line, sizeof line, "  %-8s %8.4g %12.5g %12.3g %12.3g %12.3g %12.3g %12.3g",
-                  group.positive_well ? "positive" : "negative", level.f0_n, level.edc_j,
+                  to_string(well_of(group.positive_well)).c_str(), level.f0_n, level.edc_j,
                   b.cycles_j[k], b.bias_j[k], b.model_j[k], b.total_j[k], b.correction_j[k]);
     out.emplace_back(line);
   });

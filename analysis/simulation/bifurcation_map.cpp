@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/simulation/stepped_sine_motion.h"
 #include "analysis/simulation/time_simulator.h"
 
@@ -139,7 +140,7 @@ BifurcationMap bifurcation_map(const Model& model, const BifurcationMapOptions& 
     }
     if (result.status != TimeSimulator::Status::Ok) {
       map.status = JobStatus::NumericalIssue;
-      map.message = std::string(positive ? "positive" : "negative") + " well: " + result.message;
+      map.message = to_string(well_of(positive)) + " well: " + result.message;
       return map;
     }
   }
@@ -151,7 +152,7 @@ void write_bifurcation_map_csv(const BifurcationMap& map, std::ostream& out) {
   out << "f0_n,well,z_m,period\n";
   out.precision(10);
   for (const BifurcationMapRow& row : map.rows) {
-    out << row.f0_n << ',' << (row.positive_well ? "positive" : "negative") << ',' << row.z_m << ','
+    out << row.f0_n << ',' << to_string(well_of(row.positive_well)) << ',' << row.z_m << ','
         << row.period << '\n';
   }
 }

@@ -8,6 +8,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/diagnosis/diagnosis.h"
+#include "analysis/edc/well.h"
 #include "analysis/figures/diagnosis_figures.h"
 #include "analysis/figures/figure_png.h"
 #include "analysis/identification/edc_dataset.h"
@@ -46,9 +47,9 @@ void write_levels_csv(const analysis::DiagnosisResult& r, const std::string& pat
   for (std::size_t i = 0; i < r.baseline_maps.levels.size(); ++i) {
     const auto& b = r.baseline_maps.levels[i];
     const auto& f = r.final_maps.levels[i];
-    out << (b.positive_well ? "positive" : "negative") << ',' << b.f0_n << ',' << b.amplitude_m
-        << ',' << b.edc_mes_j << ',' << b.edc_mod_j << ',' << f.edc_mod_j << ',' << b.sigma_j << ','
-        << b.residual_sigma << ',' << f.residual_sigma << '\n';
+    out << analysis::to_string(analysis::well_of(b.positive_well)) << ',' << b.f0_n << ','
+        << b.amplitude_m << ',' << b.edc_mes_j << ',' << b.edc_mod_j << ',' << f.edc_mod_j << ','
+        << b.sigma_j << ',' << b.residual_sigma << ',' << f.residual_sigma << '\n';
   }
   if (!out) throw InputError(path + ": write failed");
 }

@@ -8,57 +8,16 @@
 #include "analysis/common/input_error.h"
 #include "analysis/common/quantile.h"
 #include "analysis/pipeline/derived_signals.h"
-#include "analysis/pipeline/measurement_pipeline.h"
-#include "analysis/signal/ac_coupling.h"
+#include "daq/live/live_edc.h"
 #include "daq/live/live_recorder.h"
 #include "daq/live/sample_checker.h"
+#include "daq/live/stream_calibration.h"
 #include "daq/live/stream_monitor.h"
 
 namespace oscilab::daq {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr std::size_t kMaxLatencies = 10000;
 constexpr auto kIdleWait = std::chrono::milliseconds(2);  // queue empty: look again after this
-constexpr double kAcCouplingWarnFactor = 10.0;  // warn when f < this × the AC-coupling corner
-
-analysis::MotionQuantity motion_quantity(Quantity quantity) {
-  switch (quantity) {
-    case Quantity::Velocity:
-      return analysis::MotionQuantity::Velocity;
-    case Quantity::Acceleration:
-      return analysis::MotionQuantity::Acceleration;
-    default:
-      return analysis::MotionQuantity::Displacement;
-  }
-}
-
-// physical (SI) = (scale × stored + offset) × unit factor.
-struct ChannelCalibration {
-  int index = -1;
-  double scale = 1.0, offset = 0.0, factor = 1.0;
-  analysis::MotionQuantity quantity = analysis::MotionQuantity::Acceleration;
-  double to_si(double stored) const { return (scale * stored + offset) * factor; }
-};
-
-ChannelCalibration calibration_of(const Sidecar& layout, int index) {
-  ChannelCalibration c;
-  c.index = index;
-  const ChannelInfo& channel = layout.channels[static_cast<std::size_t>(index)];
-  c.scale = channel.scale;
-  c.offset = channel.offset;
-  c.factor = unit_to_si(channel.unit, channel.quantity, "stream channel \"" + channel.name + "\"");
-  c.quantity = motion_quantity(channel.quantity);
-  return c;
-}
-
-// When a block's samples reached the acquisition: a cycle's EDC latency is measured from the
-// arrival of its first sample. A fixed ring of the newest kArrivals blocks.
-struct BlockArrival {
-  std::uint64_t first_sample = 0, end_sample = 0;
-  std::chrono::steady_clock::time_point delivered;
-};
-constexpr std::size_t kArrivals = 512;
 
 }  // namespace
 
@@ -72,24 +31,14 @@ struct Acquisition::Impl {
   // --- owned by the acquisition thread ---
   Sidecar layout;
   double rate_hz = 0.0;
-  double mass_kg = 1.0;
-  ChannelCalibration base_cal, mass_cal;
-  bool mass_relative = false;
+  StreamCalibration calibration;
+  StreamCalibration::Rows calibrated;  // one block
   std::unique_ptr<StreamMonitor> monitor;
   SampleChecker checker;
-  std::unique_ptr<analysis::MeasurementPipeline> pipeline;
-  double pipeline_freq_hz = 0.0;
-  std::size_t pipeline_cycles_seen = 0;
-  std::size_t pipeline_levels_seen = 0;
-  std::vector<double> base_si, mass_si, force_n, base_shown, mass_shown;  // one block
-  // The AC-coupling high-pass of a channel, undone after calibration (sidecar ac_coupling_hz).
-  std::optional<analysis::AcCouplingInverse> base_ac, mass_ac;
   std::vector<std::string> setup_warnings;  // logged once the chain starts
   std::unique_ptr<analysis::DerivedSignals> derived;
   analysis::DerivedSignals::Block derived_block;
   AlarmMonitor alarms;
-  std::vector<BlockArrival> arrivals = std::vector<BlockArrival>(kArrivals);
-  std::size_t arrivals_next = 0;
   std::uint64_t next_sample = 0;
   // What a block found, published with it (capacity kept: no allocation on a clean block).
   std::vector<SampleChecker::Run> closed_runs;
@@ -104,22 +53,17 @@ struct Acquisition::Impl {
   mutable std::mutex mutex;
   AcquisitionStatus status;
   std::optional<Sidecar> layout_copy;
-  std::uint64_t published_end = 0;                 // one past the newest sample published
-  std::vector<analysis::LevelResult> levels_done;  // of pipelines already finished
-  std::vector<analysis::LevelResult> levels;       // levels_done + the current pipeline's
-  std::optional<analysis::LevelResult> current_level;
-  std::vector<analysis::CycleFit> cycles;
+  std::uint64_t published_end = 0;  // one past the newest sample published
+  LiveEdc edc;                      // its pipelines owned by the acquisition thread
   std::vector<StreamEvent> events;
   std::unique_ptr<LiveRecorder> recorder;
   std::string pending_recording;  // start once the layout is known
   bool pending_stop_recording = false;
   std::vector<std::string> pending_marks;
   std::optional<StreamEvent> last_level;  // the excitation now, for a recording started later
-  std::vector<double> latencies_s;        // per cycle, the last kMaxLatencies
 
   void run(Acquisition& owner);
   bool setup_layout();
-  void make_pipeline(double freq_hz, double t0_s);
   void finish_pipeline();
   void handle_events();
   void handle_event(StreamEvent event);
@@ -132,9 +76,8 @@ struct Acquisition::Impl {
   void raise_alarms(std::uint64_t first_sample, int rows);
   void add_derived(HistoryRing::BlockWrite& write) const;  // the derived block, for the ring
   void log_alarms();                                       // mutex held
-  void publish_cycles(std::chrono::steady_clock::time_point now);  // mutex held
-  void publish_events();                                           // mutex held
-  void publish_recorder_state();                                   // mutex held
+  void publish_events();                                   // mutex held
+  void publish_recorder_state();                           // mutex held
   void apply_recording_requests();
   void open_pending_recording();  // a recording asked for before the layout was known
   void copy_monitor_counters();   // mutex held
@@ -231,7 +174,7 @@ AcquisitionStatus Acquisition::status() const {
   {
     const std::lock_guard lock(impl_->mutex);
     s = impl_->status;
-    latencies = impl_->latencies_s;
+    latencies = impl_->edc.latencies_s();
   }
   s.queue_fill = impl_->queue ? impl_->queue->size() : 0;
   const SourceCounters c = source_->counters();
@@ -258,18 +201,19 @@ std::optional<Sidecar> Acquisition::layout() const {
 
 std::vector<analysis::LevelResult> Acquisition::levels() const {
   const std::lock_guard lock(impl_->mutex);
-  return impl_->levels;
+  return impl_->edc.levels();
 }
 
 std::optional<analysis::LevelResult> Acquisition::current_level() const {
   const std::lock_guard lock(impl_->mutex);
-  return impl_->current_level;
+  return impl_->edc.current_level();
 }
 
 std::vector<analysis::CycleFit> Acquisition::cycles_since(std::size_t first) const {
   const std::lock_guard lock(impl_->mutex);
-  if (first >= impl_->cycles.size()) return {};
-  return {impl_->cycles.begin() + static_cast<std::ptrdiff_t>(first), impl_->cycles.end()};
+  const std::vector<analysis::CycleFit>& cycles = impl_->edc.cycles();
+  if (first >= cycles.size()) return {};
+  return {cycles.begin() + static_cast<std::ptrdiff_t>(first), cycles.end()};
 }
 
 std::vector<StreamEvent> Acquisition::events_since(std::size_t first) const {
@@ -294,26 +238,15 @@ bool Acquisition::Impl::setup_layout() {
   if (!known) return false;
   layout = *known;
   rate_hz = layout.sample_rate_hz;
-  mass_kg = layout.mass_kg.value_or(1.0);
   const int channels = static_cast<int>(layout.channels.size());
-  int base = -1, mass = -1, relative = -1;
-  for (int i = 0; i < channels; ++i) {
-    const ChannelRole role = layout.channels[static_cast<std::size_t>(i)].role;
-    if (role == ChannelRole::Base && base < 0) base = i;
-    if (role == ChannelRole::Mass && mass < 0) mass = i;
-    if (role == ChannelRole::Relative && relative < 0) relative = i;
-  }
-  mass_relative = mass < 0;
-  if (mass < 0) mass = relative;
+  calibration = StreamCalibration(layout);
   const int max_rows = queue->max_rows();
   std::vector<SampleChecker::Channel> checked;
   for (const ChannelInfo& channel : layout.channels) {
     checked.push_back({channel.name, channel.scale, channel.offset, channel.range});
   }
   checker = SampleChecker(std::move(checked), max_rows);
-  for (auto* v : {&base_si, &mass_si, &force_n, &base_shown, &mass_shown}) {
-    v->assign(static_cast<std::size_t>(max_rows), kNaN);
-  }
+  calibrated = calibration.make_rows(max_rows);
   alarms = AlarmMonitor(options.alarms, rate_hz);
   monitor = std::make_unique<StreamMonitor>(
       options.reorder_window_blocks, max_rows, channels,
@@ -324,13 +257,7 @@ bool Acquisition::Impl::setup_layout() {
                             }});
 
   std::string edc_message;
-  const bool motion_ok =
-      base >= 0 && mass >= 0 &&
-      layout.channels[static_cast<std::size_t>(base)].quantity != Quantity::Force &&
-      layout.channels[static_cast<std::size_t>(mass)].quantity != Quantity::Force;
-  if (motion_ok) {
-    base_cal = calibration_of(layout, base);
-    mass_cal = calibration_of(layout, mass);
+  if (calibration.analysed()) {
     // The excitation frequency (0: not known), the option's before the stream's.
     double freq_hz = 0.0;
     if (options.excitation_freq_hz) {
@@ -338,35 +265,26 @@ bool Acquisition::Impl::setup_layout() {
     } else if (layout.excitation && layout.excitation->frequency_hz) {
       freq_hz = *layout.excitation->frequency_hz;
     }
-    for (const auto& [cal, inverse] :
-         {std::pair{&base_cal, &base_ac}, std::pair{&mass_cal, &mass_ac}}) {
-      const ChannelInfo& channel = layout.channels[static_cast<std::size_t>(cal->index)];
-      if (!channel.ac_coupling_hz) continue;
-      inverse->emplace(*channel.ac_coupling_hz, rate_hz, "stream channel \"" + channel.name + "\"");
-      // A first-order high-pass leads by atan(fc / f): 0.0997 rad at f = 10 fc. Corrected, a
-      // corner known to ±10 % still leaves up to 0.01 rad there, a large error in the loop's
-      // area, so an excitation within 10× of the corner is worth a warning (docs/live.md).
-      if (freq_hz > 0 && freq_hz < kAcCouplingWarnFactor * *channel.ac_coupling_hz) {
-        setup_warnings.push_back(
-            "channel \"" + channel.name + "\": the excitation " + std::to_string(freq_hz) +
-            " Hz is within " + std::to_string(static_cast<int>(kAcCouplingWarnFactor)) +
-            "x of its AC-coupling corner " + std::to_string(*channel.ac_coupling_hz) +
-            " Hz; its phase is corrected, but the EDC now depends on how well the corner is "
-            "known: a DC-coupled input is better");
-      }
-    }
+    setup_warnings = calibration.ac_coupling_warnings(freq_hz);
+    analysis::StreamSetup stream;
+    stream.sample_rate_hz = rate_hz;
+    stream.mass_kg = calibration.mass_kg();
+    stream.base_quantity = calibration.base().quantity;
+    stream.mass_quantity = calibration.mass().quantity;
+    stream.mass_is_relative = calibration.mass_relative();
+    edc.configure(options.settings, stream, layout.excitation);
     if (freq_hz > 0) {
-      make_pipeline(freq_hz, 0.0);
+      edc.start(freq_hz, 0.0);
     } else {
       edc_message = "live EDC off: the stream does not say the excitation frequency";
     }
     if (options.derived_signals) {
       analysis::DerivedSignals::Options o;
       o.sample_rate_hz = rate_hz;
-      o.mass_kg = mass_kg;
-      o.base_quantity = base_cal.quantity;
-      o.mass_quantity = mass_cal.quantity;
-      o.mass_is_relative = mass_relative;
+      o.mass_kg = calibration.mass_kg();
+      o.base_quantity = calibration.base().quantity;
+      o.mass_quantity = calibration.mass().quantity;
+      o.mass_is_relative = calibration.mass_relative();
       o.integration_highpass_hz = options.settings.integration_highpass_hz;
       o.derivative_lowpass_hz = options.settings.derivative_lowpass_hz;
       o.latency_s = options.derived_latency_s;
@@ -392,37 +310,11 @@ bool Acquisition::Impl::setup_layout() {
   return true;
 }
 
-void Acquisition::Impl::make_pipeline(double freq_hz, double t0_s) {
-  analysis::StreamSetup setup;
-  setup.sample_rate_hz = rate_hz;
-  setup.mass_kg = mass_kg;
-  setup.base_quantity = base_cal.quantity;
-  setup.mass_quantity = mass_cal.quantity;
-  setup.mass_is_relative = mass_relative;
-  setup.excitation_freq_hz = freq_hz;
-  setup.t0_s = t0_s;
-  // An excitation built in code may leave `extra` null rather than an object.
-  setup.windowed_levels = layout.excitation && layout.excitation->extra.is_object() &&
-                          layout.excitation->extra.value("levels_live", false);
-  if (layout.excitation) {  // levels the stream's sidecar gives up front, in stream time
-    for (const ExcitationLevel& level : layout.excitation->levels) {
-      if (level.end_s > t0_s)
-        setup.level_windows.push_back({level.start_s, level.end_s, level.f0_n});
-    }
-  }
-  pipeline = std::make_unique<analysis::MeasurementPipeline>(options.settings, setup);
-  pipeline_freq_hz = freq_hz;
-  pipeline_cycles_seen = 0;
-}
-
 void Acquisition::Impl::finish_pipeline() {
-  if (!pipeline) return;
-  pipeline->finish();
+  if (!edc.running()) return;
+  edc.finish();
   const std::lock_guard lock(mutex);
-  publish_cycles(std::chrono::steady_clock::now());
-  levels_done.insert(levels_done.end(), pipeline->levels().begin(), pipeline->levels().end());
-  levels = levels_done;
-  current_level.reset();
+  edc.publish_finished(status);
 }
 
 void Acquisition::Impl::log(StreamEvent event) {
@@ -440,24 +332,13 @@ void Acquisition::Impl::publish_events() {
 
 void Acquisition::Impl::handle_event(StreamEvent event) {
   const std::lock_guard lock(mutex);  // events are rare: each is published as it comes
-  if (event.kind == EventKind::Level && pipeline) {
+  if (event.kind == EventKind::Level && edc.running()) {
     const double f0 = event.data.value("f0_n", 0.0);
-    const double freq = event.data.value("frequency_hz", pipeline_freq_hz);
+    const double freq = event.data.value("frequency_hz", edc.freq_hz());
     const double change_s = event.t_s;
     const double from_s = event.data.value("steady_from_s", change_s);
     const double to_s = event.data.value("steady_to_s", std::numeric_limits<double>::infinity());
-    if (std::abs(freq - pipeline_freq_hz) > 1e-9 * pipeline_freq_hz) {
-      // A new frequency: a new cycle grid, from the change on.
-      pipeline->finish();
-      publish_cycles(std::chrono::steady_clock::now());
-      levels_done.insert(levels_done.end(), pipeline->levels().begin(), pipeline->levels().end());
-      levels = levels_done;
-      current_level.reset();
-      make_pipeline(freq, change_s);
-    }
-    // f0 = 0 is the table at rest: it ends the level before it and starts none.
-    pipeline->end_level_window(change_s);
-    if (f0 > 0) pipeline->add_level_window({from_s, to_s, f0});
+    edc.apply_level(f0, freq, change_s, from_s, to_s, status);
     last_level = event;
     if (recorder) recorder->add_level(f0, freq, change_s, from_s, to_s);
   } else if (event.kind == EventKind::Invalid || event.kind == EventKind::Clipped) {
@@ -465,7 +346,7 @@ void Acquisition::Impl::handle_event(StreamEvent event) {
     // resampled it: the same treatment as a fault seen here.
     const double from_s = event.data.value("from_s", event.t_s);
     const double to_s = event.data.value("to_s", event.t_s);
-    if (pipeline) pipeline->exclude(from_s, to_s);
+    edc.exclude(from_s, to_s);
     if (recorder) {
       recorder->mark_invalid(
           static_cast<std::uint64_t>(std::max(0.0, std::floor(from_s * rate_hz))),
@@ -493,7 +374,7 @@ void Acquisition::Impl::handle_events() {
 }
 
 void Acquisition::Impl::exclude_samples(std::uint64_t from, std::uint64_t to) {
-  if (pipeline) pipeline->exclude(time_of(from), time_of(to));
+  edc.exclude(time_of(from), time_of(to));
   if (derived) derived->exclude(from, to);
 }
 
@@ -534,6 +415,8 @@ void Acquisition::Impl::on_gap(std::uint64_t first_sample, std::uint64_t samples
   exclude_samples(first_sample, first_sample + samples - 1);
   // The derived filters run on through the gap on zeros; their output there is left out.
   if (derived) {
+    std::vector<double>& base_si = calibrated.base_si;
+    std::vector<double>& mass_si = calibrated.mass_si;
     std::fill(base_si.begin(), base_si.end(), 0.0);
     std::fill(mass_si.begin(), mass_si.end(), 0.0);
     const auto max_rows = static_cast<std::uint64_t>(base_si.size());
@@ -573,29 +456,17 @@ void Acquisition::Impl::on_block(const RawBlock& block, std::uint64_t first_samp
     }
   }
   // 2. Calibrated and analysed.
-  const bool analysed = base_cal.index >= 0 && mass_cal.index >= 0;
+  const bool analysed = calibration.analysed();
   if (analysed) {
-    const bool force_known = base_cal.quantity == analysis::MotionQuantity::Acceleration;
-    for (int r = 0; r < rows; ++r) {
-      const auto i = static_cast<std::size_t>(r);
-      double b_si = base_cal.to_si(block.value(r, base_cal.index));
-      double y_si = mass_cal.to_si(block.value(r, mass_cal.index));
-      if (base_ac) b_si = base_ac->push(b_si);
-      if (mass_ac) y_si = mass_ac->push(y_si);
-      // Bad samples are excluded above; zeros keep the filters and fits finite meanwhile, and
-      // the display shows a hole.
-      base_shown[i] = std::isfinite(b_si) ? b_si : kNaN;
-      mass_shown[i] = std::isfinite(y_si) ? y_si : kNaN;
-      base_si[i] = std::isfinite(b_si) ? b_si : 0.0;
-      mass_si[i] = std::isfinite(y_si) ? y_si : 0.0;
-      force_n[i] = force_known ? analysis::excitation_force_n(mass_kg, base_shown[i]) : kNaN;
+    // Bad samples are excluded above; the calibrated rows hold zeros for them (the display a
+    // hole).
+    calibration.calibrate(block, calibrated);
+    edc.note_arrival(first_sample, end_sample, block.delivered);
+    edc.push(first_sample, calibrated.base_si.data(), calibrated.mass_si.data(), rows);
+    if (derived) {
+      derived->push(first_sample, calibrated.base_si.data(), calibrated.mass_si.data(), rows,
+                    derived_block);
     }
-    arrivals[arrivals_next] = {first_sample, end_sample, block.delivered};
-    arrivals_next = (arrivals_next + 1) % kArrivals;
-    if (pipeline) {
-      pipeline->push(static_cast<std::int64_t>(first_sample), base_si.data(), mass_si.data(), rows);
-    }
-    if (derived) derived->push(first_sample, base_si.data(), mass_si.data(), rows, derived_block);
     raise_alarms(first_sample, rows);
   }
   next_sample = end_sample;
@@ -611,7 +482,7 @@ void Acquisition::Impl::on_block(const RawBlock& block, std::uint64_t first_samp
     ++status.blocks;
     status.stream_time_s = time_of(end_sample);
     published_end = end_sample;
-    if (pipeline) publish_cycles(std::chrono::steady_clock::now());
+    edc.publish(std::chrono::steady_clock::now(), status);
     copy_monitor_counters();
     publish_recorder_state();
     publish_events();
@@ -621,9 +492,9 @@ void Acquisition::Impl::on_block(const RawBlock& block, std::uint64_t first_samp
   write.measured_first = first_sample;
   write.measured_count = rows;
   if (analysed) {
-    write.base = base_shown.data();
-    write.mass = mass_shown.data();
-    write.force_n = force_n.data();
+    write.base = calibrated.base_shown.data();
+    write.mass = calibrated.mass_shown.data();
+    write.force_n = calibrated.force_n.data();
   }
   if (analysed && derived) add_derived(write);
   history_ring->write(write);
@@ -643,7 +514,7 @@ void Acquisition::Impl::raise_alarms(std::uint64_t first_sample, int rows) {
   if (alarms.watches(AlarmQuantity::Force)) {
     for (int r = 0; r < rows; ++r) {
       alarms.check(AlarmQuantity::Force, first_sample + static_cast<std::uint64_t>(r),
-                   force_n[static_cast<std::size_t>(r)], raised_alarms);
+                   calibrated.force_n[static_cast<std::size_t>(r)], raised_alarms);
     }
   }
   if (derived) {
@@ -653,40 +524,6 @@ void Acquisition::Impl::raise_alarms(std::uint64_t first_sample, int rows) {
       alarms.check(AlarmQuantity::RelativeDisplacement, at, derived_block.z_m[i], raised_alarms);
       alarms.check(AlarmQuantity::BaseDisplacement, at, derived_block.b_m[i], raised_alarms);
     }
-  }
-}
-
-void Acquisition::Impl::publish_cycles(std::chrono::steady_clock::time_point now) {
-  const auto& all = pipeline->cycles();
-  const bool new_levels = pipeline->levels().size() != pipeline_levels_seen;
-  if (all.size() == pipeline_cycles_seen && !new_levels) return;
-  double latency_s = -1.0;
-  for (std::size_t k = pipeline_cycles_seen; k < all.size(); ++k) {
-    const auto start = static_cast<std::uint64_t>(std::ceil(all[k].start_s * rate_hz - 1e-9));
-    for (const BlockArrival& a : arrivals) {
-      if (a.end_sample > a.first_sample && start >= a.first_sample && start < a.end_sample) {
-        latency_s = std::chrono::duration<double>(now - a.delivered).count();
-        if (latencies_s.size() == kMaxLatencies) latencies_s.erase(latencies_s.begin());
-        latencies_s.push_back(latency_s);
-        break;
-      }
-    }
-  }
-  cycles.insert(cycles.end(), all.begin() + static_cast<std::ptrdiff_t>(pipeline_cycles_seen),
-                all.end());
-  pipeline_cycles_seen = all.size();
-  if (new_levels) {
-    levels = levels_done;
-    levels.insert(levels.end(), pipeline->levels().begin(), pipeline->levels().end());
-    pipeline_levels_seen = pipeline->levels().size();
-  }
-  current_level = pipeline->current_level();
-  status.cycles = static_cast<long>(cycles.size());
-  status.excluded_cycles = pipeline->excluded_cycles();
-  status.levels = levels.size();
-  if (latency_s >= 0) {
-    status.edc_latency_s = latency_s;
-    status.edc_latency_max_s = std::max(status.edc_latency_max_s, latency_s);
   }
 }
 

@@ -15,19 +15,20 @@ namespace oscilab::daq {
 /// Samples from a sound card (or any JACK client) through a JACK server: the live path from real
 /// acquisition hardware (docs/live.md, "JACK").
 ///
-/// The source registers a client on the server it is told (its input ports `in_<channel>`),
-/// connects each to the capture port given for its channel, and activates. In JACK's process
-/// callback it only copies the period's frames, interleaved, into a single-producer ring of
-/// fixed slots allocated before activation: no lock, no allocation, no system call there. (While
-/// the server freewheels, which is not real time, a full ring makes the callback wait for room
-/// instead of dropping: a freewheeling run is lossless.) Each slot carries the server's frame
-/// time, so the source sees frames that never came (xruns, a ring overrun) as a jump of the
-/// frame clock.
+/// The source registers a client on the server it is told (JackCaptureClient: its input ports
+/// `in_<channel>`), connects each to the capture port given for its channel, and activates. In
+/// JACK's process callback it only copies the period's frames, interleaved, into a
+/// single-producer ring of fixed slots allocated before activation (FrameSlotRing): no lock, no
+/// allocation, no system call there. (While the server freewheels, which is not real time, a
+/// full ring makes the callback wait for room instead of dropping: a freewheeling run is
+/// lossless.) Each slot carries the server's frame time, so the source sees frames that never
+/// came (xruns, a ring overrun) as a jump of the frame clock.
 ///
 /// The source's own thread drains the ring, checks each input sample against the interface's
 /// full scale (|x| ≥ kClipLevel: clipped), and resamples all channels together in one libsoxr
-/// instance (interleaved, so every channel has the same filter and delay) from the server's
-/// rate to the analysis rate:
+/// instance (InterleavedResampler: every channel has the same filter and delay) from the
+/// server's rate to the analysis rate, handing on every analysis sample but those a fault
+/// reaches (WithheldSamples):
 ///   - anti-alias filter: SOXR_HQ (20-bit precision, ≥ 120 dB stopband rejection), linear phase,
 ///     passband flat to passband_end × the analysis Nyquist (0.6: 153.6 Hz at 512 Hz), stopband
 ///     from the analysis Nyquist (256 Hz) up;
@@ -98,9 +99,8 @@ class JackSource final : public SampleSource {
   int max_channels() const override { return static_cast<int>(options_.ports.size()); }
   std::string describe() const override;
 
-  struct Impl;  // the JACK client, the ring and the resampler (jack_source.cpp)
-
  private:
+  struct Impl;  // the client, the resampler and the stream's clock (jack_source.cpp)
   void run() override;
 
   Options options_;

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/simulation/operated_sine_motion.h"
 #include "analysis/simulation/time_stepper.h"
 #include "daq/rig/sensor_models.h"
@@ -79,7 +80,7 @@ RigSource::RigSource(analysis::Model model, Options options)
   excitation.extra["levels_live"] = true;  // levels arrive as `level` events (acquisition.h)
   sidecar.excitation = excitation;
   sidecar.notes = "live virtual rig, model \"" + model_.name() + "\", " +
-                  (rig.positive_well ? "positive" : "negative") + " well, seed " +
+                  analysis::to_string(analysis::well_of(rig.positive_well)) + " well, seed " +
                   std::to_string(rig.seed);
   set_layout(sidecar);
 }

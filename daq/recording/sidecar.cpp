@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "analysis/common/input_error.h"
+#include "daq/recording/json_field.h"
 #include "daq/recording/json_file.h"
 
 namespace oscilab::daq {
@@ -45,98 +46,22 @@ std::string format_number(double value) {
   return buffer;
 }
 
-// A JSON value as it appears in a message, shortened so that a huge value cannot flood it.
-std::string show(const json& value) {
-  if (value.is_number_float() && !std::isfinite(value.get<double>())) {
-    return "a number out of range";
-  }
-  std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
-  constexpr std::size_t kMaxShown = 60;  // characters
-  if (text.size() > kMaxShown) text = text.substr(0, kMaxShown) + "...";
-  return text;
-}
-
-std::string in_quotes(const std::string& text) { return show(json(text)); }
-
-// Where a value sits: the file and the JSON path inside it, "run1.json: channels[1].unit".
-class Field {
- public:
-  Field(const std::string& file, std::string path) : file_(file), path_(std::move(path)) {}
-
-  Field operator/(const std::string& key) const {
-    return Field(file_, path_.empty() ? key : path_ + "." + key);
-  }
-  Field operator[](std::size_t index) const {
-    return Field(file_, path_ + "[" + std::to_string(index) + "]");
-  }
-  std::string where() const { return path_.empty() ? file_ : file_ + ": " + path_; }
-
-  [[noreturn]] void fail(const std::string& problem) const {
-    throw InputError(file_ + ": " + (path_.empty() ? "" : path_ + ": ") + problem);
-  }
-
- private:
-  const std::string& file_;
-  std::string path_;
-};
-
-const json* find(const json& object, const std::string& key) {
-  const auto it = object.find(key);
-  return it == object.end() ? nullptr : &*it;
-}
-
-const json& require(const json& object, const std::string& key, const Field& field) {
-  const json* value = find(object, key);
-  if (value == nullptr) (field / key).fail("missing required field");
-  return *value;
-}
-
-double finite_number(const json& value, const Field& field) {
-  if (!value.is_number()) field.fail("expected a number, got " + show(value));
-  const double x = value.get<double>();
-  if (!std::isfinite(x)) field.fail("expected a finite number, got " + show(value));
-  return x;
-}
-
-double positive_number(const json& value, const Field& field) {
-  const double x = finite_number(value, field);
-  if (!(x > 0.0)) field.fail("expected a positive number, got " + show(value));
-  return x;
-}
+std::string in_quotes(const std::string& text) { return json_excerpt(json(text)); }
 
 // A positive number within [lo, hi] of `unit`: values outside are unit mistakes or corrupt files,
 // which would otherwise run the analysis into overflow or unbounded work.
 double bounded_number(const json& value, double lo, double hi, const char* unit,
-                      const Field& field) {
-  const double x = positive_number(value, field);
+                      const JsonField& field) {
+  const double x = field.positive_number(value);
   if (x < lo || x > hi) {
-    field.fail(show(value) + " " + unit + " is outside the range this field can have (" +
+    field.fail(json_excerpt(value) + " " + unit + " is outside the range this field can have (" +
                format_number(lo) + " to " + format_number(hi) + " " + unit + ")");
   }
   return x;
 }
 
-std::string string_value(const json& value, const Field& field) {
-  if (!value.is_string()) field.fail("expected a string, got " + show(value));
-  return value.get<std::string>();
-}
-
-int bounded_int(const json& value, std::int64_t max, const Field& field) {
-  if (!value.is_number_integer()) field.fail("expected a whole number, got " + show(value));
-  const bool negative = value.is_number_unsigned() ? false : value.get<std::int64_t>() < 0;
-  if (negative || value.get<std::uint64_t>() > static_cast<std::uint64_t>(max)) {
-    field.fail("expected a whole number from 0 to " + std::to_string(max) + ", got " + show(value));
-  }
-  return static_cast<int>(value.get<std::int64_t>());
-}
-
-const json& object_value(const json& value, const Field& field) {
-  if (!value.is_object()) field.fail("expected an object, got " + show(value));
-  return value;
-}
-
-ChannelRole parse_role(const json& value, const Field& field) {
-  const std::string text = string_value(value, field);
+ChannelRole parse_role(const json& value, const JsonField& field) {
+  const std::string text = field.string(value);
   if (text == "base") return ChannelRole::Base;
   if (text == "mass") return ChannelRole::Mass;
   if (text == "relative") return ChannelRole::Relative;
@@ -144,8 +69,8 @@ ChannelRole parse_role(const json& value, const Field& field) {
   field.fail("unknown role " + in_quotes(text) + " (expected base, mass, relative or force)");
 }
 
-Quantity parse_quantity(const json& value, const Field& field) {
-  const std::string text = string_value(value, field);
+Quantity parse_quantity(const json& value, const JsonField& field) {
+  const std::string text = field.string(value);
   if (text == "acceleration") return Quantity::Acceleration;
   if (text == "velocity") return Quantity::Velocity;
   if (text == "displacement") return Quantity::Displacement;
@@ -163,10 +88,10 @@ bool has_control_character(const std::string& text) {
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
-ChannelInfo parse_channel(const json& value, const Field& field) {
-  const json& object = object_value(value, field);
+ChannelInfo parse_channel(const json& value, const JsonField& field) {
+  const json& object = field.object(value);
   ChannelInfo channel;
-  channel.name = string_value(require(object, "name", field), field / "name");
+  channel.name = (field / "name").string(field.require(object, "name"));
   if (channel.name.empty()) (field / "name").fail("must not be empty");
   if (has_control_character(channel.name) || is_blank(channel.name.front()) ||
       is_blank(channel.name.back())) {
@@ -177,46 +102,48 @@ ChannelInfo parse_channel(const json& value, const Field& field) {
   if (channel.name == "t_s") {
     (field / "name").fail("\"t_s\" is reserved for the CSV time column");
   }
-  channel.role = parse_role(require(object, "role", field), field / "role");
-  channel.quantity = parse_quantity(require(object, "quantity", field), field / "quantity");
+  channel.role = parse_role(field.require(object, "role"), field / "role");
+  channel.quantity = parse_quantity(field.require(object, "quantity"), field / "quantity");
   if ((channel.role == ChannelRole::Force) != (channel.quantity == Quantity::Force)) {
     (field / "quantity")
         .fail("quantity " + in_quotes(to_string(channel.quantity)) + " does not fit role " +
               in_quotes(to_string(channel.role)) +
               " (a force channel measures a force, and only force channels do)");
   }
-  channel.unit = string_value(require(object, "unit", field), field / "unit");
+  channel.unit = (field / "unit").string(field.require(object, "unit"));
   unit_to_si(channel.unit, channel.quantity, (field / "unit").where());
-  channel.scale = finite_number(require(object, "scale", field), field / "scale");
+  channel.scale = (field / "scale").finite_number(field.require(object, "scale"));
   if (channel.scale == 0.0) (field / "scale").fail("must not be zero");
-  if (const json* offset = find(object, "offset")) {
-    channel.offset = finite_number(*offset, field / "offset");
+  if (const json* offset = JsonField::find(object, "offset")) {
+    channel.offset = (field / "offset").finite_number(*offset);
   }
-  if (const json* sensor = find(object, "sensor")) {
-    channel.sensor = string_value(*sensor, field / "sensor");
+  if (const json* sensor = JsonField::find(object, "sensor")) {
+    channel.sensor = (field / "sensor").string(*sensor);
   }
-  if (const json* source = find(object, "source")) {
-    channel.source = string_value(*source, field / "source");
+  if (const json* source = JsonField::find(object, "source")) {
+    channel.source = (field / "source").string(*source);
     if (channel.source.empty()) (field / "source").fail("must not be empty");
   }
-  if (const json* column = find(object, "column")) {
-    channel.column = bounded_int(*column, kMaxColumn, field / "column");
+  if (const json* column = JsonField::find(object, "column")) {
+    channel.column = (field / "column").whole_number(*column, kMaxColumn);
   }
-  if (const json* range = find(object, "range"); range && !range->is_null()) {
-    const Field here = field / "range";
+  if (const json* range = JsonField::find(object, "range"); range && !range->is_null()) {
+    const JsonField here = field / "range";
     if (!range->is_array() || range->size() != 2) {
-      here.fail("expected [min, max] in the channel's unit, got " + show(*range));
+      here.fail("expected [min, max] in the channel's unit, got " + json_excerpt(*range));
     }
-    const double lo = finite_number((*range)[0], here[0]);
-    const double hi = finite_number((*range)[1], here[1]);
-    if (!(lo < hi)) here.fail("min must be below max, got " + show(*range));
+    const double lo = here[0].finite_number((*range)[0]);
+    const double hi = here[1].finite_number((*range)[1]);
+    if (!(lo < hi)) here.fail("min must be below max, got " + json_excerpt(*range));
     channel.range = std::make_pair(lo, hi);
   }
-  if (const json* corner = find(object, "ac_coupling_hz"); corner && !corner->is_null()) {
-    channel.ac_coupling_hz = positive_number(*corner, field / "ac_coupling_hz");
+  if (const json* corner = JsonField::find(object, "ac_coupling_hz");
+      corner && !corner->is_null()) {
+    channel.ac_coupling_hz = (field / "ac_coupling_hz").positive_number(*corner);
   }
-  if (const json* full_scale = find(object, "full_scale_v"); full_scale && !full_scale->is_null()) {
-    channel.full_scale_v = positive_number(*full_scale, field / "full_scale_v");
+  if (const json* full_scale = JsonField::find(object, "full_scale_v");
+      full_scale && !full_scale->is_null()) {
+    channel.full_scale_v = (field / "full_scale_v").positive_number(*full_scale);
   }
   for (const auto& [key, item] : object.items()) {
     if (key != "name" && key != "role" && key != "quantity" && key != "unit" && key != "scale" &&
@@ -228,26 +155,26 @@ ChannelInfo parse_channel(const json& value, const Field& field) {
   return channel;
 }
 
-CsvLayout parse_csv(const json& value, const Field& field) {
-  const json& object = object_value(value, field);
+CsvLayout parse_csv(const json& value, const JsonField& field) {
+  const json& object = field.object(value);
   CsvLayout layout;
   for (const auto& [key, item] : object.items()) {
-    const Field here = field / key;
+    const JsonField here = field / key;
     if (key == "header") {
-      if (!item.is_boolean()) here.fail("expected true or false, got " + show(item));
+      if (!item.is_boolean()) here.fail("expected true or false, got " + json_excerpt(item));
       layout.header = item.get<bool>();
     } else if (key == "delimiter") {
-      const std::string text = string_value(item, here);
-      if (text.size() != 1) here.fail("expected one character, got " + show(item));
+      const std::string text = here.string(item);
+      if (text.size() != 1) here.fail("expected one character, got " + json_excerpt(item));
       const char c = text[0];
       if (std::strchr("0123456789.+-eE\"\r\n", c) != nullptr || c == '\0') {
-        here.fail("cannot split numbers on " + show(item));
+        here.fail("cannot split numbers on " + json_excerpt(item));
       }
       layout.delimiter = c;
     } else if (key == "skip_lines") {
-      layout.skip_lines = bounded_int(item, kMaxSkipLines, here);
+      layout.skip_lines = here.whole_number(item, kMaxSkipLines);
     } else if (key == "time_column") {
-      layout.time_column = bounded_int(item, kMaxColumn, here);
+      layout.time_column = here.whole_number(item, kMaxColumn);
     } else {
       here.fail("unknown key (expected header, delimiter, skip_lines or time_column)");
     }
@@ -255,14 +182,14 @@ CsvLayout parse_csv(const json& value, const Field& field) {
   return layout;
 }
 
-SignalTime parse_time(const json& value, const Field& field) {
-  const json& object = object_value(value, field);
+SignalTime parse_time(const json& value, const JsonField& field) {
+  const json& object = field.object(value);
   SignalTime time;
-  time.source = string_value(require(object, "source", field), field / "source");
+  time.source = (field / "source").string(field.require(object, "source"));
   if (time.source.empty()) (field / "source").fail("must not be empty");
   for (const auto& [key, item] : object.items()) {
     if (key == "column") {
-      time.column = bounded_int(item, kMaxColumn, field / key);
+      time.column = (field / key).whole_number(item, kMaxColumn);
     } else if (key != "source") {
       (field / key).fail("unknown key (expected source or column)");
     }
@@ -270,18 +197,18 @@ SignalTime parse_time(const json& value, const Field& field) {
   return time;
 }
 
-ExcitationLevel parse_level(const json& value, const Field& field) {
-  const json& object = object_value(value, field);
+ExcitationLevel parse_level(const json& value, const JsonField& field) {
+  const json& object = field.object(value);
   ExcitationLevel level;
-  level.f0_n = finite_number(require(object, "f0_n", field), field / "f0_n");
+  level.f0_n = (field / "f0_n").finite_number(field.require(object, "f0_n"));
   if (level.f0_n < 0.0)
-    (field / "f0_n").fail("expected a non-negative amplitude, got " + show(object["f0_n"]));
-  level.start_s = finite_number(require(object, "start_s", field), field / "start_s");
-  level.end_s = finite_number(require(object, "end_s", field), field / "end_s");
+    (field / "f0_n").fail("expected a non-negative amplitude, got " + json_excerpt(object["f0_n"]));
+  level.start_s = (field / "start_s").finite_number(field.require(object, "start_s"));
+  level.end_s = (field / "end_s").finite_number(field.require(object, "end_s"));
   if (!(level.start_s < level.end_s)) {
     (field / "end_s")
-        .fail("must come after start_s (" + show(object["start_s"]) + "), got " +
-              show(object["end_s"]));
+        .fail("must come after start_s (" + json_excerpt(object["start_s"]) + "), got " +
+              json_excerpt(object["end_s"]));
   }
   for (const auto& [key, item] : object.items()) {
     if (key != "f0_n" && key != "start_s" && key != "end_s") level.extra[key] = item;
@@ -289,23 +216,26 @@ ExcitationLevel parse_level(const json& value, const Field& field) {
   return level;
 }
 
-Excitation parse_excitation(const json& value, const Field& field) {
-  const json& object = object_value(value, field);
+Excitation parse_excitation(const json& value, const JsonField& field) {
+  const json& object = field.object(value);
   Excitation excitation;
-  if (const json* type = find(object, "type")) {
-    excitation.type = string_value(*type, field / "type");
+  if (const json* type = JsonField::find(object, "type")) {
+    excitation.type = (field / "type").string(*type);
   }
-  if (const json* frequency = find(object, "frequency_hz"); frequency && !frequency->is_null()) {
-    excitation.frequency_hz = positive_number(*frequency, field / "frequency_hz");
+  if (const json* frequency = JsonField::find(object, "frequency_hz");
+      frequency && !frequency->is_null()) {
+    excitation.frequency_hz = (field / "frequency_hz").positive_number(*frequency);
   }
-  if (const json* levels = find(object, "levels")) {
-    if (!levels->is_array()) (field / "levels").fail("expected an array, got " + show(*levels));
+  if (const json* levels = JsonField::find(object, "levels")) {
+    if (!levels->is_array())
+      (field / "levels").fail("expected an array, got " + json_excerpt(*levels));
     for (std::size_t i = 0; i < levels->size(); ++i) {
-      const Field here = (field / "levels")[i];
+      const JsonField here = (field / "levels")[i];
       ExcitationLevel level = parse_level((*levels)[i], here);
       if (!excitation.levels.empty() && level.start_s < excitation.levels.back().end_s) {
         (here / "start_s")
-            .fail("levels must follow each other in time; " + show((*levels)[i]["start_s"]) +
+            .fail("levels must follow each other in time; " +
+                  json_excerpt((*levels)[i]["start_s"]) +
                   " is before the end of the previous level");
       }
       excitation.levels.push_back(std::move(level));
@@ -317,23 +247,24 @@ Excitation parse_excitation(const json& value, const Field& field) {
   return excitation;
 }
 
-std::vector<InvalidInterval> parse_invalid_intervals(const json& value, const Field& field) {
-  if (!value.is_array()) field.fail("expected an array, got " + show(value));
+std::vector<InvalidInterval> parse_invalid_intervals(const json& value, const JsonField& field) {
+  if (!value.is_array()) field.fail("expected an array, got " + json_excerpt(value));
   std::vector<InvalidInterval> intervals;
   for (std::size_t i = 0; i < value.size(); ++i) {
-    const Field here = field[i];
-    const json& object = object_value(value[i], here);
+    const JsonField here = field[i];
+    const json& object = here.object(value[i]);
     InvalidInterval interval;
-    interval.start_s = finite_number(require(object, "start_s", here), here / "start_s");
-    interval.end_s = finite_number(require(object, "end_s", here), here / "end_s");
+    interval.start_s = (here / "start_s").finite_number(here.require(object, "start_s"));
+    interval.end_s = (here / "end_s").finite_number(here.require(object, "end_s"));
     if (interval.end_s < interval.start_s) {
-      (here / "end_s").fail("must not come before start_s, got " + show(object["end_s"]));
+      (here / "end_s").fail("must not come before start_s, got " + json_excerpt(object["end_s"]));
     }
     if (!intervals.empty() && interval.start_s < intervals.back().start_s) {
-      (here / "start_s").fail("intervals must be in time order, got " + show(object["start_s"]));
+      (here / "start_s")
+          .fail("intervals must be in time order, got " + json_excerpt(object["start_s"]));
     }
-    if (const json* reason = find(object, "reason")) {
-      interval.reason = string_value(*reason, here / "reason");
+    if (const json* reason = JsonField::find(object, "reason")) {
+      interval.reason = (here / "reason").string(*reason);
     }
     intervals.push_back(std::move(interval));
   }
@@ -540,31 +471,32 @@ double unit_to_si(const std::string& unit, Quantity quantity, const std::string&
 }
 
 Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
-  const Field root(file_name, "");
-  if (!json_value.is_object()) root.fail("expected a JSON object, got " + show(json_value));
+  const JsonField root(file_name, "");
+  if (!json_value.is_object()) root.fail("expected a JSON object, got " + json_excerpt(json_value));
   Sidecar sidecar;
 
-  if (const json* format = find(json_value, "format")) {
+  if (const json* format = JsonField::find(json_value, "format")) {
     if (!format->is_string() || format->get<std::string>() != kSidecarFormat) {
       (root / "format")
-          .fail(std::string("expected \"") + kSidecarFormat + "\", got " + show(*format));
+          .fail(std::string("expected \"") + kSidecarFormat + "\", got " + json_excerpt(*format));
     }
   }
 
   sidecar.sample_rate_hz =
-      bounded_number(require(json_value, "sample_rate_hz", root), kMinSampleRateHz,
-                     kMaxSampleRateHz, "Hz", root / "sample_rate_hz");
+      bounded_number(root.require(json_value, "sample_rate_hz"), kMinSampleRateHz, kMaxSampleRateHz,
+                     "Hz", root / "sample_rate_hz");
 
-  if (const json* mass = find(json_value, "mass_kg"); mass && !mass->is_null()) {
+  if (const json* mass = JsonField::find(json_value, "mass_kg"); mass && !mass->is_null()) {
     sidecar.mass_kg = bounded_number(*mass, kMinMassKg, kMaxMassKg, "kg", root / "mass_kg");
   }
 
-  const json& channels = require(json_value, "channels", root);
-  if (!channels.is_array()) (root / "channels").fail("expected an array, got " + show(channels));
+  const json& channels = root.require(json_value, "channels");
+  if (!channels.is_array())
+    (root / "channels").fail("expected an array, got " + json_excerpt(channels));
   if (channels.empty()) (root / "channels").fail("must list at least one channel");
   std::map<std::string, std::size_t> names;
   for (std::size_t i = 0; i < channels.size(); ++i) {
-    const Field here = (root / "channels")[i];
+    const JsonField here = (root / "channels")[i];
     ChannelInfo channel = parse_channel(channels[i], here);
     const auto [it, inserted] = names.emplace(channel.name, i);
     if (!inserted) {
@@ -581,12 +513,12 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
     sidecar.channels.push_back(std::move(channel));
   }
 
-  if (const json* csv = find(json_value, "csv"); csv && !csv->is_null()) {
+  if (const json* csv = JsonField::find(json_value, "csv"); csv && !csv->is_null()) {
     sidecar.csv = parse_csv(*csv, root / "csv");
     std::map<int, std::size_t> used;
     for (std::size_t i = 0; i < sidecar.channels.size(); ++i) {
       const int column = sidecar.channels[i].column;
-      const Field here = (root / "channels")[i] / "column";
+      const JsonField here = (root / "channels")[i] / "column";
       if (column < 0) {
         if (!sidecar.csv->header) here.fail("missing required field (csv.header is false)");
         continue;
@@ -602,12 +534,12 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
     }
   }
 
-  if (const json* time = find(json_value, "time"); time && !time->is_null()) {
+  if (const json* time = JsonField::find(json_value, "time"); time && !time->is_null()) {
     if (sidecar.csv) (root / "time").fail("a CSV file names its time column in csv.time_column");
     sidecar.time = parse_time(*time, root / "time");
   }
 
-  if (const json* excitation = find(json_value, "excitation");
+  if (const json* excitation = JsonField::find(json_value, "excitation");
       excitation && !excitation->is_null()) {
     sidecar.excitation = parse_excitation(*excitation, root / "excitation");
     const std::optional<double>& frequency = sidecar.excitation->frequency_hz;
@@ -619,11 +551,12 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
     }
   }
 
-  if (const json* notes = find(json_value, "notes")) {
-    sidecar.notes = string_value(*notes, root / "notes");
+  if (const json* notes = JsonField::find(json_value, "notes")) {
+    sidecar.notes = (root / "notes").string(*notes);
   }
 
-  if (const json* invalid = find(json_value, "invalid_intervals"); invalid && !invalid->is_null()) {
+  if (const json* invalid = JsonField::find(json_value, "invalid_intervals");
+      invalid && !invalid->is_null()) {
     sidecar.invalid_intervals = parse_invalid_intervals(*invalid, root / "invalid_intervals");
   }
 

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/simulation/stepped_sine_motion.h"
 
 namespace oscilab::daq {
@@ -46,7 +47,7 @@ Sidecar rig_sidecar(const analysis::Model& model, const RigSpec& spec) {
   const auto& v = spec.sensors.vibrometer;
   sidecar.extra["virtual_rig"] = {
       {"model", model.to_json()},
-      {"well", spec.positive_well ? "positive" : "negative"},
+      {"well", analysis::to_string(analysis::well_of(spec.positive_well))},
       {"seed", spec.seed},
       {"accelerometer",
        {{"bias_m_s2", a.bias_m_s2},
@@ -107,8 +108,8 @@ RigRecording record_stepped_sine(const analysis::Model& model,
   excitation.extra["lead_in_s"] = schedule.lead_in_s;
   rig.recording.sidecar.excitation = excitation;
   rig.recording.sidecar.notes = "virtual rig: stepped sine, model \"" + model.name() + "\", " +
-                                (spec.positive_well ? "positive" : "negative") + " well, seed " +
-                                std::to_string(spec.seed);
+                                analysis::to_string(analysis::well_of(spec.positive_well)) +
+                                " well, seed " + std::to_string(spec.seed);
   std::mt19937_64 rng(spec.seed);
   measure(motion, spec, rng, rig);
   return rig;
@@ -138,9 +139,10 @@ RigRecording record_random(const analysis::Model& model,
   excitation.extra["force_rms_n"] = seeded.force_rms_n;
   excitation.extra["fade_s"] = seeded.fade_s;
   rig.recording.sidecar.excitation = excitation;
-  rig.recording.sidecar.notes =
-      "virtual rig: band-limited random, model \"" + model.name() + "\", start in the " +
-      (spec.positive_well ? "positive" : "negative") + " well, seed " + std::to_string(spec.seed);
+  rig.recording.sidecar.notes = "virtual rig: band-limited random, model \"" + model.name() +
+                                "\", start in the " +
+                                analysis::to_string(analysis::well_of(spec.positive_well)) +
+                                " well, seed " + std::to_string(spec.seed);
   // A different stream from the excitation's phases (seeded with the same number).
   std::mt19937_64 rng(spec.seed ^ 0x9E3779B97F4A7C15ULL);
   measure(motion, spec, rng, rig);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/hbm/branch.h"
 #include "analysis/hbm/branch_switching.h"
 #include "analysis/hbm/continuation.h"
@@ -107,7 +108,7 @@ py::dict branch_dict(const analysis::Branch& branch) {
   d["events"] = events;
   d["status"] = job_status_name(branch.status);
   d["message"] = branch.message;
-  d["well"] = branch.positive_well ? "positive" : "negative";
+  d["well"] = analysis::to_string(analysis::well_of(branch.positive_well));
   d["harmonics"] = branch.hbm.harmonics;
   d["subharmonic"] = branch.hbm.subharmonic;
   d["samples"] = branch.samples;

@@ -3,6 +3,7 @@
 // wall-clock second; Google Benchmark reports the median over repetitions.
 #include <benchmark/benchmark.h>
 
+#include "analysis/edc/well.h"
 #include "analysis/model/reference_models.h"
 #include "analysis/simulation/stepped_sine_run.h"
 
@@ -31,8 +32,8 @@ void BM_SimulateSteppedSine(benchmark::State& state) {
   state.counters["x_realtime"] = benchmark::Counter(
       motion.duration_s() * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["rhs_evals"] = static_cast<double>(evaluations);
-  state.SetLabel(std::string(positive ? "positive" : "negative") + " well, " +
-                 std::to_string(motion.duration_s()) + " s simulated");
+  state.SetLabel(to_string(well_of(positive)) + " well, " + std::to_string(motion.duration_s()) +
+                 " s simulated");
 }
 BENCHMARK(BM_SimulateSteppedSine)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -19,6 +19,7 @@
 
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/diagnosis/effect_candidates.h"
+#include "analysis/edc/well.h"
 #include "analysis/hbm/level_response.h"
 #include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
@@ -57,7 +58,7 @@ int bias_study(int seeds) {
             const double a1 = std::hypot(x[1], x[2]);
             std::printf(
                 "%g,%g,%d,%s,%.6g,%.9g,%.9g,%.4g,%.9g,%.9g,%.4g,%.6g,%.6g,%.4g,%.6g,%.6g,%.4g\n",
-                freq, noise, seed, g.positive_well ? "positive" : "negative", l.f0_n, l.edc_j,
+                freq, noise, seed, to_string(well_of(g.positive_well)).c_str(), l.f0_n, l.edc_j,
                 r.edc_j[i], l.sigma_of_mean_j(), l.amplitude_m, a1, l.z1_abs_se_m, l.h2_ratio,
                 std::hypot(x[3], x[4]) / a1, l.h2_ratio_se, l.h3_ratio, std::hypot(x[5], x[6]) / a1,
                 l.h3_ratio_se);

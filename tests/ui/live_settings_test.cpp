@@ -55,6 +55,15 @@ TEST(LiveSettings, ThrowsInputErrorNamingTheField) {
   EXPECT_NE(message({{"alarms", {{"max_abs_z_m", 0}}}}).find("live.alarms.max_abs_z_m"),
             std::string::npos);
   EXPECT_NE(message(nlohmann::json::array()).find("live"), std::string::npos);
+  // Each names the field's path and the bad value.
+  EXPECT_EQ(message({{"replay_loop", "yes"}}),
+            "live.replay_loop: expected true or false, got \"yes\"");
+  EXPECT_EQ(message({{"replay_path", 3}}), "live.replay_path: expected a string, got 3");
+  EXPECT_EQ(message({{"jack", 1}}), "live.jack: expected an object, got 1");
+  EXPECT_EQ(message({{"rig", {{"well", "left"}}}}),
+            "live.rig.well: expected \"positive\" or \"negative\", got \"left\"");
+  EXPECT_EQ(message({{"speed", "fast"}}), "live.speed: expected a number, got \"fast\"");
+  EXPECT_EQ(message({{"port", 70000}}), "live.port: 70000 (a TCP port, 0 to 65535)");
 }
 
 TEST(SteppedSchedule, RunsThePapersLevelsThenRests) {

@@ -148,6 +148,8 @@ TEST(Session, ThrowsInputErrorNamingFileAndField) {
   EXPECT_EQ(with("/layout/state"_json_pointer, 42),
             "review.json: layout.state: expected a string, got 42");
   EXPECT_EQ(with("/live"_json_pointer, 3), "review.json: live: expected an object, got 3");
+  EXPECT_EQ(with("/selected_levels/0"_json_pointer, json{{"recording", 0}}),
+            "review.json: selected_levels[0].level: missing");
 }
 
 TEST(Session, FileRoundTripAndFileErrors) {

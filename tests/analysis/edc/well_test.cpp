@@ -17,6 +17,13 @@ TEST(Well, SpellsTheContractStrings) {
   EXPECT_EQ(to_string(Well::Unclassified), "");
 }
 
+TEST(Well, TheWellOfASideSpellsAsTheFlagDidInEveryFile) {
+  // Reports, CSV files and the Python module spell a positive_well flag "positive"/"negative".
+  EXPECT_EQ(to_string(well_of(true)), "positive");
+  EXPECT_EQ(to_string(well_of(false)), "negative");
+  static_assert(well_of(true) == Well::Positive && well_of(false) == Well::Negative);
+}
+
 TEST(Well, RoundTripsThroughItsString) {
   for (Well well :
        {Well::Positive, Well::Negative, Well::CrossWell, Well::Unknown, Well::Unclassified}) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "analysis/hbm/level_response.h"
 #include "analysis/model/polynomial_stiffness.h"
 #include "analysis/model/reference_models.h"
@@ -223,7 +224,7 @@ TEST(Continuation, PaperModelEdcMatchesTimeSimulationInBothWells) {
       for (std::size_t i = 0; i < run.levels.size(); ++i) {
         // The targets: 0.5 % (H = 15), 2 % (H = 7); measured worst 0.37 % and 1.41 %.
         EXPECT_NEAR(response.edc_j[i] / run.levels[i].edc_j, 1.0, tolerance)
-            << (positive ? "positive" : "negative") << " well, H = " << harmonics
+            << to_string(well_of(positive)) << " well, H = " << harmonics
             << ", f0 = " << schedule.levels_n[i];
       }
     }

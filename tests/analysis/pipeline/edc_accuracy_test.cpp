@@ -51,7 +51,7 @@ TEST_P(EdcAccuracy, MeanEdcWithinHalfPercentPlusFiveSigmaOfTruth) {
   const RecordAnalysis analysis =
       analyze_record(daq::measurement_channels(rig.recording), PipelineSettings{});
   EXPECT_FALSE(analysis.frequency_detected);  // the sidecar gives it
-  expect_matches_truth(analysis, rig, positive ? Well::Positive : Well::Negative);
+  expect_matches_truth(analysis, rig, well_of(positive));
 }
 
 INSTANTIATE_TEST_SUITE_P(BothWellsThreeSeeds, EdcAccuracy,

@@ -1,0 +1,170 @@
+#include "ui/review_loop_plot.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <qcustomplot.h>
+
+#include "analysis/pipeline/result_units.h"
+#include "ui/display_units.h"
+#include "ui/plot_helpers.h"
+#include "ui/review_plot_style.h"
+#include "ui/well_colours.h"
+
+namespace oscilab::ui {
+namespace {
+
+// At most this many loops are drawn at once (Fig. 9 overlays two; more become unreadable).
+constexpr std::size_t kMaxLoops = 8;
+
+QString text(const std::string& s) { return QString::fromStdString(s); }
+
+}  // namespace
+
+ReviewLoopPlot::ReviewLoopPlot() {
+  plot_ = make_review_plot(tr("z [mm]"), tr("f = \u2212m d\u00b2b/dt\u00b2 [N]"));
+  plot_->setObjectName("loop_plot");
+  add_plot_title(plot_, tr("Response-input loops of the selected levels (Fig. 9)"));
+  // Row 1: one axis rect per well side by side (each zoomed to its loops, as Fig. 9b/c); row 2:
+  // the legend, below them so that it hides no loop.
+  QCPAxisRect* first_rect = plot_->axisRect();
+  plot_->plotLayout()->take(first_rect);
+  grid_ = new QCPLayoutGrid;
+  plot_->plotLayout()->addElement(1, 0, grid_);
+  grid_->addElement(0, 0, first_rect);
+  grid_->setColumnSpacing(4);
+  first_rect->insetLayout()->take(plot_->legend);
+  plot_->plotLayout()->addElement(2, 0, plot_->legend);
+  plot_->plotLayout()->setRowStretchFactor(2, 0.001);
+  plot_->legend->setVisible(true);
+  plot_->legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
+}
+
+void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelKey>& keys) {
+  // Curves first (their legend items go with them), then the labels and the extra well rects.
+  plot_->clearPlottables();
+  for (QCPAbstractItem* item : labels_) plot_->removeItem(item);
+  labels_.clear();
+  for (int c = grid_->columnCount() - 1; c >= 1; --c) {
+    if (grid_->element(0, c)) grid_->remove(grid_->element(0, c));
+  }
+  grid_->simplify();
+
+  std::vector<LevelLoop> loops;
+  std::vector<LevelKey> shown;
+  if (review) {
+    for (const LevelKey& key : keys) {
+      if (loops.size() == kMaxLoops) break;
+      const analysis::LevelResult* level = find_level(review->campaign, key);
+      if (!level || std::size_t(key.record) >= review->force_n.size()) continue;
+      loops.push_back(level_loop(review->campaign.records[std::size_t(key.record)].motion,
+                                 review->force_n[std::size_t(key.record)], *level));
+      shown.push_back(key);
+    }
+  }
+  plot_->legend->setVisible(!loops.empty());
+  if (loops.empty()) {
+    set_plot_hint(plot_, review ? tr("Select levels in the table to draw their loops")
+                                : tr("No analysis yet"));
+    plot_->replot(QCustomPlot::rpQueuedReplot);
+    return;
+  }
+  set_plot_hint(plot_, {});
+  // One entry a row for a few loops, two columns for more (before the entries are added).
+  plot_->legend->setWrap(loops.size() <= 3 ? 1 : 2);
+  double z_max = 0.0, f_max = 0.0;
+  for (const LevelLoop& loop : loops) {
+    z_max = std::max(z_max, largest_abs({&loop.z_m}));
+    f_max = std::max(f_max, largest_abs({&loop.f_n}));
+  }
+  const DisplayUnit z_unit = choose_display_unit("m", z_max);
+  const DisplayUnit f_unit = choose_display_unit("N", f_max);
+  const bool per_unit_mass =
+      review->campaign.records[std::size_t(shown.front().record)].per_unit_mass;
+  const QString f_label =
+      per_unit_mass ? tr("f / m = \u2212d\u00b2b/dt\u00b2 [%1/kg]").arg(text(f_unit.symbol))
+                    : tr("f = \u2212m d\u00b2b/dt\u00b2 [%1]").arg(text(f_unit.symbol));
+
+  // One axis rect per well, in the order positive, negative, other.
+  const auto group_of = [](analysis::Well well) {
+    return well == analysis::Well::Positive ? 0 : well == analysis::Well::Negative ? 1 : 2;
+  };
+  bool present[3] = {false, false, false};
+  for (const LevelLoop& loop : loops) present[group_of(loop.well)] = true;
+  QCPAxisRect* rect_of[3] = {nullptr, nullptr, nullptr};
+  std::vector<QCPAxisRect*> rects;
+  for (int g = 0; g < 3; ++g) {
+    if (!present[g]) continue;
+    QCPAxisRect* rect = rects.empty() ? plot_->axisRect() : new QCPAxisRect(plot_);
+    if (!rects.empty()) {
+      grid_->addElement(0, int(rects.size()), rect);
+      for (QCPAxis::AxisType side : {QCPAxis::atTop, QCPAxis::atRight}) {
+        rect->axis(side)->setVisible(true);
+        rect->axis(side)->setTicks(false);
+        rect->axis(side)->setTickLabels(false);
+      }
+      rect->axis(QCPAxis::atBottom)->setNumberFormat("gb");
+      rect->axis(QCPAxis::atLeft)->setNumberFormat("gb");
+    }
+    rect->axis(QCPAxis::atBottom)->setLabel(tr("z [%1]").arg(text(z_unit.symbol)));
+    rect->axis(QCPAxis::atLeft)->setLabel(rects.empty() ? f_label : QString());
+    // The well, top left inside the axes.
+    auto* label = new QCPItemText(plot_);
+    label->setClipAxisRect(rect);
+    label->position->setAxisRect(rect);
+    label->position->setType(QCPItemPosition::ptAxisRectRatio);
+    label->position->setCoords(0.03, 0.03);
+    label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+    label->setText(g == 0   ? tr("around z\u208a*")
+                   : g == 1 ? tr("around z\u208b*")
+                            : tr("cross-well / unknown"));
+    label->setColor(well_colour(g == 0   ? analysis::Well::Positive
+                                : g == 1 ? analysis::Well::Negative
+                                         : analysis::Well::Unknown));
+    labels_.push_back(label);
+    rect_of[g] = rect;
+    rects.push_back(rect);
+  }
+
+  int same_well[3] = {0, 0, 0};  // loops drawn so far per well: later ones darker
+  double z_lo[3] = {INFINITY, INFINITY, INFINITY}, z_hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  double f_lo = INFINITY, f_hi = -INFINITY;
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    const LevelLoop& loop = loops[i];
+    const analysis::LevelResult& level = *find_level(review->campaign, shown[i]);
+    const int g = group_of(loop.well);
+    const QColor colour = well_colour(loop.well).darker(100 + 35 * same_well[g]++).toRgb();
+    QCPAxisRect* rect = rect_of[g];
+    auto* curve = new QCPCurve(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
+    QVector<QCPCurveData> data(qsizetype(loop.z_m.size()));
+    for (std::size_t k = 0; k < loop.z_m.size(); ++k) {
+      const double z = z_unit.to_display(loop.z_m[k]), f = f_unit.to_display(loop.f_n[k]);
+      data[qsizetype(k)] = QCPCurveData(double(k), z, f);
+      z_lo[g] = std::min(z_lo[g], z);
+      z_hi[g] = std::max(z_hi[g], z);
+      f_lo = std::min(f_lo, f);
+      f_hi = std::max(f_hi, f);
+    }
+    curve->data()->set(data, true);
+    curve->setPen(QPen(colour, 1.2));
+    const analysis::RecordAnalysis& record = review->campaign.records[std::size_t(shown[i].record)];
+    curve->setName(tr("%1, f\u2080 = %2 %5: EDC %3 %6 (%4 steady cycles)")
+                       .arg(text(record.name))
+                       .arg(level.f0_n, 0, 'f', 2)
+                       .arg(1e3 * level.edc_mean_j, 0, 'f', 3)
+                       .arg(loop.cycles)
+                       .arg(text(analysis::result_unit("N", record.per_unit_mass)))
+                       .arg(text(analysis::result_unit("mJ", record.per_unit_mass))));
+  }
+  // Each rect over its loops' z; one force range for all, so that the rects compare. Room at
+  // the top for the well's label.
+  for (int g = 0; g < 3; ++g) {
+    if (rect_of[g]) fit_axis_with_margin(rect_of[g]->axis(QCPAxis::atBottom), z_lo[g], z_hi[g]);
+  }
+  for (QCPAxisRect* rect : rects) {
+    fit_axis_with_margin(rect->axis(QCPAxis::atLeft), f_lo, f_hi + 0.1 * (f_hi - f_lo));
+  }
+  plot_->replot(QCustomPlot::rpQueuedReplot);
+}
+
+}  // namespace oscilab::ui
