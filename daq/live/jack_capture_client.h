@@ -75,6 +75,8 @@ class JackCaptureClient {
   /// Xruns the server reported since the client was made, and its frame clock at the last.
   std::uint64_t xruns() const { return xrun_count_.load(std::memory_order_acquire); }
   std::uint32_t last_xrun_frame() const { return xrun_frame_.load(std::memory_order_relaxed); }
+  /// Frames the process callback had no room for in the ring, since the client was made.
+  std::uint64_t dropped_frames() const { return dropped_.load(std::memory_order_relaxed); }
 
   // JACK's callbacks (through trampolines in the .cpp).
   int process(std::uint32_t frames);

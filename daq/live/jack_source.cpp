@@ -60,7 +60,8 @@ struct JackSource::Impl {
   std::uint32_t next_frame = 0;    // the frame clock expected next
   std::uint32_t last_disconnected = 0;
   std::uint64_t xruns_seen = 0;
-  WithheldSamples withheld;  // stream samples
+  std::uint64_t dropped_seen = 0;  // the client's dropped frames already counted
+  WithheldSamples withheld;        // stream samples
   bool clip_open = false;
   std::uint64_t clip_from = 0, clip_to = 0, clip_samples = 0;
   std::vector<std::atomic<double>> peaks;
@@ -122,6 +123,7 @@ std::string JackSource::Impl::open() {
   }
   reach = InterleavedResampler::measure_reach(rate_in, rate_out, options.passband_end);
   xruns_seen = client.xruns();
+  dropped_seen = client.dropped_frames();
   return client.activate();
 }
 
@@ -267,6 +269,12 @@ void JackSource::Impl::close_clip_run() {
 }
 
 void JackSource::Impl::handle_xruns() {
+  // Frames the ring had no room for: counted here; the frame clock's jump they leave is bridged
+  // (or starts a new segment) in drain(), as for an xrun's.
+  if (const std::uint64_t dropped = client.dropped_frames(); dropped != dropped_seen) {
+    owner.dropped_frames_.fetch_add(dropped - dropped_seen, std::memory_order_relaxed);
+    dropped_seen = dropped;
+  }
   const std::uint64_t count = client.xruns();
   if (count == xruns_seen) return;
   const std::uint64_t fresh = count - xruns_seen;
