@@ -27,7 +27,9 @@ void LiveEdc::start(double freq_hz, double t0_s) {
   }
   pipeline_ = std::make_unique<analysis::MeasurementPipeline>(settings_, setup);
   freq_hz_ = freq_hz;
+  // Both count what this pipeline has published (the levels before it are in levels_done_).
   cycles_seen_ = 0;
+  levels_seen_ = 0;
 }
 
 void LiveEdc::note_arrival(std::uint64_t first_sample, std::uint64_t end_sample,
