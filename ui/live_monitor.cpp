@@ -105,6 +105,7 @@ LiveMonitor::LiveMonitor(QWidget* parent)
   connect_controls();
   update_source_controls();
   refresh_status();
+  session_settings_ = settings().to_json();
 }
 
 LiveMonitor::~LiveMonitor() {
@@ -158,8 +159,9 @@ void LiveMonitor::set_controls(const LiveSettings& s) {
 }
 
 void LiveMonitor::apply_settings(const nlohmann::json& json) {
+  session_settings_ = json;
   try {
-    set_controls(LiveSettings::from_json(json));  // the session keeps its own copy verbatim
+    set_controls(LiveSettings::from_json(json));
   } catch (const std::exception& error) {
     show_message(tr("Live settings not restored: %1").arg(error.what()), true);
   }
@@ -167,7 +169,8 @@ void LiveMonitor::apply_settings(const nlohmann::json& json) {
 
 void LiveMonitor::emit_settings() {
   if (applying_settings_) return;
-  Q_EMIT settings_changed(settings().to_json());
+  session_settings_ = settings().to_json();
+  Q_EMIT settings_changed(session_settings_);
 }
 
 void LiveMonitor::set_rig_schedule(std::vector<daq::ExcitationStep> schedule) {

@@ -81,12 +81,15 @@ class LiveMonitor : public QWidget {
   /// false and a message when no server answers.
   bool list_jack_ports();
 
-  /// The settings of the controls (MainWindow stores them in the session).
+  /// The settings of the controls.
   LiveSettings settings() const;
+  /// The session's "live" part: the JSON the last session restored, verbatim (keys of other
+  /// versions kept), or the controls' settings once they changed.
+  nlohmann::json session_settings() const { return session_settings_; }
   /// Sets the controls; takes effect at the next start for what a running source cannot change.
   void set_settings(const LiveSettings& settings);
-  /// Sets the controls from a session's "live" JSON (without settings_changed: the session
-  /// keeps its copy verbatim); a bad value is shown, nothing changes.
+  /// Sets the controls from a session's "live" JSON, kept verbatim as session_settings()
+  /// (without settings_changed); a bad value is shown, the controls do not change.
   void apply_settings(const nlohmann::json& settings);
   /// The model whose EDC is drawn over the measured points (default: the paper's, Tables 1 and
   /// 3); `label` names it in the legend. The fit panel hands over each fitted model.
@@ -166,6 +169,7 @@ class LiveMonitor : public QWidget {
   daq::JackSource* jack_ = nullptr;
   std::optional<daq::Sidecar> layout_;  // of the stream shown, once known
   bool applying_settings_ = false;
+  nlohmann::json session_settings_ = nlohmann::json::object();
   QString recording_path_;  // of the recording running, until recording_finished
 
   std::unique_ptr<QElapsedTimer> clock_;

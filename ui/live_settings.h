@@ -19,7 +19,7 @@ enum class LiveSourceKind { Rig, Replay, Network, Jack };
 /// "rig" | "replay" | "network" | "jack".
 std::string to_string(LiveSourceKind kind);
 
-/// What the live monitor keeps in a session (MainWindow::live_settings), SI inside.
+/// What the live monitor keeps in a session (LiveMonitor::session_settings), SI inside.
 struct LiveSettings {
   LiveSourceKind source = LiveSourceKind::Rig;
   std::string replay_path;

@@ -83,14 +83,10 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   central_tabs_->setObjectName("central_tabs");
   central_tabs_->setDocumentMode(true);
   central_tabs_->addTab(review_view_, tr("Review"));
-  // The live monitor; the session keeps its settings ("live").
+  // The live monitor; it keeps the session's "live" settings.
   live_monitor_ = new LiveMonitor;
   live_monitor_->setObjectName("live_monitor");
   central_tabs_->addTab(live_monitor_, tr("Live"));
-  live_settings_ = live_monitor_->settings().to_json();
-  connect(live_monitor_, &LiveMonitor::settings_changed, this,
-          [this](const nlohmann::json& settings) { set_live_settings(settings); });
-  connect(this, &MainWindow::live_settings_restored, live_monitor_, &LiveMonitor::apply_settings);
   setCentralWidget(central_tabs_);
   identification_panel_ = new IdentificationPanel(this);
   auto* dock = new QDockWidget(tr("Fit and diagnosis"), this);
@@ -404,7 +400,7 @@ Session MainWindow::current_session() const {
     }
   }
   session.annotations = review_view_->annotations();
-  session.live = live_settings_;
+  session.live = live_monitor_->session_settings();
   return session;
 }
 
@@ -432,7 +428,6 @@ bool MainWindow::open_session(const QString& path) {
   analysis_.reset();
   pending_levels_.clear();
   settings_ = session.settings;
-  live_settings_ = session.live;
   if (!session.window_geometry_base64.empty()) {
     restoreGeometry(
         QByteArray::fromBase64(QByteArray::fromStdString(session.window_geometry_base64)));
@@ -484,7 +479,7 @@ bool MainWindow::open_session(const QString& path) {
     if (is_open(level.recording)) pending_levels_.push_back(level);
   }
   schedule_analysis();
-  Q_EMIT live_settings_restored(live_settings_);
+  live_monitor_->apply_settings(session.live);
   if (!missing.isEmpty()) {
     report_error(tr("%1: recordings not opened: %2; the other %3 opened")
                      .arg(path, missing.join("; "))

@@ -94,10 +94,6 @@ class MainWindow : public QMainWindow {
   /// The session as it would be saved now.
   Session current_session() const;
 
-  /// Settings of the live monitor, stored in the session verbatim ("live").
-  void set_live_settings(const nlohmann::json& settings) { live_settings_ = settings; }
-  nlohmann::json live_settings() const { return live_settings_; }
-
   /// Off: errors are reported by the status bar and error_reported only, without a modal
   /// message box, and Mark uses a default note instead of asking (for tests and screenshots).
   void set_interactive_errors(bool on) { interactive_errors_ = on; }
@@ -129,8 +125,6 @@ class MainWindow : public QMainWindow {
   void recording_opened(const QString& path);
   /// An analysis of the opened recordings finished and is shown.
   void analysis_finished();
-  /// A session was opened; its "live" settings were stored and are passed on.
-  void live_settings_restored(const nlohmann::json& settings);
 
  private:
   struct OpenedRecording;
@@ -152,7 +146,6 @@ class MainWindow : public QMainWindow {
   QString last_directory_;
   std::vector<OpenedRecording> opened_;
   analysis::PipelineSettings settings_;
-  nlohmann::json live_settings_ = nlohmann::json::object();
 
   BackgroundJob* analysis_job_ = nullptr;
   QTimer* analysis_timer_ = nullptr;                 // coalesces changes into one analysis

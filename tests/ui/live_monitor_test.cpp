@@ -434,8 +434,9 @@ class LiveMonitorTest : public QObject {
       child<QDoubleSpinBox>(*monitor, "window_s")->setValue(60.0);
       child<QComboBox>(*monitor, "source")->setCurrentIndex(1);
       child<QLineEdit>(*monitor, "replay_path")->setText(QString::fromStdString(kSample));
-      QCOMPARE(window.live_settings()["rig"]["f0_n"].get<double>(), 1.7);
-      QCOMPARE(window.live_settings()["source"].get<std::string>(), std::string("replay"));
+      QCOMPARE(window.live_monitor()->session_settings()["rig"]["f0_n"].get<double>(), 1.7);
+      QCOMPARE(window.live_monitor()->session_settings()["source"].get<std::string>(),
+               std::string("replay"));
       QVERIFY(window.save_session(session));
     }
     oscilab::ui::MainWindow window;

@@ -24,6 +24,7 @@
 
 #include "daq/recording/campaign_reader.h"
 #include "ui/level_table.h"
+#include "ui/live_monitor.h"
 #include "ui/main_window.h"
 #include "ui/record_view.h"
 #include "ui/review_model.h"
@@ -320,7 +321,7 @@ class ReviewViewTest : public QObject {
     QVERIFY(dock != nullptr);
     dock->hide();
     const nlohmann::json live = {{"host", "rig-2"}, {"port", 5025}};
-    window_->set_live_settings(live);
+    window_->live_monitor()->apply_settings(live);
     const QString path = temporary_.filePath("review.json");
     QVERIFY(window_->save_session(path));
     const auto saved = window_->current_session();
@@ -329,13 +330,11 @@ class ReviewViewTest : public QObject {
     fresh.set_interactive_errors(false);
     fresh.resize(1000, 700);
     QSignalSpy analysed(&fresh, &MainWindow::analysis_finished);
-    QSignalSpy restored(&fresh, &MainWindow::live_settings_restored);
     QVERIFY(fresh.open_session(path));
     QCOMPARE(fresh.opened_paths(), window_->opened_paths());
     QCOMPARE(fresh.review_view()->annotations(), review->annotations());
     QCOMPARE(fresh.review_view()->annotation_list()->count(), 2);
-    QCOMPARE(fresh.live_settings(), live);
-    QCOMPARE(restored.count(), 1);
+    QCOMPARE(fresh.live_monitor()->session_settings(), live);
     QVERIFY(fresh.findChild<QDockWidget*>("identification_dock")->isHidden());
     QVERIFY(analysed.wait(kAnalysisTimeoutMs));
     QCOMPARE(fresh.review_view()->selected_levels(), (std::vector<LevelKey>{positive, negative}));
