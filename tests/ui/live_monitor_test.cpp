@@ -139,7 +139,11 @@ class LiveMonitorTest : public QObject {
     LiveMonitor monitor;
     monitor.resize(1600, 950);
     monitor.show();
-    monitor.set_settings(replay_settings(100.0));
+    // 10× real time while the plot is watched: the 263 s file lasts 26 s, the third level
+    // closes after 3.3 s. (A replay faster than real time drops blocks the acquisition has no
+    // room for; its queue holds 32 s of stream, 3.2 s at 10×. At 100× a loaded machine dropped
+    // some, and the EDCs below then lack cycles.)
+    monitor.set_settings(replay_settings(10.0));
     QSignalSpy predicted(&monitor, &LiveMonitor::prediction_finished);
     QVERIFY2(monitor.start(), qPrintable(monitor.message()));
     QVERIFY(monitor.replay() != nullptr);
@@ -153,6 +157,7 @@ class LiveMonitorTest : public QObject {
                  kHangGuardMs),
              "the EDC plot never showed 3 levels");
     QVERIFY(!monitor.acquisition()->finished());
+    monitor.replay()->set_speed(0);  // the rest as fast as taken: it waits for room, drops none
     QVERIFY2(wait_finished(monitor, kHangGuardMs), "the replay never finished");
     QVERIFY2(wait_end_shown(monitor), "the monitor never showed the source's end");
 
