@@ -99,6 +99,9 @@ def ctrl_c_once_the_fit_reports():
         raise TimeoutError("no Ctrl-C stopped the fit within 60 s: the helper thread never ran "
                            "while the fit did, or the fit ignored the interrupt")
 
+    # Ctrl-C raises KeyboardInterrupt, Python's default, even when started with SIGINT ignored
+    # (as a shell's background job is).
+    previous_int = signal.signal(signal.SIGINT, signal.default_int_handler)
     previous = signal.signal(signal.SIGALRM, hang_guard)
     signal.setitimer(signal.ITIMER_REAL, 60)
     helper = threading.Thread(target=ctrl_c_once_running)
@@ -112,6 +115,7 @@ def ctrl_c_once_the_fit_reports():
         signal.signal(signal.SIGALRM, previous)
         fit_returned.set()
         helper.join()
+        signal.signal(signal.SIGINT, previous_int)
     # The alarm's handler runs Python code, during which the helper could run too: a Ctrl-C
     # that came only then proves nothing.
     assert guard_left_s > 0, "the fit was interrupted only after the hang guard fired"
