@@ -189,6 +189,7 @@ AcquisitionStatus Acquisition::status() const {
   s.dropped_frames = c.dropped_frames;
   s.clipped_samples = c.clipped_samples;
   s.reconnections = c.reconnections;
+  s.failed_reconnects = c.failed_reconnects;
   s.finished = finished();
   if (!latencies.empty()) s.edc_latency_median_s = median(std::move(latencies));
   return s;

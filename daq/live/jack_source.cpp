@@ -501,6 +501,7 @@ void JackSource::run() {
     while (!stop_requested()) {
       why = m.open();
       if (why.empty()) break;
+      failed_reconnects_.fetch_add(1, std::memory_order_relaxed);
       std::this_thread::sleep_for(std::chrono::duration<double>(options_.reconnect_interval_s));
     }
     if (!why.empty()) break;  // stopped while away

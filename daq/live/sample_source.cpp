@@ -61,6 +61,7 @@ SourceCounters SampleSource::counters() const {
   c.dropped_frames = dropped_frames_.load(std::memory_order_relaxed);
   c.clipped_samples = clipped_samples_.load(std::memory_order_relaxed);
   c.reconnections = reconnections_.load(std::memory_order_relaxed);
+  c.failed_reconnects = failed_reconnects_.load(std::memory_order_relaxed);
   return c;
 }
 

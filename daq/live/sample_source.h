@@ -30,6 +30,7 @@ struct SourceCounters {
   std::uint64_t dropped_frames = 0;       // JACK: frames the ring had no room for
   std::uint64_t clipped_samples = 0;      // JACK: input samples at the interface's full scale
   std::uint64_t reconnections = 0;        // JACK: the server came back and the source with it
+  std::uint64_t failed_reconnects = 0;    // JACK: tries to reopen a gone server that failed
 };
 
 /// One live source of samples (virtual rig, file replay, network stream), running on its own
@@ -90,7 +91,8 @@ class SampleSource {
 
   std::atomic<std::uint64_t> connections_{0}, malformed_frames_{0}, layout_mismatches_{0};
   std::atomic<std::uint64_t> xruns_{0}, server_losses_{0}, port_disconnections_{0},
-      rate_changes_{0}, dropped_frames_{0}, clipped_samples_{0}, reconnections_{0};
+      rate_changes_{0}, dropped_frames_{0}, clipped_samples_{0}, reconnections_{0},
+      failed_reconnects_{0};
 
  private:
   void thread_main();

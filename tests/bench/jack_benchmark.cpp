@@ -3,9 +3,11 @@
 // (checks, EDC, derived traces) and the recorder, in one process.
 //   - real time: CPU of the whole process (the test client's sines included; the server not)
 //     per second of signal, in % of one core;
-//   - freewheeling: signal seconds per wall second, and the CPU per second of signal.
+//   - freewheeling: signal seconds per wall second, and the CPU per second of signal;
+//   - stop() of a source reconnecting to a server gone for good: seconds until it returns.
 // Each figure is a counter of one run; repetitions give the medians.
 #include <chrono>
+#include <csignal>
 #include <ctime>
 #include <filesystem>
 #include <thread>
@@ -69,6 +71,25 @@ BENCHMARK(BM_JackRealTime48kHz)->Unit(benchmark::kSecond)->Iterations(1)->UseRea
 
 void BM_JackFreewheel48kHz(benchmark::State& state) { run_jack(state, true); }
 BENCHMARK(BM_JackFreewheel48kHz)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+// How long stop() takes while the source waits for a server gone for good (the default
+// reconnection interval, 0.5 s: a try in progress or the wait before the next one ends first).
+void BM_JackStopWhileReconnecting(benchmark::State& state) {
+  for (auto _ : state) {
+    JackTestServer server;
+    JackTestPlayer player(server.name(), 2);
+    auto source = std::make_unique<JackSource>(jack_options(server, player));
+    BlockQueue queue(256, source->max_block_rows(), 2);
+    source->start(queue);
+    wait_for([&] { return source->counters().samples_delivered > 0; }, 60);
+    server.stop(SIGTERM);
+    wait_for([&] { return source->counters().failed_reconnects >= 2; }, 60);
+    const auto stop0 = Clock::now();
+    source->stop();
+    state.counters["stop_s"] = std::chrono::duration<double>(Clock::now() - stop0).count();
+  }
+}
+BENCHMARK(BM_JackStopWhileReconnecting)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 progress and cancellation, Ctrl-C (KeyboardInterrupt once the fit stopped) and the GIL released
 while C++ works."""
 
+import contextlib
 import os
 import signal
 import threading
@@ -80,42 +81,66 @@ def test_progress_reports_the_search_and_false_cancels_with_best_so_far(problem)
     assert len(seen[0]["best_theta"]) == len(problem.names)
 
 
-def test_ctrl_c_during_a_fit_raises_keyboard_interrupt_and_stops_it(problem):
-    def interrupt():
-        os.kill(os.getpid(), signal.SIGINT)
+@contextlib.contextmanager
+def ctrl_c_once_the_fit_reports():
+    """Yields the list a fit's progress callback is to fill (progress=reports.append); a Python
+    thread presses Ctrl-C (SIGINT) once the list holds a report, i.e. while the fit runs. An
+    alarm fails the test after a minute instead of letting it hang when that never happens."""
+    reports = []
+    fit_returned = threading.Event()
 
-    timer = threading.Timer(0.5, interrupt)
-    timer.start()
+    def ctrl_c_once_running():
+        while not reports and not fit_returned.is_set():
+            time.sleep(0.001)
+        if reports and not fit_returned.is_set():
+            os.kill(os.getpid(), signal.SIGINT)
+
+    def hang_guard(signum, frame):
+        raise TimeoutError("no Ctrl-C stopped the fit within 60 s: the helper thread never ran "
+                           "while the fit did, or the fit ignored the interrupt")
+
+    # Ctrl-C raises KeyboardInterrupt, Python's default, even when started with SIGINT ignored
+    # (as a shell's background job is).
+    previous_int = signal.signal(signal.SIGINT, signal.default_int_handler)
+    previous = signal.signal(signal.SIGALRM, hang_guard)
+    signal.setitimer(signal.ITIMER_REAL, 60)
+    helper = threading.Thread(target=ctrl_c_once_running)
+    helper.start()
+    try:
+        yield reports
+    finally:
+        # Read from the kernel, not from Python: once the alarm has fired, nothing is left.
+        guard_left_s = signal.getitimer(signal.ITIMER_REAL)[0]
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+        fit_returned.set()
+        helper.join()
+        signal.signal(signal.SIGINT, previous_int)
+    # The alarm's handler runs Python code, during which the helper could run too: a Ctrl-C
+    # that came only then proves nothing.
+    assert guard_left_s > 0, "the fit was interrupted only after the hang guard fired"
+
+
+def test_ctrl_c_during_a_fit_raises_keyboard_interrupt_and_stops_it(problem):
     # A million evaluations would take the better part of an hour: returning at all is the fit
     # giving up on Ctrl-C (how fast is a figure for a benchmark, not a test).
-    with pytest.raises(KeyboardInterrupt):
-        problem.fit(method="cmaes", evaluations=1000000, threads=0)
-    timer.join()
+    with ctrl_c_once_the_fit_reports() as reports:
+        with pytest.raises(KeyboardInterrupt):
+            problem.fit(method="cmaes", evaluations=1000000, threads=0, progress=reports.append)
+    assert reports, "the fit was interrupted while it ran, after its first report"
     # The interrupted fit let go of its workers: the next one runs to its end.
     result = problem.fit(method="cmaes", evaluations=60, threads=0)
     assert result["status"] != "cancelled"
 
 
 def test_gil_is_released_while_a_fit_runs(problem):
-    counter = {"n": 0, "run": True}
-
-    def count():
-        while counter["run"]:
-            counter["n"] += 1
-
-    thread = threading.Thread(target=count)
-    thread.start()
-    time.sleep(0.05)
-    before = counter["n"]
-    start = time.monotonic()
-    problem.fit(method="cmaes", evaluations=60, threads=1)
-    elapsed = time.monotonic() - start
-    during = counter["n"] - before
-    counter["run"] = False
-    thread.join()
-    assert elapsed > 0.05
-    # A pure-Python loop counts millions per second; holding the GIL would leave it near zero.
-    assert during > 10000 * elapsed, (during, elapsed)
+    # While the fit runs, the calling thread runs no Python code: its progress callback is the C
+    # builtin list.append, which never hands the GIL over. So the helper thread can see a report
+    # and press Ctrl-C while the fit runs only if the fit let go of the GIL; a fit that held it
+    # would run its million evaluations to the end (the hang guard fails it long before).
+    with ctrl_c_once_the_fit_reports() as reports:
+        with pytest.raises(KeyboardInterrupt):
+            problem.fit(method="cmaes", evaluations=1000000, threads=1, progress=reports.append)
 
 
 def test_fit_errors_raise_value_error_with_the_cli_message(tmp_path):

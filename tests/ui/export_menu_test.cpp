@@ -191,7 +191,7 @@ class ExportMenuTest : public QObject {
     const QPoint at(plot->width() / 2, plot->height() / 2);
     QContextMenuEvent event(QContextMenuEvent::Mouse, at, plot->mapToGlobal(at));
     QApplication::sendEvent(plot, &event);
-    QTRY_VERIFY(QApplication::activePopupWidget() != nullptr);
+    QTRY_VERIFY_WITH_TIMEOUT(QApplication::activePopupWidget() != nullptr, kTimeoutMs);
     auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
     QVERIFY(menu != nullptr);
     QCOMPARE(menu->actions().size(), 1);

@@ -226,7 +226,7 @@ class FitResultsTest : public QObject {
     // The dialog starts with the default map (seconds); cancel it, then a small one.
     QVERIFY(dialog->busy());
     QTest::mouseClick(dialog->cancel_button(), Qt::LeftButton);
-    QVERIFY(computed.wait(20000));
+    QVERIFY(computed.wait(60000));
     QCOMPARE(computed.takeFirst().at(0).toString(), QString("Cancelled."));
     QVERIFY(!dialog->export_button()->isEnabled());
     dialog->set_f0_range(0.5, 2.5);

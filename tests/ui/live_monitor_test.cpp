@@ -48,6 +48,9 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kSample = std::string(OSCILAB_SOURCE_DIR) + "/samples/stepped_positive.flac";
+// How long a wait may take before the test calls it a hang: never a figure the monitor must meet
+// (a loaded machine is slow; not a minute slow). The tests assert what happens, not how fast.
+constexpr int kHangGuardMs = 60000;
 
 fs::path temp_dir(const std::string& name) {
   const fs::path dir =
@@ -88,13 +91,13 @@ bool wait_finished(LiveMonitor& monitor, int timeout_ms) {
 
 // Until the monitor has drawn the source's end: its last frame shows all the source sent and
 // says so (no fixed wait: the frame timer's period is the monitor's business).
-bool wait_end_shown(const LiveMonitor& monitor, int timeout_ms = 5000) {
+bool wait_end_shown(const LiveMonitor& monitor, int timeout_ms = kHangGuardMs) {
   return QTest::qWaitFor([&] { return monitor.message().startsWith("The source ended"); },
                          timeout_ms);
 }
 
 // Until the monitor has drawn `frames` more frames of the traces.
-bool wait_frames(const LiveMonitor& monitor, long frames, int timeout_ms = 5000) {
+bool wait_frames(const LiveMonitor& monitor, long frames, int timeout_ms = kHangGuardMs) {
   const long target = monitor.frames_drawn() + frames;
   return QTest::qWaitFor([&] { return monitor.frames_drawn() >= target; }, timeout_ms);
 }
@@ -136,21 +139,27 @@ class LiveMonitorTest : public QObject {
     LiveMonitor monitor;
     monitor.resize(1600, 950);
     monitor.show();
-    monitor.set_settings(replay_settings(100.0));
+    // 10× real time while the plot is watched: the 263 s file lasts 26 s, the third level
+    // closes after 3.3 s. (A replay faster than real time drops blocks the acquisition has no
+    // room for; its queue holds 32 s of stream, 3.2 s at 10×. At 100× a loaded machine dropped
+    // some, and the EDCs below then lack cycles.)
+    monitor.set_settings(replay_settings(10.0));
     QSignalSpy predicted(&monitor, &LiveMonitor::prediction_finished);
     QVERIFY2(monitor.start(), qPrintable(monitor.message()));
     QVERIFY(monitor.replay() != nullptr);
     // While it runs the EDC plot grows: some levels before the end.
-    QVERIFY(QTest::qWaitFor(
-        [&] {
-          return monitor.analysis_plots()
-                     ->edc_graph(oscilab::analysis::Well::Positive)
-                     ->dataCount() >= 3;
-        },
-        30000));
+    QVERIFY2(QTest::qWaitFor(
+                 [&] {
+                   return monitor.analysis_plots()
+                              ->edc_graph(oscilab::analysis::Well::Positive)
+                              ->dataCount() >= 3;
+                 },
+                 kHangGuardMs),
+             "the EDC plot never showed 3 levels");
     QVERIFY(!monitor.acquisition()->finished());
-    QVERIFY(wait_finished(monitor, 60000));
-    QVERIFY(wait_end_shown(monitor));
+    monitor.replay()->set_speed(0);  // the rest as fast as taken: it waits for room, drops none
+    QVERIFY2(wait_finished(monitor, kHangGuardMs), "the replay never finished");
+    QVERIFY2(wait_end_shown(monitor), "the monitor never showed the source's end");
 
     // The points drawn are the acquisition's levels: f0 and EDC [mJ] with ±3σ bars.
     const std::vector<oscilab::analysis::LevelResult> live = monitor.acquisition()->levels();
@@ -228,15 +237,20 @@ class LiveMonitorTest : public QObject {
     QVERIFY(monitor.start());
     QVERIFY(child<QPushButton>(monitor, "record")->isEnabled());
     QVERIFY2(monitor.start_recording(path), qPrintable(monitor.message()));
-    QVERIFY(QTest::qWaitFor(
-        [&] { return monitor.acquisition()->status().recorded_samples > 5 * 512; }, 20000));
+    QVERIFY2(
+        QTest::qWaitFor([&] { return monitor.acquisition()->status().recorded_samples > 5 * 512; },
+                        kHangGuardMs),
+        "5 s of samples were never recorded");
     QTRY_VERIFY_WITH_TIMEOUT(  // the strip shows it at its next frame
-        monitor.status_strip()->label("recording")->text().startsWith(QString("rec \u25cf")), 5000);
+        monitor.status_strip()->label("recording")->text().startsWith(QString("rec \u25cf")),
+        kHangGuardMs);
     QVERIFY(child<QPushButton>(monitor, "stop_recording")->isEnabled());
     monitor.findChild<QLineEdit*>("mark_text")->setText("probe touched");
     QTest::mouseClick(monitor.findChild<QPushButton*>("mark"), Qt::LeftButton);
     QTest::mouseClick(child<QPushButton>(monitor, "stop_recording"), Qt::LeftButton);
-    QVERIFY(QTest::qWaitFor([&] { return !monitor.acquisition()->status().recording; }, 5000));
+    QVERIFY2(
+        QTest::qWaitFor([&] { return !monitor.acquisition()->status().recording; }, kHangGuardMs),
+        "the recording never stopped");
     const std::uint64_t recorded = monitor.acquisition()->status().recorded_samples;
     QVERIFY(monitor.running());  // the acquisition goes on
     QTest::mouseClick(child<QPushButton>(monitor, "stop"), Qt::LeftButton);
@@ -266,16 +280,19 @@ class LiveMonitorTest : public QObject {
     monitor.show();
     monitor.set_settings(replay_settings(10.0));
     QVERIFY(monitor.start());
-    QVERIFY(
-        QTest::qWaitFor([&] { return monitor.acquisition()->status().stream_time_s > 25; }, 20000));
+    QVERIFY2(QTest::qWaitFor([&] { return monitor.acquisition()->status().stream_time_s > 25; },
+                             kHangGuardMs),
+             "the stream never reached 25 s");
     QTest::mouseClick(child<QPushButton>(monitor, "pause_view"), Qt::LeftButton);
     QVERIFY(monitor.view_paused());
     const oscilab::ui::TimeWindow paused = monitor.view_window();
     const std::uint64_t samples = monitor.acquisition()->status().samples;
     // The acquisition goes on and frames are drawn; the view stays.
-    QVERIFY(QTest::qWaitFor(
-        [&] { return monitor.acquisition()->status().samples > samples + 1000; }, 20000));
-    QVERIFY(wait_frames(monitor, 2));
+    QVERIFY2(
+        QTest::qWaitFor([&] { return monitor.acquisition()->status().samples > samples + 1000; },
+                        kHangGuardMs),
+        "the acquisition never went on while the view was paused");
+    QVERIFY2(wait_frames(monitor, 2), "two frames were never drawn while the view was paused");
     QCOMPARE(monitor.view_window().end_s, paused.end_s);
     QCPAxis* time_axis = monitor.trace_view()->plot()->axisRects().back()->axis(QCPAxis::atBottom);
     QCOMPARE(time_axis->range().upper, paused.end_s);
@@ -285,12 +302,15 @@ class LiveMonitorTest : public QObject {
     QCOMPARE(monitor.view_window().end_s, 0.1 * bar->value());
     QVERIFY(std::abs(monitor.view_window().end_s - (paused.end_s - 10.0)) < 0.11);
     QCOMPARE(time_axis->range().upper, monitor.view_window().end_s);
-    // Resume: the view follows the stream again.
+    // Resume: the view follows the stream again. A frame ends the view at the stream time it
+    // reads: no earlier than the stream was at the resume, no later than it is after the frame.
+    const double at_resume = monitor.acquisition()->status().stream_time_s;
     QTest::mouseClick(child<QPushButton>(monitor, "pause_view"), Qt::LeftButton);
     QVERIFY(!monitor.view_paused());
-    QVERIFY(wait_frames(monitor, 2));
+    QVERIFY2(wait_frames(monitor, 2), "two frames were never drawn after the resume");
     const double now = monitor.acquisition()->status().stream_time_s;
-    QVERIFY(std::abs(monitor.view_window().end_s - now) < 2.0);  // a frame behind at most
+    QVERIFY(monitor.view_window().end_s >= at_resume);
+    QVERIFY(monitor.view_window().end_s <= now);
     monitor.stop();
   }
 
@@ -304,28 +324,33 @@ class LiveMonitorTest : public QObject {
     monitor.set_settings(settings);
     QVERIFY(monitor.start());
     QVERIFY(monitor.rig() != nullptr);
-    QTRY_COMPARE_WITH_TIMEOUT(monitor.rig()->excitation().f0_n, 1.0, 1000);  // Start applies f0
+    // Start applies f0
+    QTRY_COMPARE_WITH_TIMEOUT(monitor.rig()->excitation().f0_n, 1.0, kHangGuardMs);
     // A level gets its steady cycles; then Step +ΔN starts the next one.
-    QVERIFY(QTest::qWaitFor(
-        [&] {
-          const auto current = monitor.acquisition()->current_level();
-          return current && current->cycles >= 20;
-        },
-        30000));
+    QVERIFY2(QTest::qWaitFor(
+                 [&] {
+                   const auto current = monitor.acquisition()->current_level();
+                   return current && current->cycles >= 20;
+                 },
+                 kHangGuardMs),
+             "the first level never got 20 steady cycles");
     QTest::mouseClick(monitor.findChild<QPushButton*>("step_excitation"), Qt::LeftButton);
     QCOMPARE(child<QDoubleSpinBox>(monitor, "f0")->value(), 1.1);
     // RigSource::excitation() reads the previous value for the instant between the rig thread
     // taking a command and applying it: retried.
-    QTRY_COMPARE_WITH_TIMEOUT(monitor.rig()->excitation().f0_n, 1.1, 1000);
-    QVERIFY(QTest::qWaitFor([&] { return monitor.acquisition()->levels().size() >= 1; }, 30000));
-    QVERIFY(QTest::qWaitFor(
-        [&] {
-          return monitor.analysis_plots()
-                     ->edc_graph(oscilab::analysis::Well::Positive)
-                     ->dataCount() >= 1;
-        },
-        5000));
-    QVERIFY(wait_frames(monitor, 2));
+    QTRY_COMPARE_WITH_TIMEOUT(monitor.rig()->excitation().f0_n, 1.1, kHangGuardMs);
+    QVERIFY2(
+        QTest::qWaitFor([&] { return monitor.acquisition()->levels().size() >= 1; }, kHangGuardMs),
+        "the first level was never closed");
+    QVERIFY2(QTest::qWaitFor(
+                 [&] {
+                   return monitor.analysis_plots()
+                              ->edc_graph(oscilab::analysis::Well::Positive)
+                              ->dataCount() >= 1;
+                 },
+                 kHangGuardMs),
+             "the EDC plot never showed the closed level");
+    QVERIFY2(wait_frames(monitor, 2), "two frames were never drawn after the step");
     monitor.stop();
     QCOMPARE(monitor.analysis_plots()->edc_graph(oscilab::analysis::Well::Positive)->dataCount(),
              static_cast<int>(monitor.acquisition()->levels().size()));
@@ -378,9 +403,9 @@ class LiveMonitorTest : public QObject {
     {
       oscilab::daq::TcpSocket socket = oscilab::daq::TcpSocket::connect_to("127.0.0.1", port);
       QVERIFY(socket.send_all(bytes.data(), bytes.size()));
-      QVERIFY(wait_finished(monitor, 30000));
+      QVERIFY2(wait_finished(monitor, kHangGuardMs), "the network stream never finished");
     }
-    QVERIFY(wait_end_shown(monitor));
+    QVERIFY2(wait_end_shown(monitor), "the monitor never showed the source's end");
     QCOMPARE(monitor.acquisition()->status().samples, std::uint64_t(kRows * kBlocks));
     QCOMPARE(monitor.status_strip()->label("samples")->text(),
              QString("samples %1").arg(kRows * kBlocks));
@@ -485,7 +510,8 @@ class LiveMonitorTest : public QObject {
     QVERIFY(QTest::qWaitFor([&] { return finished.count() == 1; }, 120000));
     QVERIFY2(panel->fit_result() != nullptr, qPrintable(finished.first().at(0).toString()));
     QTRY_VERIFY_WITH_TIMEOUT(
-        monitor->analysis_plots()->model_graph(true)->name().contains("fitted model"), 5000);
+        monitor->analysis_plots()->model_graph(true)->name().contains("fitted model"),
+        kHangGuardMs);
     // θ = [f_d(z₋*), f_d(z₊*), f_d(0), v_t, k_s, c]; the rig's model is Table 3's.
     const Eigen::VectorXd& theta = panel->fit_result()->theta;
     std::printf("rig to fit: f_d(z-*) %.4f N (0.33), f_d(z+*) %.4f N (0.66), %ld evaluations\n",

@@ -23,6 +23,7 @@
 #include "daq/live/source_factory.h"
 #include "daq/recording/recording.h"
 #include "daq/rig/virtual_rig.h"
+#include "tests/daq/live/eventually.h"
 #include "tests/daq/live/jack_test_helpers.h"
 #include "tests/daq/live/jack_test_server.h"
 #include "tests/input_error_of.h"
@@ -33,6 +34,7 @@ namespace {
 using oscilab::testing::input_error_of;
 using testing::calibration;
 using testing::Clock;
+using testing::eventually;
 using testing::jack_options;
 using testing::JackTestPlayer;
 using testing::JackTestServer;
@@ -41,7 +43,6 @@ using testing::kFullScaleV;
 using testing::kRateHz;
 using testing::kServerRateHz;
 using testing::kVibVPerM;
-using testing::wait_for;
 
 std::size_t count_events(const std::vector<StreamEvent>& events, const std::string& kind) {
   return static_cast<std::size_t>(std::count_if(
@@ -154,7 +155,8 @@ TEST(JackSource, LiveEdcOfTheRigThroughJackMatchesTheSameSignalsAt512Hz) {
   Acquisition replayed(std::make_unique<ReplaySource>(reference, ReplaySource::Options{0.0, 64}),
                        {});
   replayed.start();
-  ASSERT_TRUE(wait_for([&] { return replayed.finished(); }, 60));
+  ASSERT_TRUE(
+      eventually([&] { return replayed.finished(); }, "the replay of the 512 Hz signals finished"));
   replayed.stop();
   const auto expected = by_level(replayed.levels());
   ASSERT_EQ(expected.size(), 3u);
@@ -184,15 +186,17 @@ TEST(JackSource, LiveEdcOfTheRigThroughJackMatchesTheSameSignalsAt512Hz) {
   JackSource* source = made_source.get();
   Acquisition live(std::move(made_source), {});
   live.start();
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > 0; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 0; },
+                         "the source delivered its first samples"));
   player.play(std::move(played));
   player.set_freewheel(true);
-  ASSERT_TRUE(wait_for([&] { return player.done(); }, 60));
+  ASSERT_TRUE(eventually([&] { return player.done(); }, "the player played all its frames"));
   // One more second of silence flushes the last level through the resampler and the chain.
   const std::uint64_t after = player.frames_played();
   (void)after;
   const std::uint64_t delivered = source->counters().samples_delivered;
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > delivered + 512; }, 30));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > delivered + 512; },
+                         "a second of silence after the signal delivered"));
   player.set_freewheel(false);
   live.stop();
   const AcquisitionStatus status = live.status();
@@ -227,12 +231,14 @@ TEST(JackSource, XrunsAreCountedLoggedAndLeftOutOfTheStream) {
   JackSource* source = made.get();
   Acquisition live(std::move(made), {});
   live.start();
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > 256; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 256; },
+                         "the source delivered 256 samples"));
   player.stall(std::chrono::milliseconds(50));
-  ASSERT_TRUE(wait_for([&] { return source->counters().xruns > 0; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().xruns > 0; },
+                         "the stalled player made the server report an xrun"));
   const std::uint64_t before = source->counters().samples_delivered;
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > before + 256; }, 10))
-      << "the source goes on after the xrun";
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > before + 256; },
+                         "samples after the xrun: the source goes on"));
   live.stop();
   const AcquisitionStatus status = live.status();
   EXPECT_GE(status.xruns, 1u);
@@ -252,20 +258,26 @@ TEST(JackSource, AKilledServerIsReportedAndTheSourceReconnectsWhenItComesBack) {
   JackSource* source = made.get();
   Acquisition live(std::move(made), {});
   live.start();
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > 256; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 256; },
+                         "the source delivered 256 samples"));
   server.stop(SIGKILL);  // no goodbye: the clients find the server gone
-  ASSERT_TRUE(wait_for([&] { return source->counters().server_losses == 1; }, 10));
-  EXPECT_TRUE(wait_for([&] { return source->server_rate_hz() == 0.0; }, 5));
-  ASSERT_TRUE(wait_for([&] { return player->gone(); }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().server_losses == 1; },
+                         "the source saw the server killed"));
+  EXPECT_TRUE(eventually([&] { return source->server_rate_hz() == 0.0; },
+                         "the source closed its client of the killed server"));
+  ASSERT_TRUE(eventually([&] { return player->gone(); }, "the player found its server gone"));
   player.reset();  // its server is gone
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // The source keeps trying while the server is away: it comes back after a failed try.
+  ASSERT_TRUE(eventually([&] { return source->counters().failed_reconnects >= 1; },
+                         "the source tried to reopen the server while it was away"));
   server.start();
   JackTestPlayer back(server.name(), 2);
   back.play_sines({{0.5, 9.0, 0.0}, {0.5, 9.0, 1.0}});
-  ASSERT_TRUE(wait_for([&] { return source->counters().reconnections == 1; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().reconnections == 1; },
+                         "the source reconnected to the server back"));
   const std::uint64_t before = source->counters().samples_delivered;
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > before + 256; }, 10))
-      << "samples flow again";
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > before + 256; },
+                         "samples from the server back"));
   live.stop();
   const AcquisitionStatus status = live.status();
   EXPECT_EQ(status.server_losses, 1u);
@@ -312,34 +324,37 @@ TEST(JackSource, AServerBackAtAnotherRateIsResampledFromItsNewRate) {
   BlockQueue queue(1024, source->max_block_rows(), 2);
   source->start(queue);
   Drain before;
-  ASSERT_TRUE(wait_for(
+  ASSERT_TRUE(eventually(
       [&] {
         before.take(queue);
         return before.index.size() > 3 * 512;
       },
-      60));
+      "3 s of samples from the first server"));
   EXPECT_NEAR(frequency_of_newest(before, 1024), 9.0, 0.01);
   server.stop(SIGKILL);
-  ASSERT_TRUE(wait_for([&] { return source->counters().server_losses == 1; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().server_losses == 1; },
+                         "the source saw the server killed"));
   // The source has closed its client (its rate reads 0) before a server of the same name comes
   // back: libjack 1.9.21 can crash closing a client of a killed server once a new one runs.
-  ASSERT_TRUE(wait_for([&] { return source->server_rate_hz() == 0.0; }, 10));
-  ASSERT_TRUE(wait_for([&] { return player->gone(); }, 10));
+  ASSERT_TRUE(eventually([&] { return source->server_rate_hz() == 0.0; },
+                         "the source closed its client of the killed server"));
+  ASSERT_TRUE(eventually([&] { return player->gone(); }, "the player found its server gone"));
   player.reset();
   server.set_rate_hz(44100);
   server.start();
   JackTestPlayer back(server.name(), 2);
   back.play_sines({{0.5, 9.0, 0.0}, {0.5, 9.0, 1.0}});
-  ASSERT_TRUE(wait_for([&] { return source->counters().reconnections == 1; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().reconnections == 1; },
+                         "the source reconnected to the server back at 44.1 kHz"));
   EXPECT_EQ(source->server_rate_hz(), 44100.0);
   Drain after;
   before.take(queue);  // what the first server delivered before it went
-  ASSERT_TRUE(wait_for(
+  ASSERT_TRUE(eventually(
       [&] {
         after.take(queue);
         return after.index.size() > 3 * 512;
       },
-      60));
+      "3 s of samples from the server back at 44.1 kHz"));
   source->stop();
   EXPECT_NEAR(frequency_of_newest(after, 1024), 9.0, 0.01);
   EXPECT_GT(after.index.front(), before.index.back()) << "the stream clock runs on";
@@ -358,14 +373,17 @@ TEST(JackSource, AServerGoneForGoodEndsCleanlyOnStop) {
   auto source = std::make_unique<JackSource>(options);
   BlockQueue queue(256, source->max_block_rows(), 2);
   source->start(queue);
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > 0; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 0; },
+                         "the source delivered its first samples"));
   server.stop(SIGTERM);
-  ASSERT_TRUE(wait_for([&] { return source->counters().server_losses == 1; }, 10));
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // a few failed reconnections
-  const auto stop_started = Clock::now();
-  source->stop();
-  EXPECT_LT(std::chrono::duration<double>(Clock::now() - stop_started).count(), 2.0);
+  ASSERT_TRUE(eventually([&] { return source->counters().server_losses == 1; },
+                         "the source saw the server stopped"));
+  ASSERT_TRUE(eventually([&] { return source->counters().failed_reconnects >= 3; },
+                         "three failed tries to reopen the stopped server"));
+  // Stopped while it keeps trying, it ends: stop() returns, with no reconnection.
+  ASSERT_TRUE(testing::returns([&] { source->stop(); }, "stop() of a source that is reconnecting"));
   EXPECT_EQ(source->counters().reconnections, 0u);
+  EXPECT_EQ(source->server_rate_hz(), 0.0);
 }
 
 TEST(JackSource, APulledCableIsCountedAndTheSourceReconnectsThePort) {
@@ -378,18 +396,20 @@ TEST(JackSource, APulledCableIsCountedAndTheSourceReconnectsThePort) {
   JackSource* source = made.get();
   Acquisition live(std::move(made), {});
   live.start();
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > 256; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 256; },
+                         "the source delivered 256 samples"));
   ASSERT_EQ(jack_disconnect(player.client(), player.port(1).c_str(), "oscilab:in_y"), 0);
-  ASSERT_TRUE(wait_for([&] { return source->counters().port_disconnections == 1; }, 10));
-  ASSERT_TRUE(wait_for(
+  ASSERT_TRUE(eventually([&] { return source->counters().port_disconnections == 1; },
+                         "the source saw the cable pulled"));
+  ASSERT_TRUE(eventually(
       [&] {
         return jack_port_connected_to(jack_port_by_name(player.client(), "oscilab:in_y"),
                                       player.port(1).c_str()) != 0;
       },
-      10))
-      << "the source connects the port again";
+      "the source connected the port again"));
   const std::uint64_t before = source->counters().samples_delivered;
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > before + 256; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > before + 256; },
+                         "samples after the port was connected again"));
   live.stop();
   const auto events = live.events_since(0);
   EXPECT_EQ(count_events(events, "port-disconnected"), 1u);
@@ -411,7 +431,8 @@ TEST(JackSource, ClippedInputIsCountedAndRecordedAsInvalid) {
   std::filesystem::create_directories(dir);
   live.start_recording((dir / "clip.wav").string());
   live.start();
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > 1024; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 1024; },
+                         "the source delivered 1024 samples"));
   live.stop();
   EXPECT_GT(live.status().clipped_samples, 0u);
   EXPECT_GE(count_events(live.events_since(0), "clipped"), 1u);

@@ -1,8 +1,7 @@
 #pragma once
 
-// What the JACK source's tests share: the rig's calibration as a lab would wire it, waiting,
-// and the freewheeling soak (a unit test runs it for 5 minutes of signal, a `slow` one for an
-// hour).
+// What the JACK source's tests share: the rig's calibration as a lab would wire it, and the
+// freewheeling soak (a unit test runs it for 5 minutes of signal, a `slow` one for an hour).
 
 #include <cmath>
 #include <cstdio>
@@ -13,6 +12,7 @@
 
 #include "analysis/model/reference_models.h"
 #include "daq/live/jack_source.h"
+#include "tests/daq/live/eventually.h"
 #include "tests/daq/live/jack_test_server.h"
 
 namespace oscilab::daq::testing {
@@ -61,6 +61,7 @@ inline JackSource::Options jack_options(const JackTestServer& server,
   return o;
 }
 
+// Polls `done` until it holds or `seconds` pass (the benchmarks' wait; tests use eventually()).
 template <typename Predicate>
 bool wait_for(Predicate done, double seconds) {
   const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
@@ -90,7 +91,8 @@ inline void soak(double signal_s) {
   auto source = std::make_unique<JackSource>(jack_options(server, player));
   BlockQueue queue(1024, source->max_block_rows(), 2);
   source->start(queue);
-  ASSERT_TRUE(wait_for([&] { return source->counters().samples_delivered > 0; }, 10));
+  ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 0; },
+                         "the source delivered its first samples"));
   player.play_sines({a, b});
   player.set_freewheel(true);
   const auto started = Clock::now();

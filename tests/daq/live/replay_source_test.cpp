@@ -1,14 +1,17 @@
 #include "daq/live/replay_source.h"
 
-#include <chrono>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
 
 #include "analysis/common/input_error.h"
+#include "tests/daq/live/eventually.h"
 
 namespace oscilab::daq {
 namespace {
+
+using testing::eventually;
 
 const std::string kSample = std::string(OSCILAB_SOURCE_DIR) + "/samples/stepped_positive.flac";
 
@@ -59,39 +62,63 @@ TEST(ReplaySource, PlaysEveryStoredValueAsFastAsTakenAndPostsTheLevels) {
 }
 
 TEST(ReplaySource, PausesAndSeeksWhileTheStreamClockRunsOn) {
+  // As fast as taken, into a queue of 4 blocks: the source delivers 4 and waits for room. Paused,
+  // it finishes at most the block it was on. Two seeks while paused are each taken (a
+  // `discontinuity` event each) and deliver nothing: a source that played on while paused
+  // would have played a block of the first target before taking the second (the test keeps the
+  // queue empty). Resumed, the stream goes on from the last seek's file sample, its clock
+  // continuous.
   ReplaySource::Options options;
-  options.speed = 20;  // 20× real time: 10 240 samples per second
+  options.speed = 0;
   ReplaySource source(kSample, options);
-  BlockQueue queue(64, source.max_block_rows(), source.max_channels());
+  BlockQueue queue(4, source.max_block_rows(), source.max_channels());
   source.start(queue);
-  Drain drain;
-  const auto drain_for = [&](int ms) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
-    while (std::chrono::steady_clock::now() < end) {
-      drain.take(queue);
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-  };
-  drain_for(200);
+  ASSERT_TRUE(eventually([&] { return source.counters().blocks_delivered == 4; },
+                         "the source filled the queue of 4 blocks"));
   source.set_paused(true);
-  drain_for(50);
-  const std::size_t paused_at = drain.y.size();
-  drain_for(200);
-  EXPECT_EQ(drain.y.size(), paused_at);  // nothing while paused
-  EXPECT_GT(paused_at, 1000u);           // ~2000 samples in 200 ms at 20×
+  Drain drain;
+  std::size_t discontinuities = 0;
+  const auto seek_while_paused = [&](double t_s) {
+    source.seek(t_s);
+    return eventually(
+        [&] {
+          drain.take(queue);
+          for (const StreamEvent& e : source.take_events())
+            discontinuities += e.kind == EventKind::Discontinuity;
+          return discontinuities > 0 && source.counters().blocks_delivered == drain.next_sequence;
+        },
+        "the paused source took the seek to " + std::to_string(t_s) + " s");
+  };
+  ASSERT_TRUE(seek_while_paused(200.0));
+  const std::uint64_t paused_at = source.counters().blocks_delivered;
+  EXPECT_LE(paused_at, 5u);  // the 4 in the queue and at most the one it was on
+  discontinuities = 0;
+  ASSERT_TRUE(seek_while_paused(100.0));  // file time 100 s
+  EXPECT_EQ(source.counters().blocks_delivered, paused_at) << "nothing while paused";
+  EXPECT_EQ(drain.y.size(), paused_at * 64);
 
-  source.seek(200.0);  // file time 200 s
+  const std::size_t resumed_at = drain.y.size();
   source.set_paused(false);
-  drain_for(100);
+  ASSERT_TRUE(eventually(
+      [&] {
+        drain.take(queue);
+        return drain.y.size() >= resumed_at + 1024;
+      },
+      "1024 samples after the source was resumed"));
   source.stop();
   EXPECT_TRUE(drain.continuous);  // the stream's clock did not jump
   const Recording recording = read_recording(kSample);
-  const auto target = static_cast<Eigen::Index>(200.0 * 512);
-  EXPECT_EQ(drain.y[paused_at], recording.samples_stored(target, 1));
-  bool discontinuity = false;
-  for (const StreamEvent& e : source.take_events())
-    discontinuity |= e.kind == EventKind::Discontinuity;
-  EXPECT_TRUE(discontinuity);
+  // Before the resume, the file from its start: nothing from either seek's target.
+  for (std::size_t k = 0; k < resumed_at; ++k) {
+    ASSERT_EQ(drain.y[k], recording.samples_stored(static_cast<Eigen::Index>(k), 1))
+        << "sample " << k << " before the resume";
+  }
+  const auto target = static_cast<Eigen::Index>(100.0 * 512);
+  for (Eigen::Index k = 0; k < 1024; ++k) {
+    ASSERT_EQ(drain.y[resumed_at + static_cast<std::size_t>(k)],
+              recording.samples_stored(target + k, 1))
+        << "sample " << k << " after the seek";
+  }
   EXPECT_THROW(source.set_speed(-1), InputError);
   EXPECT_THROW(ReplaySource(kSample + ".missing.wav", options), InputError);
 }

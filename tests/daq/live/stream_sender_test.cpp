@@ -159,17 +159,20 @@ class TestReceiver {
   // Waits until the connection was dropped as told.
   void wait_dropped() {
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [&] { return dropped_ || stop_; });
+    expect_within_watchdog(
+        lock, [&] { return dropped_ || stop_; }, "the receiver dropped the connection as told");
   }
   // Waits until a sender was accepted.
   void wait_accepted() {
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [&] { return connections_ > 0; });
+    expect_within_watchdog(
+        lock, [&] { return connections_ > 0; }, "a sender was accepted");
   }
   // Waits until the stream ended (BYE) or the receiver gave up; the frames received.
   std::vector<Received> frames_at_end() {
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [&] { return ended_; });
+    expect_within_watchdog(
+        lock, [&] { return ended_; }, "the stream ended (BYE)");
     return frames_;
   }
   std::string error() {
@@ -268,6 +271,15 @@ class TestReceiver {
         end(decoder.error());
         return true;
       }
+    }
+  }
+
+  // The watchdog only guards against a hang: a failure names what never happened.
+  template <typename Predicate>
+  void expect_within_watchdog(std::unique_lock<std::mutex>& lock, Predicate done,
+                              const char* what) {
+    if (!changed_.wait_for(lock, kWatchdog, done)) {
+      ADD_FAILURE() << "never happened within the watchdog: " << what;
     }
   }
 
@@ -595,7 +607,7 @@ TEST(StreamSender, CancelReturnsWhileTheReceiverStopsReading) {
   EXPECT_TRUE(eventually([&] {
     return source.counters().blocks_delivered >=
            sender.counters().blocks_sent + 1 + sender_options.queue_blocks;
-  }));
+  })) << "the sender was never held up with its queue full";
   cancel.cancel();
   const StreamSender::Result result = run.result();
   EXPECT_EQ(result.status, StreamSender::Status::Cancelled);
@@ -618,7 +630,7 @@ TEST(StreamSender, CancelEndsTheWaitForAReceiverThatWentAway) {
   EXPECT_TRUE(eventually([&] {
     const StreamSender::Counters c = sender.counters();
     return c.blocks_sent > 0 && !c.connected;
-  }));
+  })) << "the sender never noticed the break";
   cancel.cancel();
   const StreamSender::Result result = run.result();
   EXPECT_EQ(result.status, StreamSender::Status::Cancelled);
