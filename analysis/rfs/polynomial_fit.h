@@ -16,7 +16,9 @@ struct PolynomialFit {
   double value(double x) const;
 };
 
-/// Throws InputError when there are fewer samples than coefficients.
-PolynomialFit fit_polynomial(const Eigen::VectorXd& x, const Eigen::VectorXd& y, int degree);
+/// Throws InputError when there are fewer samples than coefficients, or when the samples do not
+/// determine the polynomial (fewer distinct x than coefficients).
+PolynomialFit fit_polynomial(Eigen::Ref<const Eigen::VectorXd> x,
+                             Eigen::Ref<const Eigen::VectorXd> y, int degree);
 
 }  // namespace oscilab::analysis
