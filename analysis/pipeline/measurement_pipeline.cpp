@@ -35,11 +35,16 @@ LevelOptions level_options(const PipelineSettings& settings, const StreamSetup& 
   return options;
 }
 
+const PipelineSettings& checked(const PipelineSettings& settings) {
+  settings.validate();
+  return settings;
+}
+
 }  // namespace
 
 MeasurementPipeline::MeasurementPipeline(const PipelineSettings& settings, const StreamSetup& setup)
     : setup_(setup),
-      analyzer_(analyzer_options(settings, setup)),
+      analyzer_(analyzer_options(checked(settings), setup)),
       tracker_(level_options(settings, setup)) {}
 
 void MeasurementPipeline::push(const SampleBlock& block) {

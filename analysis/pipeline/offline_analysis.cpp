@@ -55,6 +55,7 @@ StreamSetup stream_setup(const MeasurementChannels& channels) {
 
 RecordAnalysis analyze_record(const MeasurementChannels& channels,
                               const PipelineSettings& settings) {
+  settings.validate();
   if (channels.base.size() != channels.mass.size() || channels.base.size() < 16) {
     throw InputError(channels.name + ": base and mass channels need the same, non-trivial length");
   }
@@ -160,6 +161,7 @@ std::vector<const MotionSignals*> slice_records(const std::vector<RecordAnalysis
 CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
                                   const PipelineSettings& settings, const ProgressFn& progress,
                                   const CancelToken& cancel) {
+  settings.validate();
   CampaignAnalysis campaign;
   campaign.settings = settings;
   // The records are independent until the restoring-force slices, which pool them: one per

@@ -21,6 +21,10 @@ struct PipelineSettings {
   double edge_trim_s = 1.0;  // samples this close to a record's ends are left out of RFS
 
   nlohmann::json to_json() const;
+  /// Throws InputError naming the first setting out of its range and its value, e.g.
+  /// "analysis setting harmonics = 0: at least 1 harmonic per cycle fit". The analysis (offline
+  /// and live) checks its settings before it starts, whichever front end set them.
+  void validate() const;
 };
 
 }  // namespace oscilab::analysis

@@ -104,6 +104,11 @@ expect_error "import with a sidecar that does not fit the file" \
   "imported.csv" "$cli" import "$work/imported.csv" --sidecar "$work/bad.json" --out "$work/x.wav"
 expect_error "import of a missing file" "nope.tdms: file not found" \
   "$cli" import "$work/nope.tdms" --out "$work/y.wav"
+expect_error "an analysis setting out of range is named" \
+  "analysis setting harmonics = 0: at least 1 harmonic per cycle fit" \
+  "$cli" analyze "$pos" --harmonics 0 --edc "$work/h0.csv"
+[ ! -e "$work/h0.csv" ] && pass "no EDC table for refused settings" ||
+  fail "an EDC table was written for refused settings"
 
 if [ $failures -ne 0 ]; then
   echo "$failures check(s) failed" >&2
