@@ -108,7 +108,11 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
   }
   const Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> cholesky(gram);
   if (cholesky.info() != Eigen::Success) return false;
-  Eigen::MatrixXd coefficients = cholesky.solve(projections);
+  // Column by column: a vector's triangular solves, not the blocked matrix kernels that a
+  // two-column right-hand side takes (and that cost more at this size).
+  Eigen::MatrixXd coefficients(columns, 2);
+  coefficients.col(0) = cholesky.solve(projections.col(0));
+  coefficients.col(1) = cholesky.solve(projections.col(1));
   const Eigen::MatrixXd residual = window.lazyProduct(coefficients) - values;
   coefficients(0, 0) += base_offset;
   coefficients(0, 1) += mass_offset;
