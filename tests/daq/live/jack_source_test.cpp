@@ -375,6 +375,11 @@ TEST(JackSource, AServerGoneForGoodEndsCleanlyOnStop) {
   source->start(queue);
   ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 0; },
                          "the source delivered its first samples"));
+  // The test's player leaves first, so that the source's is the process's only client when the
+  // server goes, as in the field. With the player's client still open on the stopped server while
+  // the source retried, the process crashed inside libjack 1.9.21 in 1 run of 20 (and once in
+  // CI); with it closed first, in none of 40.
+  player.close();
   server.stop(SIGTERM);
   ASSERT_TRUE(eventually([&] { return source->counters().server_losses == 1; },
                          "the source saw the server stopped"));
