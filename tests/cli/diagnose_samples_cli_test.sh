@@ -4,14 +4,7 @@
 # A whole diagnosis (baseline fit, every candidate effect, refits) takes about 20 s of CPU in a
 # release build and minutes under the sanitizers, so this runs in the `slow` suite (release only);
 # fit_cli_test.sh covers diagnose's options and error paths with small budgets.
-set -uo pipefail
-cli=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-pass() { echo "ok: $1"; }
-fail() { echo "FAILED: $1" >&2; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_checks.sh"
 
 # The hidden presliding hysteresis of the samples is named, with the evidence that supported it.
 if "$cli" diagnose "$src/samples/presliding_positive.flac" "$src/samples/presliding_negative.flac" \

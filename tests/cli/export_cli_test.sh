@@ -2,14 +2,7 @@
 # oscilab-cli export: MATLAB, UFF 58 and EDC MATLAB files from the samples, and the error
 # paths. The file contents are checked in depth by daq_export_tests; here the command's wiring:
 #   export_cli_test.sh OSCILAB_CLI SOURCE_DIR
-set -uo pipefail
-cli=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-pass() { echo "ok: $1"; }
-fail() { echo "FAILED: $1" >&2; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_checks.sh"
 pos=$src/samples/stepped_positive.flac
 neg=$src/samples/stepped_negative.flac
 

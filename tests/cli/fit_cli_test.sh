@@ -2,14 +2,7 @@
 # oscilab-cli fit and merge from the command line, and the campaign scripts:
 #   fit_cli_test.sh OSCILAB_CLI SOURCE_DIR
 # Small GA budgets keep it fast; the numbers themselves are checked by the GoogleTest suites.
-set -uo pipefail
-cli=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-pass() { echo "ok: $1"; }
-fail() { echo "FAILED: $1" >&2; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_checks.sh"
 pos=$src/samples/stepped_positive.flac
 neg=$src/samples/stepped_negative.flac
 small=(--method ga --population 6 --generations 1 --seed 4)

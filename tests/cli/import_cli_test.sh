@@ -3,14 +3,7 @@
 # recording imported into another container analyses to the same EDC table; the error paths.
 # The readers themselves are tested in depth by daq_recording_tests and the formats' tests.
 #   import_cli_test.sh OSCILAB_CLI SOURCE_DIR
-set -uo pipefail
-cli=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-pass() { echo "ok: $1"; }
-fail() { echo "FAILED: $1" >&2; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_checks.sh"
 cp "$src/samples/stepped_positive.flac" "$src/samples/stepped_positive.json" "$work/"
 pos=$work/stepped_positive.flac
 

@@ -4,15 +4,7 @@
 # A sample streamed over TCP and recorded on the other side must analyse exactly as the sample
 # itself (lossless); the rig records unattended; SIGTERM ends a recording cleanly; bad input
 # ends with one line and exit status 2.
-set -uo pipefail
-cli=$1
-src=$2
-work=$(mktemp -d)
-trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
-failures=0
-passes=0
-pass() { echo "ok: $1"; passes=$((passes + 1)); }
-fail() { echo "FAILED: $1" >&2; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_checks.sh"
 pos=$src/samples/stepped_positive.flac
 
 # The rig, unattended, as fast as possible: a stepped sine of three levels, recorded.

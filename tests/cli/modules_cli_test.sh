@@ -3,14 +3,7 @@
 # libhdf5, matio or cairo, and a command that reads no HDF5 or MAT-file and draws no PNG never
 # loads them; a command that does loads the module and works; a missing module is one clear error.
 #   modules_cli_test.sh OSCILAB_CLI SOURCE_DIR
-set -uo pipefail
-cli=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-pass() { echo "ok: $1"; }
-fail() { echo "FAILED: $1" >&2; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_checks.sh"
 pos=$src/samples/stepped_positive.flac
 unset OSCILAB_MODULE_DIR
 heavy='libhdf5|libmatio|libcairo'
