@@ -58,6 +58,7 @@ FitSettingsForm::FitSettingsForm(QWidget* parent)
   stiffness_box_->setObjectName("stiffness");
   stiffness_box_->addItem(tr("the model's K(z)"), "model");
   stiffness_box_->addItem(tr("cubic fit of the restoring-force slice"), "rfs");
+  stiffness_box_->addItem(tr("identified with the friction (from the slice)"), "identified");
   harmonics_box_ = new QSpinBox;
   harmonics_box_->setObjectName("harmonics");
   harmonics_box_->setRange(1, 63);

@@ -134,24 +134,35 @@ std::vector<EvidenceChange> evidence_changes(double edc_before, double edc_after
 }
 
 // Scores a candidate's refit against the current model: ΔBIC of the EDC alone and jointly with
-// the fingerprints, and how each piece of evidence moved.
+// the fingerprints, and how each piece of evidence moved. `dispersion` φ ≥ 1 divides the Δχ²
+// (quasi-likelihood: σ inflated by √φ when the current model still misses the data by more than
+// its noise), so that a term must explain a real share of what is left.
 void score_trial(CandidateTrial& trial, const JointRefit& fit, const EdcEvaluation& current,
                  const ResponseFingerprints& current_fingerprints, int added, int levels,
-                 bool use_fingerprints) {
+                 bool use_fingerprints, double dispersion) {
   trial.theta = fit.theta;
   trial.joint_chi2 = fit.joint_chi2;
   trial.weighted_cost = fit.evaluation.weighted_cost;
   trial.cost_j = fit.evaluation.cost_j;
   trial.solved = fit.evaluation.ok;
-  trial.delta_bic = fit.evaluation.weighted_cost - current.weighted_cost +
+  trial.delta_bic = (fit.evaluation.weighted_cost - current.weighted_cost) / dispersion +
                     added * std::log(static_cast<double>(levels));
   trial.evidence = evidence_changes(current.weighted_cost, fit.evaluation.weighted_cost,
                                     current_fingerprints, fit.fingerprints);
   trial.delta_bic_joint = trial.delta_bic;
   if (use_fingerprints && fit.fingerprints.count > 0) {
-    trial.delta_bic_joint = fit.joint_chi2 - joint_chi2(current, current_fingerprints, true) +
-                            added * std::log(static_cast<double>(levels + fit.fingerprints.count));
+    trial.delta_bic_joint =
+        (fit.joint_chi2 - joint_chi2(current, current_fingerprints, true)) / dispersion +
+        added * std::log(static_cast<double>(levels + fit.fingerprints.count));
   }
+}
+
+// The reduced joint χ² of the current model (EDC, and the fingerprints when they are weighed).
+double joint_reduced_chi2(const EdcEvaluation& evaluation, const DiscrepancyMaps& maps,
+                          bool use_fingerprints, int levels, int parameters) {
+  const int residuals = levels + (use_fingerprints ? maps.response.count : 0);
+  return joint_chi2(evaluation, maps.response, use_fingerprints) /
+         std::max(1, residuals - parameters);
 }
 
 }  // namespace
@@ -173,10 +184,17 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   };
 
   // Baseline: the form as given, searched globally, its σ budget calibrated at the form's
-  // initial θ.
+  // initial θ. An identified stiffness is held at its start (the slice's cubic or the model's)
+  // in the global search on the EDC, which barely sees it, and freed when the model is settled
+  // on the EDC and the fingerprints, which pin it.
+  bool identified_stiffness = false;
+  for (int i = 0; i < form.size(); ++i)
+    identified_stiffness = identified_stiffness || form.is_stiffness(i);
+  const ModelForm search_form =
+      identified_stiffness ? form.holding_stiffness(form.initial()) : form;
   EdcCostSettings base_cost = options.cost;
   base_cost.cancel = cancel;  // the calibrations stop with the job
-  const EdcObjective baseline_objective(form, data, base_cost);
+  const EdcObjective baseline_objective(search_form, data, base_cost);
   FitOptions baseline_options;
   baseline_options.max_evaluations = options.baseline_evaluations;
   baseline_options.seed = options.seed;
@@ -186,8 +204,9 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   result.baseline = fit_edc(baseline_objective, baseline_options, {}, cancel);
   result.evaluations += result.baseline.evaluations;
   report(0.25);
-  ModelForm current = form.with_initial(result.baseline.theta);
-  Eigen::VectorXd theta = result.baseline.theta;
+  Eigen::VectorXd theta = identified_stiffness ? form.expand(result.baseline.theta, form.initial())
+                                               : result.baseline.theta;
+  ModelForm current = form.with_initial(theta);
   const bool use_fp = options.use_fingerprints;
 
   // Settling a model: its σ budget calibrated at θ (the model error and the defect correction
@@ -230,6 +249,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   };
   settle();
   result.baseline.theta = theta;
+  result.baseline.names = current.names();
   result.baseline.evaluation = evaluation;
   result.baseline_maps = maps;
   const auto noise_level = [&](int parameters) {
@@ -256,6 +276,15 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
 
     DiagnosisStep record;
     const int form_size_before = current.size();
+    // Quasi-likelihood after the first accepted effect: the misfit the extended model leaves
+    // (its reduced joint χ², at least 1) inflates σ, so a further term must explain a share of
+    // what is left, not a few per cent of a large misfit. The first step compares at the stated
+    // σ: the baseline may be far from the data because an effect is missing.
+    record.dispersion =
+        accepted_effects.empty()
+            ? 1.0
+            : std::max(1.0, joint_reduced_chi2(evaluation, maps, use_fp, n, current.size()));
+    const double dispersion = record.dispersion;
     record.maps_before = maps;
     record.cost_before_j = evaluation.cost_j;
     record.weighted_before = evaluation.weighted_cost;
@@ -269,9 +298,9 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       const EffectCandidate& c = candidates[order[slot]];
       CandidateTrial& trial = record.trials[slot];
       trial.effect = c.effect;
+      trial.embodiment = c.embodiment;
       trial.fingerprint_score = scores[order[slot]];
-      ModelForm extended = current;
-      extended.add_term(c.term->clone(), c.free);
+      const ModelForm extended = c.extend(current, c.scan.front());
       const EdcObjective extended_objective(extended, data, cost);
       // Two stages. (1) A grid over the new term's own parameters, and its scan points spread
       // over the plausible range, with the others at the current θ (one evaluation each).
@@ -340,8 +369,8 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
                                        static_cast<int>(options.candidate_evaluations / 2), cancel);
         if (again.theta.size() > 0) fit = std::move(again);
       }
-      score_trial(trial, fit, evaluation, maps.response, static_cast<int>(c.free.size()), n,
-                  use_fp);
+      score_trial(trial, fit, evaluation, maps.response, static_cast<int>(c.free.size()), n, use_fp,
+                  dispersion);
       forms[slot] = extended;
       const std::lock_guard lock(done_mutex);
       ++done;
@@ -379,7 +408,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         return;
       }
       score_trial(trial, fit, evaluation, maps.response, extended.size() - current.size(), n,
-                  use_fp);
+                  use_fp, dispersion);
     });
     if (cancel.cancelled()) break;
     std::size_t best = order.size();
@@ -403,6 +432,8 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     current = forms[best]->with_initial(theta);
     settle();
     record.effect = accepted.effect;
+    record.embodiment = accepted.embodiment;
+    record.can_vanish = candidates[order[best]].can_vanish;
     record.strength_parameter = candidates[order[best]].free.front().name;
     record.evidence = accepted.evidence;
     record.delta_bic_joint = accepted.delta_bic_joint;
@@ -410,7 +441,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     record.weighted_after = evaluation.weighted_cost;
     record.reduced_chi2_after = maps.reduced_chi2;
     record.delta_bic =
-        evaluation.weighted_cost - record.weighted_before +
+        (evaluation.weighted_cost - record.weighted_before) / dispersion +
         static_cast<double>(current.size() - form_size_before) * std::log(static_cast<double>(n));
     record.parameters_after = named(current, theta);
     accepted_effects.push_back(accepted.effect);
@@ -421,11 +452,17 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   // vanishes in the final refit. It is withdrawn, and the verdict is the first effect that stands.
   for (DiagnosisStep& s : result.steps) {
     if (s.effect == "none") continue;
+    if (!s.can_vanish) {
+      if (result.verdict == "none") result.verdict = s.effect;
+      continue;
+    }
     for (int i = 0; i < current.size(); ++i) {
       const FreeParameter& p = current.parameters()[i];
       if (p.name != s.strength_parameter) continue;
+      // A log-scale strength (a Dahl force, a presliding length) vanishes at its lower bound,
+      // within a decade of it; a linear one at 0, within 1e-3 of its bound.
       const double scale = std::max(std::abs(p.lower), std::abs(p.upper));
-      s.withdrawn = std::abs(theta(i)) <= 1e-3 * scale;
+      s.withdrawn = p.log_scale ? theta(i) <= 10.0 * p.lower : std::abs(theta(i)) <= 1e-3 * scale;
     }
     if (!s.withdrawn && result.verdict == "none") result.verdict = s.effect;
   }
@@ -437,6 +474,9 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   result.sigma_budget = sigma_budget_json(*objective);
   result.final_cost = cost;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.final_noise_reduced_chi2 = noise_level(current.size());
+  result.gap_explained = maps.reduced_chi2 <= result.final_noise_reduced_chi2;
+  result.largest_residual_levels = largest_residual_levels(maps, 3);
   if (deadline.expired()) {
     result.incomplete = true;
     result.message = "stopped at the " + std::to_string(options.max_seconds) +
@@ -444,6 +484,10 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   } else if (outer_cancel.cancelled()) {
     result.status = JobStatus::Cancelled;
     result.message = "cancelled";
+  }
+  if (!result.gap_explained && result.status == JobStatus::Ok) {
+    if (!result.message.empty()) result.message += "; ";
+    result.message += gap_open_message(result);
   }
   report(1.0);
   return result;

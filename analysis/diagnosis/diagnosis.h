@@ -49,6 +49,7 @@ struct EvidenceChange {
 
 struct CandidateTrial {
   std::string effect;
+  std::string embodiment;  // "added-term" or "friction-regime" (EffectCandidate::embodiment)
   double fingerprint_score = 0.0;  // lower ranks first
   double weighted_cost = 0.0;      // χ² after the refit
   double cost_j = 0.0;             // eq. (8) after the refit
@@ -62,15 +63,20 @@ struct CandidateTrial {
 
 struct DiagnosisStep {
   std::string effect;              // the accepted effect
+  std::string embodiment;          // how it entered (EffectCandidate::embodiment)
   std::string strength_parameter;  // the added term's strength (its first free parameter)
   /// The term's strength vanished (≤ 1e-3 of its bound) in the final model, after later effects
   /// were added: the effect is kept in the report but not named in the verdict.
   bool withdrawn = false;
+  bool can_vanish = true;  // EffectCandidate::can_vanish of the accepted candidate
   double cost_before_j = 0.0, cost_after_j = 0.0;
   double weighted_before = 0.0, weighted_after = 0.0;
   double reduced_chi2_before = 0.0, reduced_chi2_after = 0.0;
-  double delta_bic = 0.0;                // of the accepted model after its longer refit (EDC)
-  double delta_bic_joint = 0.0;          // the accepted candidate's joint ΔBIC
+  double delta_bic = 0.0;        // of the accepted model after its longer refit (EDC)
+  double delta_bic_joint = 0.0;  // the accepted candidate's joint ΔBIC
+  /// φ ≥ 1 that divided every Δχ² of the step (quasi-likelihood): 1 at the first step, then the
+  /// current model's reduced joint χ² when it is above 1.
+  double dispersion = 1.0;
   std::vector<EvidenceChange> evidence;  // of the accepted candidate
   DiscrepancyMaps maps_before;
   std::vector<CandidateTrial> trials;  // in the order tried (fingerprint ranking)
@@ -94,6 +100,12 @@ struct DiagnosisResult {
   /// χ²/ν at or below which the model explains the data within its noise: 1 + 3 √(2/ν), three
   /// standard deviations of the reduced χ² of a correct model.
   double noise_reduced_chi2 = 0.0;
+  /// The same noise level for the final model's parameter count, and whether the final model's
+  /// reduced χ² (EDC) is at or below it: false means a gap the diagnosis could not explain with
+  /// its vocabulary (the message says so, and where the residual is largest).
+  double final_noise_reduced_chi2 = 0.0;
+  bool gap_explained = true;
+  std::vector<LevelDiscrepancy> largest_residual_levels;  // of the final model, largest |r| first
   std::vector<std::string> excluded_levels;
   double seconds = 0.0;
   long evaluations = 0;
@@ -109,6 +121,14 @@ struct DiagnosisResult {
 DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form,
                          const DiagnosisOptions& options, const ProgressFn& progress = {},
                          const CancelToken& cancel = {});
+
+/// The `count` levels of `maps` with the largest |residual_sigma|, largest first.
+std::vector<LevelDiscrepancy> largest_residual_levels(const DiscrepancyMaps& maps,
+                                                      std::size_t count);
+
+/// In words: the final model still misses the data (its reduced χ² against the noise level, and
+/// the levels where the residual is largest).
+std::string gap_open_message(const DiagnosisResult& result);
 
 /// Why a candidate of a step was accepted or not, in words ("accepted", "rejected: joint dBIC
 /// -4.2 is not below -10", "rejected: quadratic-damping explains more (joint dBIC -5.7e4)", …):

@@ -1,5 +1,6 @@
 #include "analysis/diagnosis/diagnosis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -101,19 +102,58 @@ nlohmann::json parameters_json(const std::vector<std::pair<std::string, double>>
 
 }  // namespace
 
+std::vector<LevelDiscrepancy> largest_residual_levels(const DiscrepancyMaps& maps,
+                                                      std::size_t count) {
+  std::vector<LevelDiscrepancy> out;
+  for (const LevelDiscrepancy& d : maps.levels) {
+    if (std::isfinite(d.residual_sigma)) out.push_back(d);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+    return std::abs(a.residual_sigma) > std::abs(b.residual_sigma);
+  });
+  if (out.size() > count) out.resize(count);
+  return out;
+}
+
+std::string gap_open_message(const DiagnosisResult& result) {
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "the gap is not explained: the final model's reduced chi2 %.3g stays above the "
+                "noise level %.3g",
+                result.final_maps.reduced_chi2, result.final_noise_reduced_chi2);
+  std::string message = text;
+  if (!result.largest_residual_levels.empty()) {
+    message += "; largest residuals at";
+    for (std::size_t i = 0; i < result.largest_residual_levels.size(); ++i) {
+      const LevelDiscrepancy& d = result.largest_residual_levels[i];
+      std::snprintf(text, sizeof text, "%s %.3g N (%s well, %+.1f sigma)", i == 0 ? "" : ",",
+                    d.f0_n, to_string(well_of(d.positive_well)).c_str(), d.residual_sigma);
+      message += text;
+    }
+  }
+  message += result.verdict == "none"
+                 ? "; no effect of the vocabulary explains it"
+                 : "; the effects named explain part of it, an effect outside the vocabulary may "
+                   "remain";
+  return message;
+}
+
 std::string candidate_outcome(const DiagnosisStep& step, const CandidateTrial& trial,
                               double bic_threshold) {
   char text[160];
   if (!trial.solved) return "not solved (the refit stopped or the model had no solution)";
-  if (trial.effect == step.effect) return "accepted";
+  if (trial.effect == step.effect && trial.embodiment == step.embodiment) return "accepted";
   const CandidateTrial* best = nullptr;
   for (const CandidateTrial& t : step.trials) {
     if (t.solved && (!best || t.delta_bic_joint < best->delta_bic_joint)) best = &t;
   }
   if (best && best != &trial && best->delta_bic_joint < trial.delta_bic_joint &&
       best->delta_bic_joint < -bic_threshold) {
+    const std::string label = best->embodiment == "added-term" || best->embodiment.empty()
+                                  ? best->effect
+                                  : best->effect + " as " + best->embodiment;
     std::snprintf(text, sizeof text, "rejected: %s explains more (joint dBIC %.3g)",
-                  best->effect.c_str(), best->delta_bic_joint);
+                  label.c_str(), best->delta_bic_joint);
     return text;
   }
   if (!(trial.delta_bic_joint < -bic_threshold)) {
@@ -163,6 +203,7 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
     nlohmann::json candidates = nlohmann::json::array();
     for (const CandidateTrial& t : s.trials) {
       candidates.push_back({{"effect", t.effect},
+                            {"embodiment", t.embodiment},
                             {"fingerprint_score", t.fingerprint_score},
                             {"weighted_cost", t.weighted_cost},
                             {"cost_j", t.cost_j},
@@ -195,6 +236,8 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
       step["evidence"]["weighted_cost_after"] = s.weighted_after;
       step["evidence"]["reduced_chi2_after"] = s.reduced_chi2_after;
       step["cost_after_j"] = s.cost_after_j;
+      step["embodiment"] = s.embodiment;
+      step["evidence"]["dispersion"] = s.dispersion;
       step["withdrawn"] = s.withdrawn;
       if (s.withdrawn) {
         step["withdrawn_reason"] = "its strength " + s.strength_parameter +
@@ -226,6 +269,22 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
             : "no candidate effect improves the fit by the required evidence (dBIC threshold)";
   }
   out["noise_reduced_chi2"] = result.noise_reduced_chi2;
+  // Whether the final model explains the data within its noise (scripts read this field).
+  out["gap_explained"] = result.gap_explained;
+  {
+    nlohmann::json gap = {{"final_reduced_chi2", std::isfinite(result.final_maps.reduced_chi2)
+                                                     ? nlohmann::json(result.final_maps.reduced_chi2)
+                                                     : nlohmann::json(nullptr)},
+                          {"noise_reduced_chi2", result.final_noise_reduced_chi2}};
+    nlohmann::json largest = nlohmann::json::array();
+    for (const LevelDiscrepancy& d : result.largest_residual_levels) {
+      largest.push_back({{"well", to_string(well_of(d.positive_well))},
+                         {"f0_n", d.f0_n},
+                         {"residual_sigma", d.residual_sigma}});
+    }
+    gap["largest_residual_levels"] = largest;
+    out["gap"] = gap;
+  }
   if (result.final_form) {
     out["final_model"] = result.final_form->build(result.final_theta).to_json();
     out["final"] = {{"cost_j", result.final_evaluation.cost_j},

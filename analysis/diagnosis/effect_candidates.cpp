@@ -8,6 +8,7 @@
 #include "analysis/model/coulomb_friction.h"
 #include "analysis/model/dahl_friction.h"
 #include "analysis/model/polynomial_stiffness.h"
+#include "analysis/model/position_dependent_friction.h"
 #include "analysis/model/velocity_power_damping.h"
 #include "analysis/model/viscous_damping.h"
 
@@ -31,7 +32,27 @@ bool form_has(const ModelForm& form, const std::string& type) {
   return false;
 }
 
+// The form's position-dependent friction when it still slides (no presliding regime yet).
+bool form_has_sliding_friction(const ModelForm& form) {
+  for (const auto& term : form.base().terms()) {
+    const auto* friction = dynamic_cast<const PositionDependentFriction*>(term.get());
+    if (friction && !friction->presliding()) return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+ModelForm EffectCandidate::extend(const ModelForm& form, const Eigen::VectorXd& start) const {
+  ModelForm extended = form;
+  if (term) {
+    extended.add_term(term->clone(), free);
+  } else {
+    extended.change_term(changes_type, free,
+                         std::vector<double>(start.data(), start.data() + start.size()));
+  }
+  return extended;
+}
 
 const std::vector<std::string>& effect_vocabulary() {
   static const std::vector<std::string> names = {"viscous-damping",
@@ -137,6 +158,27 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
     }
     add(std::move(c));
   }
+  if (form_has_sliding_friction(form)) {
+    // Presliding as the friction's own regime (eqs. (5)–(6) with a presliding length δ): the
+    // contact's Coulomb part turns into a Dahl state of the same magnitude f_d(z). δ from 1 µm
+    // (below it harmonic balance does not reliably pass the stick–slip transition, see
+    // contact_resolving_harmonics; and tanh(4ż/v_t) already spreads the reversal over about a
+    // micrometre at these amplitudes) to the largest amplitude. The sliding law is not inside
+    // these bounds, so the effect never vanishes in a refit (can_vanish).
+    const double length_lo = 1e-6, length_hi = std::max(1e-3, z_max);
+    EffectCandidate c{"presliding-hysteresis",
+                      nullptr,
+                      {{"presliding_length_m", length_lo, length_hi, true}},
+                      {},
+                      3.0};
+    c.can_vanish = false;
+    c.embodiment = "friction-regime";
+    c.changes_type = "position-dependent-friction";
+    for (double length : {1e-6, 3e-6, 1e-5, 3e-5, 1e-4, 3e-4}) {
+      if (length < length_hi) c.scan.push_back(Eigen::VectorXd::Constant(1, length));
+    }
+    out.push_back(std::move(c));
+  }
   // Stiffness powers c z^p: bounded so that c Z_ref^p stays within ten times the largest forcing,
   // with Z_ref the largest |z| the wells reach (the wells' positions plus the largest amplitude):
   // a stiffness power far stronger than the forcing would have moved the wells out of the test.
@@ -148,6 +190,8 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
     int power;
   } powers[] = {{"quadratic-stiffness", 2}, {"cubic-stiffness", 3}, {"quintic-stiffness", 5}};
   for (const auto& p : powers) {
+    // A power the form's identified stiffness already holds is no missing effect.
+    if (form.frees_stiffness_power(p.power)) continue;
     const double bound = 10.0 * f0_max / std::pow(z_ref, p.power);
     std::vector<double> coefficients(static_cast<std::size_t>(p.power) + 1, 0.0);
     EffectCandidate c{p.name,

@@ -16,6 +16,8 @@ namespace oscilab::analysis {
 /// looks like.
 struct EffectCandidate {
   std::string effect;  // e.g. "quadratic-damping"
+  /// The term added; nullptr for an effect that enters as a change of a law the model holds
+  /// (`changes_type`), e.g. presliding as the friction's own regime.
   std::unique_ptr<ModelTerm> term;
   std::vector<FreeParameter> free;
   std::vector<Eigen::VectorXd> scan;  // starting values of the free parameters, tried in turn
@@ -25,6 +27,17 @@ struct EffectCandidate {
   double expected_slope = 0.0;
   bool stiffness = false;
   int stiffness_power = 0;
+  /// How the effect enters: "added-term", or "friction-regime" (a change of the friction law
+  /// the model holds). One effect may come in several embodiments, tried side by side.
+  std::string embodiment = "added-term";
+  std::string changes_type = "";  // the changed term's type when term is nullptr
+  /// Whether the effect vanishes inside its bounds (its strength at 0, or at a log-scale lower
+  /// bound): a later refit may then withdraw it.
+  bool can_vanish = true;
+
+  /// The form extended by this candidate (the term added, or the law changed), its new free
+  /// parameters starting at `start` (their count).
+  ModelForm extend(const ModelForm& form, const Eigen::VectorXd& start) const;
 };
 
 /// Every effect of the vocabulary that the form does not already hold, with bounds from the

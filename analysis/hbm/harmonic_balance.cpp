@@ -160,17 +160,20 @@ void HarmonicBalance::residual_and_jacobian(const Eigen::VectorXd& x, double f0_
     // Stateful terms with the exact periodic solve: column j is the projection of δF for the
     // orbit perturbation φ_j (HysteresisMarch::sensitivity), the march's exact derivative,
     // projected by one forward FFT per column. The sampled basis is fixed by the grid: made once.
-    if (basis_.cols() != n) {
+    if (basis_.cols() != n || basis_omega_ != w) {
       basis_.resize(size, n);
+      basis_dot_.resize(size, n);
       Eigen::VectorXd unit = Eigen::VectorXd::Zero(size), value, derivative;
       for (int j = 0; j < size; ++j) {
         unit[j] = 1.0;
         grid_.synthesise(unit, value, derivative);
         basis_.row(j) = value.transpose();
+        basis_dot_.row(j) = w * derivative.transpose();  // ż = Ω dz/dτ
         unit[j] = 0.0;
       }
+      basis_omega_ = w;
     }
-    march_.sensitivity(basis_, basis_force_);
+    march_.sensitivity(basis_, basis_dot_, basis_force_);
     Eigen::VectorXd samples(n);
     for (int j = 0; j < size; ++j) {
       samples = basis_force_.row(j).transpose();
@@ -220,7 +223,10 @@ void HarmonicBalance::d_residual_d_omega(const Eigen::VectorXd& x, Eigen::Vector
 
 Eigen::VectorXd HarmonicBalance::linear_guess(double z_star_m, double f0_n) const {
   // m z̈ + C ż + K (z − z*) = f0 sin ωt = Re(−i f0 e^{iωt}): Z = −i f0 / (K − mω² + iωC).
-  const TermPartials p = model_.partials(z_star_m, 0.0, nullptr);
+  TermPartials p = model_.partials(z_star_m, 0.0, nullptr);
+  // A small loop of a rate-independent hysteresis is a spring: without it the guess for a stiff
+  // presliding contact is a sliding orbit orders of magnitude too large.
+  p.d_dz += small_loop_stiffness_n_m(model_, z_star_m);
   const double w = omega();
   const std::complex<double> z1 =
       std::complex<double>(0.0, -f0_n) /

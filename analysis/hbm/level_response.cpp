@@ -1,20 +1,21 @@
 #include "analysis/hbm/level_response.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "analysis/common/input_error.h"
 #include "analysis/hbm/continuation.h"
+#include "analysis/hbm/hysteresis_march.h"
 
 namespace oscilab::analysis {
 
-LevelResponse level_response(const Model& model, double freq_hz, bool positive_well,
-                             const std::vector<double>& levels_n, const HbmOptions& hbm_options) {
-  for (std::size_t i = 0; i < levels_n.size(); ++i) {
-    if (!(levels_n[i] >= 0.0) || (i > 0 && !(levels_n[i] > levels_n[i - 1]))) {
-      throw InputError("level response: levels must be non-negative and increasing");
-    }
-  }
+namespace {
+
+LevelResponse responses_at(const Model& model, double freq_hz, bool positive_well,
+                           const std::vector<double>& levels_n, const HbmOptions& hbm_options) {
   LevelResponse out;
+  out.harmonics = hbm_options.harmonics;
   if (levels_n.empty()) return out;
   HarmonicBalance hbm(model, freq_hz, hbm_options);
   const double z_star = model.well(positive_well).z_m;
@@ -121,6 +122,38 @@ LevelResponse level_response(const Model& model, double freq_hz, bool positive_w
                   (branch.message.empty() ? "" : ": " + branch.message);
   }
   return out;
+}
+
+}  // namespace
+
+int contact_resolving_harmonics(const Model& model, double freq_hz, bool positive_well) {
+  const double stiffness = small_loop_stiffness_n_m(model, model.well(positive_well).z_m);
+  if (!(stiffness > 0.0)) return 0;
+  const double ring = std::sqrt(stiffness / model.mass_kg()) / (2.0 * std::numbers::pi * freq_hz);
+  return static_cast<int>(std::ceil(1.5 * ring));
+}
+
+LevelResponse level_response(const Model& model, double freq_hz, bool positive_well,
+                             const std::vector<double>& levels_n, const HbmOptions& hbm_options) {
+  for (std::size_t i = 0; i < levels_n.size(); ++i) {
+    if (!(levels_n[i] >= 0.0) || (i > 0 && !(levels_n[i] > levels_n[i - 1]))) {
+      throw InputError("level response: levels must be non-negative and increasing");
+    }
+  }
+  LevelResponse out = responses_at(model, freq_hz, positive_well, levels_n, hbm_options);
+  if (out.status == JobStatus::Ok) return out;
+  // A stuck contact rings on its presliding stiffness above the harmonics kept, and near the
+  // stick–slip transition the truncated balance has no solution: again with the ringing
+  // resolved (at most kMaxContactHarmonics).
+  const int needed =
+      std::min(kMaxContactHarmonics, contact_resolving_harmonics(model, freq_hz, positive_well));
+  if (needed <= hbm_options.harmonics) return out;
+  HbmOptions resolved = hbm_options;
+  resolved.harmonics = needed;
+  resolved.samples = 0;
+  LevelResponse again = responses_at(model, freq_hz, positive_well, levels_n, resolved);
+  again.newton_iterations += out.newton_iterations;
+  return again;
 }
 
 }  // namespace oscilab::analysis

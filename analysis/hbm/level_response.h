@@ -22,15 +22,28 @@ struct LevelResponse {
   std::vector<Eigen::VectorXd> coefficients;
   int newton_iterations = 0;
   bool used_arclength = false;  // the fast path failed and a full continuation was run
+  int harmonics = 0;            // H of the responses (more than asked when a contact rang)
 };
+
+/// The most harmonics level_response() raises H to for a ringing contact.
+inline constexpr int kMaxContactHarmonics = 63;
+
+/// H that resolves the ringing of the model's stuck contacts in the well: 1.5 √(k/m)/ω with k
+/// the small-loop stiffness of its hysteresis (small_loop_stiffness_n_m); 0 without one.
+/// Measured on the paper's friction in its presliding regime (9 Hz, 0.05 → 2.7 N): the branch
+/// through the stick–slip transition is found for δ ≥ 1 µm at this H and above (at δ = 1 µm,
+/// H = 35 to 63), and not reliably below 1 µm at any H up to 63.
+int contact_resolving_harmonics(const Model& model, double freq_hz, bool positive_well);
 
 /// Responses at increasing levels, as a sweep up from rest would find them: each level is solved
 /// by Newton from the extrapolation of the previous two (natural continuation, cheap and, since
 /// the levels increase, on the branch a sweep up follows). If a solve fails, or the sign of
 /// det ∂r/∂x flips (the step crossed a fold onto the unstable part), the whole set is computed
 /// instead by pseudo-arclength continuation from rest with a landing at every level, taking each
-/// level's first crossing. Throws InputError for decreasing or negative levels or a model that
-/// harmonic balance cannot handle.
+/// level's first crossing. When that fails too and the model's stuck contact rings above the
+/// harmonics kept (contact_resolving_harmonics), the set is computed again with H raised to
+/// resolve the ringing (at most kMaxContactHarmonics; `harmonics` says which H). Throws
+/// InputError for decreasing or negative levels or a model that harmonic balance cannot handle.
 LevelResponse level_response(const Model& model, double freq_hz, bool positive_well,
                              const std::vector<double>& levels_n, const HbmOptions& hbm = {});
 

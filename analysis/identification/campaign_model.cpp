@@ -29,8 +29,16 @@ Model campaign_model(const Model& model, const CampaignAnalysis& campaign,
     }
   }
   std::vector<std::unique_ptr<ModelTerm>> terms;
+  // An identified stiffness starts from the slice's cubic when there is one.
+  const bool from_slice = stiffness == StiffnessSource::Rfs ||
+                          (stiffness == StiffnessSource::Identified && campaign.stiffness);
+  if (stiffness == StiffnessSource::Identified && !campaign.stiffness) {
+    notes.push_back("stiffness identified from the stepped responses, starting from the model's "
+                    "K(z) (the records give no stiffness slice: " +
+                    campaign.rfs_message + ")");
+  }
   for (const auto& term : model.terms()) {
-    if (stiffness == StiffnessSource::Rfs && term->type() == "polynomial-stiffness") {
+    if (from_slice && term->type() == "polynomial-stiffness") {
       if (!campaign.stiffness) {
         throw InputError("--stiffness rfs: the records give no stiffness slice: " +
                          campaign.rfs_message);
@@ -39,8 +47,12 @@ Model campaign_model(const Model& model, const CampaignAnalysis& campaign,
       terms.push_back(std::make_unique<PolynomialStiffness>(
           std::vector<double>(c.data(), c.data() + c.size())));
       std::ostringstream note;
-      note << "stiffness from the records' restoring-force slice (eq. (2)): k3 = " << c[3]
-           << " N/m^3, k2 = " << c[2] << " N/m^2, k1 = " << -c[1] << " N/m, k0 = " << c[0] << " N";
+      note << (stiffness == StiffnessSource::Identified
+                   ? "stiffness identified from the stepped responses, starting from the records' "
+                     "restoring-force slice (eq. (2)): k3 = "
+                   : "stiffness from the records' restoring-force slice (eq. (2)): k3 = ")
+           << c[3] << " N/m^3, k2 = " << c[2] << " N/m^2, k1 = " << -c[1] << " N/m, k0 = " << c[0]
+           << " N";
       notes.push_back(note.str());
       continue;
     }

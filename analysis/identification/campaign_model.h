@@ -10,8 +10,11 @@ namespace oscilab::analysis {
 
 /// Where the fixed part of a friction fit (mass and stiffness) comes from.
 enum class StiffnessSource {
-  Model,  // the model's K(z) as it is (e.g. Table 1)
-  Rfs,    // the cubic K(z) fitted to the campaign's stiffness slice (§3.1)
+  Model,       // the model's K(z) as it is (e.g. Table 1), held fixed
+  Rfs,         // the cubic K(z) fitted to the campaign's stiffness slice (§3.1), held fixed
+  Identified,  // K(z)'s coefficients free parameters of the fit, identified with the friction
+               // from the stepped responses; they start from the stiffness slice's cubic when
+               // the records give one, else from the model's K(z)
 };
 
 /// The base model of a fit on these records: `model` with the recordings' mass (the EDCs were

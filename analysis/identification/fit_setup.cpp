@@ -24,7 +24,10 @@ EdcCostSettings cost_settings(int harmonics, int max_harmonics, double model_err
 
 ModelForm fit_form(const CampaignAnalysis& campaign, const FitSetup& setup,
                    std::vector<std::string>& notes) {
-  return ModelForm::paper(campaign_model(setup.base_model, campaign, setup.stiffness, notes));
+  ModelForm form =
+      ModelForm::paper(campaign_model(setup.base_model, campaign, setup.stiffness, notes));
+  if (setup.stiffness == StiffnessSource::Identified) form.free_stiffness();
+  return form;
 }
 
 PreparedFit prepare_fit(const CampaignAnalysis& campaign, const FitSetup& setup) {
@@ -54,7 +57,8 @@ void validate(const FitOptions& options, const std::string& option_prefix) {
 StiffnessSource parse_stiffness_source(const std::string& name, const std::string& option_name) {
   if (name == "model") return StiffnessSource::Model;
   if (name == "rfs") return StiffnessSource::Rfs;
-  throw InputError(option_name + ": \"" + name + "\" is not model or rfs");
+  if (name == "identified") return StiffnessSource::Identified;
+  throw InputError(option_name + ": \"" + name + "\" is not model, rfs or identified");
 }
 
 int default_elite(int population) {

@@ -65,8 +65,9 @@ inline constexpr int kMinGeneticPopulation = 2;
 /// ("--" on the command line, "" in Python), e.g. "--population: must be at least 2".
 void validate(const FitOptions& options, const std::string& option_prefix);
 
-/// The stiffness source a user names: "model" (the model's K(z)) or "rfs" (the cubic of the
-/// records' restoring-force slice). Throws InputError naming `option_name` for any other name.
+/// The stiffness source a user names: "model" (the model's K(z)), "rfs" (the cubic of the
+/// records' restoring-force slice) or "identified" (free coefficients, identified with the
+/// friction). Throws InputError naming `option_name` for any other name.
 StiffnessSource parse_stiffness_source(const std::string& name, const std::string& option_name);
 
 /// The GA's elite for a population: 5 % of it, at least one (2000 evaluations for the paper's

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "analysis/common/input_error.h"
+#include "analysis/model/polynomial_stiffness.h"
 #include "analysis/model/position_dependent_friction.h"
 
 namespace oscilab::analysis {
@@ -117,6 +118,105 @@ void ModelForm::add_term(std::unique_ptr<ModelTerm> term, std::vector<FreeParame
   description_ += " + " + type;
 }
 
+void ModelForm::change_term(const std::string& type, std::vector<FreeParameter> free,
+                            const std::vector<double>& initial) {
+  if (initial.size() != free.size()) {
+    throw InputError("model form: change_term needs one initial value per free parameter");
+  }
+  std::size_t index = base_.terms().size();
+  for (std::size_t i = 0; i < base_.terms().size() && index == base_.terms().size(); ++i) {
+    if (base_.terms()[i]->type() == type) index = i;
+  }
+  if (index == base_.terms().size()) {
+    throw InputError("model form: the model has no " + type + " term to change");
+  }
+  for (std::size_t i = 0; i < free.size(); ++i) {
+    check_bounds(free[i], initial[i]);
+    base_.set_parameter(index, free[i].name, initial[i]);
+    add(free[i], {BindingKind::TermParameter, index, free[i].name}, initial[i]);
+  }
+  description_ += " + " + type + " (" + free.front().name + ")";
+}
+
+void ModelForm::free_stiffness(double relative) {
+  if (!(relative > 0.0 && relative < 1.0)) {
+    throw InputError("model form: the stiffness's relative range must lie in (0, 1)");
+  }
+  for (const Binding& b : bindings_) {
+    if (b.kind == BindingKind::Stiffness) throw InputError("model form: the stiffness is free");
+  }
+  std::size_t index = base_.terms().size();
+  for (std::size_t i = 0; i < base_.terms().size() && index == base_.terms().size(); ++i) {
+    if (base_.terms()[i]->type() == "polynomial-stiffness") index = i;
+  }
+  if (index == base_.terms().size()) {
+    throw InputError("model form: the model has no polynomial-stiffness term to identify");
+  }
+  const auto& stiffness = static_cast<const PolynomialStiffness&>(*base_.terms()[index]);
+  const std::vector<double>& c = stiffness.coefficients();
+  // The scale of each power: its force at the largest |z| of the wells (or 1 cm without wells).
+  double z_ref = 0.0;
+  for (const Equilibrium& e : base_.equilibria()) z_ref = std::max(z_ref, std::abs(e.z_m));
+  if (!(z_ref > 0.0)) z_ref = 1e-2;
+  double force_scale = 0.0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    force_scale = std::max(force_scale, std::abs(c[i]) * std::pow(z_ref, static_cast<double>(i)));
+  }
+  if (!(force_scale > 0.0)) force_scale = 1.0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const double power_scale = 0.05 * force_scale / std::pow(z_ref, static_cast<double>(i));
+    const double half_width = relative * std::max(std::abs(c[i]), power_scale);
+    const std::string unit = i == 0 ? "_n" : i == 1 ? "_n_m" : "_n_m" + std::to_string(i);
+    add({"stiffness_c" + std::to_string(i) + unit, c[i] - half_width, c[i] + half_width, false},
+        {BindingKind::Stiffness, index, "c" + std::to_string(i)}, c[i]);
+  }
+  description_ += " + identified stiffness";
+}
+
+bool ModelForm::is_stiffness(int i) const {
+  return i >= 0 && i < size() && bindings_[static_cast<std::size_t>(i)].kind == BindingKind::Stiffness;
+}
+
+bool ModelForm::frees_stiffness_power(int power) const {
+  const std::string name = "c" + std::to_string(power);
+  for (const Binding& b : bindings_) {
+    if (b.kind == BindingKind::Stiffness && b.term_parameter == name) return true;
+  }
+  return false;
+}
+
+ModelForm ModelForm::holding_stiffness(const Eigen::VectorXd& theta) const {
+  if (theta.size() != size()) {
+    throw InputError("model form: θ has " + std::to_string(theta.size()) + " values, expected " +
+                     std::to_string(size()));
+  }
+  ModelForm out = *this;
+  out.parameters_.clear();
+  out.bindings_.clear();
+  out.initial_.resize(0);
+  for (int i = 0; i < size(); ++i) {
+    const Binding& b = bindings_[static_cast<std::size_t>(i)];
+    if (b.kind == BindingKind::Stiffness) {
+      out.base_.set_parameter(b.term_index, b.term_parameter, theta(i));
+    } else {
+      out.add(parameters_[static_cast<std::size_t>(i)], b, std::clamp(theta(i), parameters_[i].lower, parameters_[i].upper));
+    }
+  }
+  return out;
+}
+
+Eigen::VectorXd ModelForm::expand(const Eigen::VectorXd& held_theta,
+                                  const Eigen::VectorXd& theta) const {
+  Eigen::VectorXd out = theta;
+  Eigen::Index next = 0;
+  for (int i = 0; i < size(); ++i) {
+    if (bindings_[static_cast<std::size_t>(i)].kind == BindingKind::Stiffness) continue;
+    if (next >= held_theta.size()) throw InputError("model form: θ of the held form is too short");
+    out(i) = held_theta(next++);
+  }
+  return out;
+}
+
 std::vector<std::string> ModelForm::names() const {
   std::vector<std::string> out;
   for (const FreeParameter& p : parameters_) out.push_back(p.name);
@@ -138,7 +238,8 @@ Model ModelForm::build(const Eigen::VectorXd& theta) const {
     const Binding& b = bindings_[i];
     switch (b.kind) {
       case BindingKind::TermParameter:
-        model.term(b.term_index).set_parameter(b.term_parameter, theta(i));
+      case BindingKind::Stiffness:
+        model.set_parameter(b.term_index, b.term_parameter, theta(i));
         break;
       case BindingKind::FdAtZminus:
         fd[0] = theta(i);
@@ -155,8 +256,8 @@ Model ModelForm::build(const Eigen::VectorXd& theta) const {
     }
   }
   if (friction_index < model.terms().size()) {
-    // Eq. (6) through the three values of eq. (9), at the base model's wells (the stiffness is
-    // not a free parameter of the paper's form, so they do not move).
+    // Eq. (6) through the three values of eq. (9), at the base model's wells: fixed abscissae,
+    // also when the stiffness is identified and the wells move by the fraction it changes.
     auto& friction = static_cast<PositionDependentFriction&>(model.term(friction_index));
     const auto p = friction.parameters();
     const auto three = PositionDependentFriction::from_three_points(
@@ -176,7 +277,7 @@ Eigen::VectorXd ModelForm::theta_of(const Model& model) const {
       throw InputError("model form: the model has fewer terms than the form");
     }
     const ModelTerm& term = *model.terms()[b.term_index];
-    if (b.kind == BindingKind::TermParameter) {
+    if (b.kind == BindingKind::TermParameter || b.kind == BindingKind::Stiffness) {
       theta(i) = term.parameter(b.term_parameter);
       continue;
     }

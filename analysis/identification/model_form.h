@@ -49,6 +49,26 @@ class ModelForm {
   /// Adds a term to the model and makes some of its parameters free (names as the term's
   /// parameter_names()); bounds must contain the term's current values, which join the initial θ.
   void add_term(std::unique_ptr<ModelTerm> term, std::vector<FreeParameter> free);
+  /// Changes a law the model already holds instead of adding one: the first term of `type` gets
+  /// `free` parameters (names as its parameter_names()) set to `initial` (inside the bounds),
+  /// e.g. a friction's presliding length. Throws InputError when the model has no such term.
+  void change_term(const std::string& type, std::vector<FreeParameter> free,
+                   const std::vector<double>& initial);
+
+  /// Makes the coefficients of the model's polynomial stiffness K(z) free parameters, named
+  /// `stiffness_c<i>_n_m<i>` (N/mⁱ, K = Σ cᵢ zⁱ), each bounded to ±`relative` of the larger of
+  /// its value and 5 % of the largest term's force at the wells' largest |z|, starting from the
+  /// model's values: the stiffness identified from the data rather than given. Throws
+  /// InputError when the model has no polynomial-stiffness term or its K is already free.
+  void free_stiffness(double relative = 0.3);
+  /// Whether parameter i is one of free_stiffness()'s.
+  bool is_stiffness(int i) const;
+  /// Whether the form frees the power zᵖ of its (first) polynomial stiffness.
+  bool frees_stiffness_power(int power) const;
+  /// The form with its stiffness parameters held at `theta`'s values (the others free, in their
+  /// order); expand() maps a θ of that form back to this one's with the held values.
+  ModelForm holding_stiffness(const Eigen::VectorXd& theta) const;
+  Eigen::VectorXd expand(const Eigen::VectorXd& held_theta, const Eigen::VectorXd& theta) const;
 
   int size() const { return static_cast<int>(parameters_.size()); }
   const std::vector<FreeParameter>& parameters() const { return parameters_; }
@@ -72,7 +92,7 @@ class ModelForm {
   ModelForm with_initial(const Eigen::VectorXd& theta) const;
 
  private:
-  enum class BindingKind { TermParameter, FdAtZminus, FdAtZero, FdAtZplus };
+  enum class BindingKind { TermParameter, FdAtZminus, FdAtZero, FdAtZplus, Stiffness };
   struct Binding {
     BindingKind kind = BindingKind::TermParameter;
     std::size_t term_index = 0;

@@ -33,12 +33,9 @@ void DahlFriction::state_rate(double /*z_m*/, double z_dot_m_s, const double* st
   rate[0] = value(1) / value(0) * z_dot_m_s * (1.0 - state[0] * direction);
 }
 
-void DahlFriction::advance_state(double z0_m, double /*z_dot0_m_s*/, double z1_m,
-                                 double /*z_dot1_m_s*/, double /*dt_s*/, double* state) const {
-  const double dz = z1_m - z0_m;
-  if (dz == 0.0) return;
-  const double d = dz > 0.0 ? 1.0 : -1.0;
-  state[0] = d + (state[0] - d) * std::exp(-value(1) / value(0) * std::abs(dz));
+void DahlFriction::advance_state(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
+                                 double dt_s, double* state) const {
+  advance_rate_independent(z0_m, z_dot0_m_s, z1_m, z_dot1_m_s, dt_s, state);
 }
 
 bool DahlFriction::advance_state_sensitivity(double z0_m, double z1_m, double* state,

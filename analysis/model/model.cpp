@@ -39,6 +39,11 @@ void Model::add_term(std::unique_ptr<ModelTerm> term) {
   index_states();
 }
 
+void Model::set_parameter(std::size_t term_index, const std::string& name, double value) {
+  terms_.at(term_index)->set_parameter(name, value);
+  index_states();
+}
+
 void Model::index_states() {
   state_offsets_.clear();
   state_size_ = 0;

@@ -36,7 +36,12 @@ class Model {
   const std::string& name() const { return name_; }
   double mass_kg() const { return mass_kg_; }
   const std::vector<std::unique_ptr<ModelTerm>>& terms() const { return terms_; }
+  /// A term to change in place. A change of a parameter that gives a term a state or takes it
+  /// away (a friction's presliding length) must go through set_parameter(), which re-indexes the
+  /// states.
   ModelTerm& term(std::size_t index) { return *terms_.at(index); }
+  /// Sets a term's named parameter (ModelTerm::set_parameter) and re-indexes the states.
+  void set_parameter(std::size_t term_index, const std::string& name, double value);
   void add_term(std::unique_ptr<ModelTerm> term);
 
   int state_size() const { return state_size_; }

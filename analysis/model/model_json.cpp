@@ -66,6 +66,10 @@ std::unique_ptr<ModelTerm> term_from_json(const json& object, const std::string&
     p.gamma_n = number_field(object, "gamma_n", where);
     p.ks = number_field(object, "ks", where);
     p.vt_m_s = number_field(object, "vt_m_s", where);
+    // Optional: the presliding regime's length δ (absent: the sliding law of eq. (5)).
+    if (object.contains("presliding_length_m")) {
+      p.presliding_length_m = number_field(object, "presliding_length_m", where);
+    }
     return build(where, [&] { return std::make_unique<PositionDependentFriction>(p); });
   }
   if (type == "viscous-damping") {

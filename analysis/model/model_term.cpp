@@ -4,6 +4,53 @@
 
 namespace oscilab::analysis {
 
+HermiteTurn hermite_turning_point(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
+                                  double dt_s) {
+  HermiteTurn turn;
+  if (!(z_dot0_m_s * z_dot1_m_s < 0.0) || !(dt_s > 0.0)) return turn;
+  // p(θ) = h00 z0 + h10 ż0 dt + h01 z1 + h11 ż1 dt; p'(θ) = a θ² + b θ + c changes sign on (0, 1).
+  const double v0 = z_dot0_m_s * dt_s, v1 = z_dot1_m_s * dt_s, dz = z0_m - z1_m;
+  const double a = 6.0 * dz + 3.0 * v0 + 3.0 * v1;
+  const double b = -6.0 * dz - 4.0 * v0 - 2.0 * v1;
+  const double c = v0;
+  const auto slope = [&](double t) { return (a * t + b) * t + c; };
+  // Bisection on the sign change (p'(0) = v0 and p'(1) = v1 differ in sign): 60 halvings reach
+  // rounding, and no case of the quadratic's roots needs handling apart.
+  double lo = 0.0, hi = 1.0;
+  const bool rising_at_lo = c > 0.0;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if ((slope(mid) > 0.0) == rising_at_lo) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  const double t = 0.5 * (lo + hi), t2 = t * t, t3 = t2 * t;
+  const double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2,
+               h11 = t3 - t2;
+  turn.inside = true;
+  turn.theta = t;
+  turn.z_m = h00 * z0_m + h10 * v0 + h01 * z1_m + h11 * v1;
+  turn.d_z0 = h00;
+  turn.d_z1 = h01;
+  turn.d_v0 = h10 * dt_s;
+  turn.d_v1 = h11 * dt_s;
+  return turn;
+}
+
+void ModelTerm::advance_rate_independent(double z0_m, double z_dot0_m_s, double z1_m,
+                                         double z_dot1_m_s, double dt_s, double* state) const {
+  StateStepSensitivity unused;
+  const HermiteTurn turn = hermite_turning_point(z0_m, z_dot0_m_s, z1_m, z_dot1_m_s, dt_s);
+  if (turn.inside) {
+    advance_state_sensitivity(z0_m, turn.z_m, state, unused);
+    advance_state_sensitivity(turn.z_m, z1_m, state, unused);
+  } else {
+    advance_state_sensitivity(z0_m, z1_m, state, unused);
+  }
+}
+
 void ModelTerm::advance_state(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
                               double dt_s, double* state) const {
   const int n = state_size();

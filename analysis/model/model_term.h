@@ -29,6 +29,21 @@ struct StateStepSensitivity {
   bool affine = false;  // s₁ is affine in s₀ (a shift of s₀ shifts s₁ by ∂s₁/∂s₀ times it)
 };
 
+/// Where the cubic Hermite path from (z0, ż0) to (z1, ż1) over dt turns (ż = 0 inside the step),
+/// the path every solver that samples a known orbit assumes between samples
+/// (ModelTerm::advance_state). A rate-independent state reverses at the turning point's z, not at
+/// the nearer sample: stepping through it makes the state a continuous function of the orbit.
+struct HermiteTurn {
+  bool inside = false;  // ż0 and ż1 have opposite signs: one turning point in (0, 1)
+  double theta = 0.0;   // its place in the step, θ ∈ (0, 1)
+  double z_m = 0.0;     // z at it
+  /// ∂z_turn/∂z0, ∂z_turn/∂z1, ∂z_turn/∂ż0, ∂z_turn/∂ż1 at fixed θ (the path is stationary in θ
+  /// there, so these are the whole derivatives): the Hermite weights h00, h01, h10 dt, h11 dt.
+  double d_z0 = 0.0, d_z1 = 0.0, d_v0 = 0.0, d_v1 = 0.0;
+};
+HermiteTurn hermite_turning_point(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
+                                  double dt_s);
+
 /// One named contribution to the restoring surface R(z, ż) of eq. (1): m z̈ + Σ F_i(z, ż, s_i) = f.
 ///
 /// A term may carry an internal state s (for hysteresis: Dahl, Maxwell slip) whose rate is
@@ -46,7 +61,11 @@ class ModelTerm {
   virtual TermKind kind() const = 0;
 
   /// Force of the term on the left-hand side of eq. (1), in N. `state` points at state_size()
-  /// values (nullptr allowed when state_size() == 0).
+  /// values. **Force without a state**: with `state` nullptr a stateful term gives the part of
+  /// its force that does not depend on the state (0 for a pure hysteresis element such as the
+  /// Dahl element); solvers that track the state on a sampled orbit (HysteresisMarch) add the
+  /// rest, force(z, ż, s) − force(z, ż, nullptr), which must not depend on ż explicitly. The same
+  /// split holds for partials().
   virtual double force(double z_m, double z_dot_m_s, const double* state) const = 0;
   virtual TermPartials partials(double z_m, double z_dot_m_s, const double* state) const = 0;
 
@@ -61,9 +80,12 @@ class ModelTerm {
   /// update (a rate-independent hysteresis) override it.
   virtual void advance_state(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
                              double dt_s, double* state) const;
-  /// advance_state() with its sensitivities, for a term whose state is one value updated by the
-  /// path of z alone (rate-independent hysteresis). Returns false when the term offers none;
-  /// solvers then fall back to marching period after period and finite differences.
+  /// The state's update along a monotone stretch from z0 to z1 with its sensitivities, for a
+  /// term whose state is one value updated by the path of z alone (rate-independent
+  /// hysteresis). Returns false when the term offers none; solvers then fall back to marching
+  /// period after period and finite differences. Such a term's advance_state() is
+  /// advance_rate_independent(): this update, through the path's turning point when the step
+  /// holds one.
   virtual bool advance_state_sensitivity(double /*z0_m*/, double /*z1_m*/, double* /*state*/,
                                          StateStepSensitivity& /*out*/) const {
     return false;
@@ -86,6 +108,12 @@ class ModelTerm {
   /// {"type": type(), <parameters>}; term_from_json() reads it back.
   virtual nlohmann::json to_json() const = 0;
   virtual std::unique_ptr<ModelTerm> clone() const = 0;
+
+ protected:
+  /// advance_state() of a rate-independent term: advance_state_sensitivity() from z0 to z1, in
+  /// two monotone stretches through the Hermite path's turning point when the step holds one.
+  void advance_rate_independent(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
+                                double dt_s, double* state) const;
 };
 
 }  // namespace oscilab::analysis

@@ -11,7 +11,7 @@ namespace {
 void validate(const PositionDependentFriction::Parameters& p) {
   const auto finite = [](double v) { return std::isfinite(v); };
   if (!finite(p.alpha_n_m2) || !finite(p.beta_n_m) || !finite(p.gamma_n) || !finite(p.ks) ||
-      !finite(p.vt_m_s)) {
+      !finite(p.vt_m_s) || !finite(p.presliding_length_m)) {
     throw InputError("position-dependent-friction: parameters must be finite numbers");
   }
   if (p.ks < 1.0) {
@@ -22,7 +22,13 @@ void validate(const PositionDependentFriction::Parameters& p) {
     throw InputError("position-dependent-friction: vt_m_s: " + std::to_string(p.vt_m_s) +
                      " must be positive");
   }
+  if (p.presliding_length_m < 0.0) {
+    throw InputError("position-dependent-friction: presliding_length_m: " +
+                     std::to_string(p.presliding_length_m) + " must be 0 (sliding) or positive");
+  }
 }
+
+double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 
 }  // namespace
 
@@ -72,22 +78,80 @@ double PositionDependentFriction::velocity_shape_slope(double z_dot_m_s) const {
          parameters_.vt_m_s;
 }
 
-double PositionDependentFriction::force(double z_m, double z_dot_m_s,
-                                        const double* /*state*/) const {
-  return dynamic_friction_n(z_m) * velocity_shape(z_dot_m_s);
+double PositionDependentFriction::stribeck_shape(double z_dot_m_s) const {
+  const double u = z_dot_m_s / parameters_.vt_m_s;
+  const double q = 0.25 * u * u + 0.75;
+  return (parameters_.ks - 1.0) * u / (q * q);
+}
+
+double PositionDependentFriction::stribeck_shape_slope(double z_dot_m_s) const {
+  const double u = z_dot_m_s / parameters_.vt_m_s;
+  const double q = 0.25 * u * u + 0.75;
+  return (parameters_.ks - 1.0) * 0.75 * (1.0 - u * u) / (q * q * q) / parameters_.vt_m_s;
+}
+
+double PositionDependentFriction::force(double z_m, double z_dot_m_s, const double* state) const {
+  if (!presliding()) return dynamic_friction_n(z_m) * velocity_shape(z_dot_m_s);
+  // Presliding regime: the Coulomb part is f_d(z) s; without a state, the stateless part only.
+  const double coulomb = state ? state[0] : 0.0;
+  return dynamic_friction_n(z_m) * (coulomb + stribeck_shape(z_dot_m_s));
 }
 
 TermPartials PositionDependentFriction::partials(double z_m, double z_dot_m_s,
-                                                 const double* /*state*/) const {
+                                                 const double* state) const {
   const Parameters& p = parameters_;
   const double parabola = (p.alpha_n_m2 * z_m + p.beta_n_m) * z_m + p.gamma_n;
   const double dfd_dz = parabola > 0.0 ? 2.0 * p.alpha_n_m2 * z_m + p.beta_n_m : 0.0;
-  return {dfd_dz * velocity_shape(z_dot_m_s),
-          dynamic_friction_n(z_m) * velocity_shape_slope(z_dot_m_s)};
+  if (!presliding()) {
+    return {dfd_dz * velocity_shape(z_dot_m_s),
+            dynamic_friction_n(z_m) * velocity_shape_slope(z_dot_m_s)};
+  }
+  // At a fixed state: f_d'(z) (s + Stribeck) and f_d(z) Stribeck'(ż); s's own dependence on the
+  // path is the solvers' (HysteresisMarch).
+  const double coulomb = state ? state[0] : 0.0;
+  return {dfd_dz * (coulomb + stribeck_shape(z_dot_m_s)),
+          dynamic_friction_n(z_m) * stribeck_shape_slope(z_dot_m_s)};
+}
+
+void PositionDependentFriction::initial_state(double /*z_m*/, double* state) const {
+  state[0] = 0.0;
+}
+
+void PositionDependentFriction::state_rate(double /*z_m*/, double z_dot_m_s, const double* state,
+                                           double* rate) const {
+  rate[0] = z_dot_m_s * (1.0 - state[0] * sign_of(z_dot_m_s)) / parameters_.presliding_length_m;
+}
+
+void PositionDependentFriction::advance_state(double z0_m, double z_dot0_m_s, double z1_m,
+                                              double z_dot1_m_s, double dt_s, double* state) const {
+  advance_rate_independent(z0_m, z_dot0_m_s, z1_m, z_dot1_m_s, dt_s, state);
+}
+
+bool PositionDependentFriction::advance_state_sensitivity(double z0_m, double z1_m, double* state,
+                                                          StateStepSensitivity& out) const {
+  if (!presliding()) return false;
+  const double kappa = 1.0 / parameters_.presliding_length_m;  // 1/m
+  const double dz = z1_m - z0_m;
+  if (dz == 0.0) {
+    out = {1.0, -kappa, kappa, 0.0, true};
+    return true;
+  }
+  const double d = sign_of(dz);
+  const double log_a = -kappa * std::abs(dz);
+  const double a = std::exp(log_a);
+  const double slope = kappa * a * (1.0 - d * state[0]);
+  state[0] = d + (state[0] - d) * a;
+  out = {a, -slope, slope, log_a, true};
+  return true;
+}
+
+double PositionDependentFriction::force_d_state(double z_m, double /*z_dot_m_s*/,
+                                                const double* /*state*/) const {
+  return presliding() ? dynamic_friction_n(z_m) : 0.0;
 }
 
 std::vector<std::string> PositionDependentFriction::parameter_names() const {
-  return {"alpha_n_m2", "beta_n_m", "gamma_n", "ks", "vt_m_s"};
+  return {"alpha_n_m2", "beta_n_m", "gamma_n", "ks", "vt_m_s", "presliding_length_m"};
 }
 
 double PositionDependentFriction::parameter(const std::string& name) const {
@@ -97,6 +161,7 @@ double PositionDependentFriction::parameter(const std::string& name) const {
   if (name == "gamma_n") return p.gamma_n;
   if (name == "ks") return p.ks;
   if (name == "vt_m_s") return p.vt_m_s;
+  if (name == "presliding_length_m") return p.presliding_length_m;
   throw InputError("position-dependent-friction: unknown parameter \"" + name + "\"");
 }
 
@@ -112,6 +177,8 @@ void PositionDependentFriction::set_parameter(const std::string& name, double va
     p.ks = value;
   } else if (name == "vt_m_s") {
     p.vt_m_s = value;
+  } else if (name == "presliding_length_m") {
+    p.presliding_length_m = value;
   } else {
     throw InputError("position-dependent-friction: unknown parameter \"" + name + "\"");
   }
@@ -121,12 +188,11 @@ void PositionDependentFriction::set_parameter(const std::string& name, double va
 
 nlohmann::json PositionDependentFriction::to_json() const {
   const Parameters& p = parameters_;
-  return {{"type", type()},
-          {"alpha_n_m2", p.alpha_n_m2},
-          {"beta_n_m", p.beta_n_m},
-          {"gamma_n", p.gamma_n},
-          {"ks", p.ks},
-          {"vt_m_s", p.vt_m_s}};
+  nlohmann::json out = {{"type", type()},   {"alpha_n_m2", p.alpha_n_m2},
+                        {"beta_n_m", p.beta_n_m}, {"gamma_n", p.gamma_n},
+                        {"ks", p.ks},        {"vt_m_s", p.vt_m_s}};
+  if (presliding()) out["presliding_length_m"] = p.presliding_length_m;  // the sliding law omits it
+  return out;
 }
 
 std::unique_ptr<ModelTerm> PositionDependentFriction::clone() const {

@@ -6,6 +6,8 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/edc/well.h"
+#include "analysis/identification/campaign_model.h"
+#include "analysis/model/model_json.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "analysis/pipeline/result_units.h"
 #include "app/cli/campaign_input.h"
@@ -23,6 +25,8 @@ struct AnalyzeOptions {
   std::string damping_path;
   std::string cycles_path;
   std::string summary_path;
+  std::string model_out_path;
+  std::string model = "paper";
   double freq_hz = 0.0;
   std::string well;
   bool detect_levels = false;
@@ -172,6 +176,16 @@ void run(const AnalyzeOptions& options) {
     out << analysis::campaign_summary(campaign).dump(2) << '\n';
     if (!out) throw InputError(options.summary_path + ": write failed");
   }
+  if (!options.model_out_path.empty()) {
+    // The lab's model: the recordings' mass and the stiffness slice's K(z), the friction and
+    // damping of --model as a start for a fit or a diagnosis.
+    std::vector<std::string> notes;
+    const analysis::Model model = analysis::campaign_model(
+        analysis::model_from_spec(options.model), campaign, analysis::StiffnessSource::Rfs, notes);
+    analysis::save_model(model, options.model_out_path);
+    for (const std::string& note : notes) std::printf("model: %s\n", note.c_str());
+    std::printf("model written to %s\n", options.model_out_path.c_str());
+  }
   if (options.timing) {
     const double output_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - output_start).count();
@@ -204,6 +218,13 @@ void add_analyze_command(CLI::App& app) {
   command->add_option("--cycles", o->cycles_path, "every fitted cycle (CSV)");
   command->add_option("--summary", o->summary_path,
                       "summary (JSON): settings, detections, stiffness_fit with standard errors");
+  command->add_option("--model-out", o->model_out_path,
+                      "write the identified model (JSON): the recordings' mass and the stiffness "
+                      "slice's K(z), with the friction and damping of --model");
+  command->add_option("--model", o->model,
+                      "starting friction and damping for --model-out: paper | illustrative | "
+                      "MODEL.json")
+      ->capture_default_str();
   command
       ->add_option("--freq", o->freq_hz,
                    "excitation frequency [Hz] (default: sidecar, else detected)")
@@ -229,8 +250,9 @@ void add_analyze_command(CLI::App& app) {
                    "z between the wells [m] (cross-well detection)")
       ->capture_default_str();
   command->callback([o] {
-    if (o->edc_path.empty() && o->rfs_path.empty() && o->summary_path.empty()) {
-      throw InputError("analyze: nothing to write: give --edc, --rfs or --summary");
+    if (o->edc_path.empty() && o->rfs_path.empty() && o->summary_path.empty() &&
+        o->model_out_path.empty()) {
+      throw InputError("analyze: nothing to write: give --edc, --rfs, --summary or --model-out");
     }
     run(*o);
   });

@@ -27,6 +27,7 @@ struct DiagnoseOptions {
   std::vector<std::string> recordings;
   std::string model_form = "paper";
   std::string model = "paper";
+  std::string stiffness = "identified";
   std::string out_dir;
   unsigned long long seed = 1;
   int threads = 0;
@@ -94,23 +95,33 @@ void print_result(const analysis::DiagnosisResult& r, const analysis::EdcDataset
       std::printf("step: nothing accepted (joint dBIC must be < -%.0f with the EDC improved)\n",
                   bic_threshold);
     } else {
-      std::printf("step: %s accepted, joint dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g%s\n",
-                  step.effect.c_str(), step.delta_bic_joint, step.cost_before_j, step.cost_after_j,
+      std::printf("step: %s%s accepted, joint dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g%s\n",
+                  step.effect.c_str(),
+                  step.embodiment == "friction-regime" ? " (as the friction's own regime)" : "",
+                  step.delta_bic_joint, step.cost_before_j, step.cost_after_j,
                   step.weighted_before, step.weighted_after,
                   step.withdrawn ? " -- withdrawn: its strength vanished after later effects" : "");
     }
     for (const auto& t : step.trials) {
       if (!t.solved) {
-        std::printf("    %-22s not solved\n", t.effect.c_str());
+        std::printf("    %-30s not solved\n", t.effect.c_str());
         continue;
       }
-      std::printf("    %-22s dBIC edc %9.1f joint %9.1f  [%s]  %s\n", t.effect.c_str(), t.delta_bic,
+      const std::string label =
+          t.embodiment == "friction-regime" ? t.effect + " (regime)" : t.effect;
+      std::printf("    %-30s dBIC edc %9.1f joint %9.1f  [%s]  %s\n", label.c_str(), t.delta_bic,
                   t.delta_bic_joint, evidence_text(t.evidence).c_str(),
                   analysis::candidate_outcome(step, t, bic_threshold).c_str());
     }
   }
   std::printf("verdict: %s (%.1f s)%s\n", r.verdict.c_str(), r.seconds,
               r.incomplete ? " -- INCOMPLETE: stopped at --max-seconds" : "");
+  if (r.gap_explained) {
+    std::printf("gap explained: the final model's chi2/dof %.3g is within the noise level %.3g\n",
+                r.final_maps.reduced_chi2, r.final_noise_reduced_chi2);
+  } else {
+    std::printf("GAP NOT EXPLAINED: %s\n", analysis::gap_open_message(r).c_str());
+  }
 }
 
 void run(const DiagnoseOptions& o) {
@@ -129,6 +140,7 @@ void run(const DiagnoseOptions& o) {
   const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, {}, {});
   analysis::FitSetup setup;
   setup.base_model = analysis::model_from_spec(o.model);
+  setup.stiffness = analysis::parse_stiffness_source(o.stiffness, "--stiffness");
   setup.cost = cost_settings(o.cost);
   std::vector<std::string> notes;
   const analysis::ModelForm form = analysis::fit_form(campaign, setup, notes);
@@ -184,6 +196,12 @@ void add_diagnose_command(CLI::App& app) {
   command->add_option("--model-form", o->model_form, "starting model form: paper")
       ->capture_default_str();
   command->add_option("--model", o->model, "base model (mass, stiffness): paper | MODEL.json")
+      ->capture_default_str();
+  command
+      ->add_option("--stiffness", o->stiffness,
+                   "K(z): identified (free coefficients, identified with the friction, starting "
+                   "from the records' stiffness slice or the model's) | rfs (the slice's cubic, "
+                   "held) | model (the model's, held)")
       ->capture_default_str();
   command->add_option("--out", o->out_dir, "output directory (report.json, figures)")->required();
   command->add_option("--seed", o->seed, "seed of the baseline's global search")

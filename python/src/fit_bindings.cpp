@@ -264,7 +264,7 @@ status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
       [](const py::object& recordings, const py::object& model, std::uint64_t seed, int threads,
          int harmonics, int max_harmonics, double model_error, double max_seconds, bool edc_only,
          double bic_threshold, int max_steps, long baseline_evaluations, long candidate_evaluations,
-         const std::string& model_form, const py::object& progress) {
+         const std::string& model_form, const std::string& stiffness, const py::object& progress) {
         if (model_form != "paper") {
           throw InputError("model_form: unknown form \"" + model_form + "\" (paper)");
         }
@@ -277,6 +277,7 @@ status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
         const auto campaign = campaign_of(recordings, py::none(), py::none(), records);
         analysis::FitSetup setup;
         setup.base_model = model_argument(model);
+        setup.stiffness = analysis::parse_stiffness_source(stiffness, "stiffness");
         setup.cost = analysis::cost_settings(harmonics, max_harmonics, model_error, "harmonics",
                                              "max_harmonics");
         std::vector<std::string> notes;
@@ -315,14 +316,17 @@ status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
       py::arg("model_error") = -1.0, py::arg("max_seconds") = 120.0, py::arg("edc_only") = false,
       py::arg("bic_threshold") = 10.0, py::arg("max_steps") = 3,
       py::arg("baseline_evaluations") = 1500, py::arg("candidate_evaluations") = 600,
-      py::arg("model_form") = "paper", py::arg("progress") = py::none(),
+      py::arg("model_form") = "paper", py::arg("stiffness") = "identified",
+      py::arg("progress") = py::none(),
       R"doc(The model-gap diagnosis (`oscilab-cli diagnose`): fit the paper's form, map where model
 and measurement disagree, refit every candidate effect, accept the best by joint ΔBIC, repeat.
 
 recordings: paths, Recording objects or an Analysis (stepped-sine records of both wells).
 max_seconds: wall-clock bound [s] (0: none); edc_only: compare on the EDC alone; bic_threshold:
 accept when ΔBIC < −this; max_steps: effects added at most; baseline_evaluations,
-candidate_evaluations: model evaluations of those fits; other arguments as fit().
+candidate_evaluations: model evaluations of those fits; stiffness: 'identified' (K(z)'s
+coefficients identified with the friction, starting from the records' stiffness slice or the
+model's), 'rfs' or 'model' (held); other arguments as fit().
 Returns report.json as a dict: baseline {cost_j ...}, steps [{effect, evidence, cost_before_j,
 cost_after_j}], verdict (an effect name of contract §3, or 'none'), final_model, notes; and
 final_model_object (a Model) when there is one. Ctrl-C stops it (KeyboardInterrupt).)doc");

@@ -56,9 +56,21 @@ TEST(EffectCandidates, PaperFormGetsEveryEffectItDoesNotHold) {
   const ModelForm form = ModelForm::paper(paper_model());
   const EdcDataset data = testing::twin_dataset(paper_model(), {}, testing::few_levels_n());
   std::vector<std::string> names;
+  int friction_regimes = 0;
   for (const auto& c : effect_candidates(form, data)) {
     names.push_back(c.effect);
-    EXPECT_EQ(c.term->type() == "polynomial-stiffness", c.stiffness) << c.effect;
+    if (!c.term) {
+      // A change of the law the form holds: presliding as the friction's own regime.
+      EXPECT_EQ(c.embodiment, "friction-regime") << c.effect;
+      EXPECT_EQ(c.changes_type, "position-dependent-friction");
+      EXPECT_FALSE(c.can_vanish);
+      const ModelForm extended = c.extend(form, c.scan.front());
+      EXPECT_EQ(extended.size(), form.size() + 1);
+      EXPECT_EQ(extended.build(extended.initial()).state_size(), 1);
+      ++friction_regimes;
+    } else {
+      EXPECT_EQ(c.term->type() == "polynomial-stiffness", c.stiffness) << c.effect;
+    }
     EXPECT_FALSE(c.scan.empty()) << c.effect;
     for (const auto& start : c.scan) {
       ASSERT_EQ(start.size(), static_cast<Eigen::Index>(c.free.size()));
@@ -69,10 +81,21 @@ TEST(EffectCandidates, PaperFormGetsEveryEffectItDoesNotHold) {
     }
   }
   // The paper's form has viscous damping and position-dependent friction already.
+  // Presliding comes in two embodiments: an added Dahl element and the friction's own regime.
   const std::vector<std::string> expected = {
-      "coulomb-friction",      "quadratic-damping",   "cubic-damping",   "stribeck-friction",
-      "presliding-hysteresis", "quadratic-stiffness", "cubic-stiffness", "quintic-stiffness"};
+      "coulomb-friction",    "quadratic-damping",     "cubic-damping",
+      "stribeck-friction",   "presliding-hysteresis", "presliding-hysteresis",
+      "quadratic-stiffness", "cubic-stiffness",       "quintic-stiffness"};
   EXPECT_EQ(names, expected);
+  EXPECT_EQ(friction_regimes, 1);
+  // With the stiffness identified, its own powers are no missing effect: only the quintic stays.
+  ModelForm identified = form;
+  identified.free_stiffness();
+  std::vector<std::string> stiffness_names;
+  for (const auto& c : effect_candidates(identified, data)) {
+    if (c.stiffness) stiffness_names.push_back(c.effect);
+  }
+  EXPECT_EQ(stiffness_names, std::vector<std::string>{"quintic-stiffness"});
   // Every candidate and `none` is in the contract's vocabulary.
   for (const auto& n : names) {
     EXPECT_NE(std::find(effect_vocabulary().begin(), effect_vocabulary().end(), n),

@@ -100,10 +100,11 @@ TEST(FitSetup, ValidateNamesTheFirstBadChoiceAsTheFrontEndSpellsIt) {
 TEST(FitSetup, StiffnessSourceNamesRoundTripAndOthersAreRejectedByName) {
   EXPECT_EQ(parse_stiffness_source("model", "--stiffness"), StiffnessSource::Model);
   EXPECT_EQ(parse_stiffness_source("rfs", "--stiffness"), StiffnessSource::Rfs);
+  EXPECT_EQ(parse_stiffness_source("identified", "--stiffness"), StiffnessSource::Identified);
   EXPECT_EQ(input_error_of([] { parse_stiffness_source("RFS", "stiffness"); }),
-            "stiffness: \"RFS\" is not model or rfs");
+            "stiffness: \"RFS\" is not model, rfs or identified");
   EXPECT_EQ(input_error_of([] { parse_stiffness_source("", "--stiffness"); }),
-            "--stiffness: \"\" is not model or rfs");
+            "--stiffness: \"\" is not model, rfs or identified");
 }
 
 }  // namespace
