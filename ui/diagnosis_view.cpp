@@ -56,6 +56,19 @@ QString verdict_details(const analysis::DiagnosisResult& r) {
   return out;
 }
 
+// Whether the final model explains the data within its noise, next to the verdict.
+QString gap_text(const analysis::DiagnosisResult& r) {
+  if (r.gap_explained) {
+    return QObject::tr(
+               " &nbsp; <span style=\"color:#2e7d32\">gap explained</span> "
+               "(χ²/ν %1 ≤ %2)")
+        .arg(r.final_maps.reduced_chi2, 0, 'g', 3)
+        .arg(r.final_noise_reduced_chi2, 0, 'g', 3);
+  }
+  return QObject::tr("<br><b><span style=\"color:#c62828\">Gap not explained:</span></b> %1")
+      .arg(QString::fromStdString(analysis::gap_open_message(r)).toHtmlEscaped());
+}
+
 }  // namespace
 
 DiagnosisView::DiagnosisView(QWidget* parent) : QWidget(parent) {
@@ -111,7 +124,7 @@ void DiagnosisView::show_result(const analysis::DiagnosisResult& r, double bic_t
           .arg(r.noise_reduced_chi2, 0, 'g', 3)
           .arg(1e3 * r.final_evaluation.cost_j, 0, 'g', 4)
           .arg(r.final_maps.reduced_chi2, 0, 'g', 3) +
-      verdict_details(r));
+      gap_text(r) + verdict_details(r));
   show_steps(r, bic_threshold);
   show_residuals(r);
   show_missing_energy(r);
@@ -127,7 +140,10 @@ void DiagnosisView::show_steps(const analysis::DiagnosisResult& r, double bic_th
     const auto& s = r.steps[static_cast<std::size_t>(i)];
     for (const auto& t : s.trials) {
       step_table_->setItem(row, 0, cell(QString::number(i + 1)));
-      step_table_->setItem(row, 1, cell(QString::fromStdString(t.effect)));
+      step_table_->setItem(
+          row, 1,
+          cell(QString::fromStdString(
+              t.embodiment == "friction-regime" ? t.effect + " (friction regime)" : t.effect)));
       step_table_->setItem(
           row, 2, cell(QString::fromStdString(analysis::candidate_outcome(s, t, bic_threshold))));
       step_table_->setItem(row, 3,

@@ -8,6 +8,7 @@
 #include <QPointer>
 
 #include "analysis/common/input_error.h"
+#include "analysis/diagnosis/campaign_fit.h"
 #include "daq/recording/campaign_reader.h"
 #include "ui/background_job.h"
 
@@ -82,8 +83,8 @@ bool FitJob::start(std::vector<std::string> recordings, analysis::FitSetup setup
       const auto long_ago = std::chrono::steady_clock::now() - std::chrono::seconds(1);
       auto last_point = long_ago;
       auto last_preview = long_ago;
-      outcome->fit = analysis::fit_edc(
-          *objective, options,
+      analysis::CampaignFit result = analysis::fit_campaign(
+          prepared, campaign, options,
           [&](const analysis::FitProgress& p) {
             if (p.stage == analysis::FitStage::Uncertainty) return;
             progress(std::min(0.95, static_cast<double>(p.evaluations) / budget));
@@ -114,6 +115,8 @@ bool FitJob::start(std::vector<std::string> recordings, analysis::FitSetup setup
                 Qt::QueuedConnection);
           },
           cancel);
+      outcome->fit = std::move(result.fit);
+      outcome->objective = std::move(result.objective);  // the settled one, K(z) identified
     } catch (const InputError& error) {
       outcome->error = error.what();
     } catch (const std::exception& error) {

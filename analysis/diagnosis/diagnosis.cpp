@@ -13,6 +13,7 @@
 #include "analysis/common/parallel_for.h"
 #include "analysis/diagnosis/effect_candidates.h"
 #include "analysis/diagnosis/joint_refit.h"
+#include "analysis/diagnosis/settled_model.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/sigma_budget_report.h"
 
@@ -209,43 +210,25 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   ModelForm current = form.with_initial(theta);
   const bool use_fp = options.use_fingerprints;
 
-  // Settling a model: its σ budget calibrated at θ (the model error and the defect correction
-  // are the fitted model's), then a Levenberg–Marquardt refit on the joint residuals, repeated
-  // while θ moves (the correction was calibrated at the old θ), then the budget once more at the
-  // final θ. The σ budget is then shared by every objective of the step, so that the χ² of the
-  // current model and of all its candidates are comparable. A candidate's gain is measured
-  // against the settled model, so that a baseline search that stopped short of its optimum (the
-  // paper's form has a weakly identified f_d(0), §5) does not credit an added term with the rest.
+  // Settling (settle_model): the σ budget calibrated at θ, the joint refit repeated while θ moves.
+  // The σ budget is then shared by every objective of the step, so that the χ² of the current
+  // model and of all its candidates are comparable. A candidate's gain is measured against the
+  // settled model, so that a baseline search that stopped short of its optimum (the paper's form
+  // has a weakly identified f_d(0), §5) does not credit an added term with the rest.
   EdcCostSettings cost = base_cost;
-  std::optional<EdcObjective> objective;
+  std::shared_ptr<const EdcObjective> objective;
   EdcEvaluation evaluation;
   DiscrepancyMaps maps;
-  Eigen::VectorXd calibrated_at;
-  const auto calibrate = [&] {
-    cost.budget = EdcObjective::calibrate_budget(current, data, base_cost, theta);
-    objective.emplace(current, data, cost);
-    evaluation = objective->evaluate(theta);
-    maps = discrepancy_maps(*objective, theta, evaluation, campaign);
-    calibrated_at = theta;
-  };
   const auto settle = [&] {
-    constexpr int kRounds = 3;
-    for (int round = 0; round < kRounds && !cancel.cancelled(); ++round) {
-      calibrate();
-      const double before = joint_chi2(evaluation, maps.response, use_fp);
-      const JointRefit fit = joint_refit(*objective, theta, use_fp,
-                                         static_cast<int>(options.candidate_evaluations), cancel);
-      result.evaluations += fit.evaluations;
-      if (fit.theta.size() == 0 || !(fit.joint_chi2 < before)) break;
-      const double moved =
-          (current.to_unit(fit.theta) - current.to_unit(theta)).cwiseAbs().maxCoeff();
-      theta = fit.theta;
-      current = current.with_initial(theta);
-      evaluation = fit.evaluation;
-      maps = discrepancy_maps(*objective, theta, evaluation, campaign);
-      if (moved < 1e-3 || before - fit.joint_chi2 < 0.01 * before) break;
-    }
-    if (calibrated_at.size() != theta.size() || calibrated_at != theta) calibrate();
+    SettledModel settled = settle_model(current, theta, data, campaign, base_cost, use_fp,
+                                        static_cast<int>(options.candidate_evaluations), cancel);
+    result.evaluations += settled.evaluations;
+    current = std::move(settled.form);
+    theta = std::move(settled.theta);
+    cost = std::move(settled.cost);
+    objective = std::move(settled.objective);
+    evaluation = std::move(settled.evaluation);
+    maps = std::move(settled.maps);
   };
   settle();
   result.baseline.theta = theta;

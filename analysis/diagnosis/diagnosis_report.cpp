@@ -152,8 +152,8 @@ std::string candidate_outcome(const DiagnosisStep& step, const CandidateTrial& t
     const std::string label = best->embodiment == "added-term" || best->embodiment.empty()
                                   ? best->effect
                                   : best->effect + " as " + best->embodiment;
-    std::snprintf(text, sizeof text, "rejected: %s explains more (joint dBIC %.3g)",
-                  label.c_str(), best->delta_bic_joint);
+    std::snprintf(text, sizeof text, "rejected: %s explains more (joint dBIC %.3g)", label.c_str(),
+                  best->delta_bic_joint);
     return text;
   }
   if (!(trial.delta_bic_joint < -bic_threshold)) {
@@ -272,10 +272,11 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
   // Whether the final model explains the data within its noise (scripts read this field).
   out["gap_explained"] = result.gap_explained;
   {
-    nlohmann::json gap = {{"final_reduced_chi2", std::isfinite(result.final_maps.reduced_chi2)
-                                                     ? nlohmann::json(result.final_maps.reduced_chi2)
-                                                     : nlohmann::json(nullptr)},
-                          {"noise_reduced_chi2", result.final_noise_reduced_chi2}};
+    nlohmann::json gap = {
+        {"final_reduced_chi2", std::isfinite(result.final_maps.reduced_chi2)
+                                   ? nlohmann::json(result.final_maps.reduced_chi2)
+                                   : nlohmann::json(nullptr)},
+        {"noise_reduced_chi2", result.final_noise_reduced_chi2}};
     nlohmann::json largest = nlohmann::json::array();
     for (const LevelDiscrepancy& d : result.largest_residual_levels) {
       largest.push_back({{"well", to_string(well_of(d.positive_well))},

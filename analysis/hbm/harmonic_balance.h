@@ -156,8 +156,9 @@ class HarmonicBalance {
   Eigen::VectorXd amp_z_, amp_z_dot_;
   Eigen::VectorXd z_, z_tau_, z_dot_, force_, force_coefficients_, stiffness_, damping_;
   Eigen::VectorXd hysteretic_, hysteretic_plus_, projection_, projection_plus_;
-  Eigen::MatrixXd basis_, basis_dot_, basis_force_;  // exact stateful Jacobian: φ_j, Ω φ_j' and δF_j
-  double basis_omega_ = 0.0;                          // Ω of basis_dot_
+  Eigen::MatrixXd basis_, basis_dot_,
+      basis_force_;           // exact stateful Jacobian: φ_j, Ω φ_j' and δF_j
+  double basis_omega_ = 0.0;  // Ω of basis_dot_
   std::vector<std::complex<double>> stiffness_dft_, damping_dft_;
 };
 

@@ -33,9 +33,10 @@ Model campaign_model(const Model& model, const CampaignAnalysis& campaign,
   const bool from_slice = stiffness == StiffnessSource::Rfs ||
                           (stiffness == StiffnessSource::Identified && campaign.stiffness);
   if (stiffness == StiffnessSource::Identified && !campaign.stiffness) {
-    notes.push_back("stiffness identified from the stepped responses, starting from the model's "
-                    "K(z) (the records give no stiffness slice: " +
-                    campaign.rfs_message + ")");
+    notes.push_back(
+        "stiffness identified from the stepped responses, starting from the model's "
+        "K(z) (the records give no stiffness slice: " +
+        campaign.rfs_message + ")");
   }
   for (const auto& term : model.terms()) {
     if (from_slice && term->type() == "polynomial-stiffness") {

@@ -32,6 +32,7 @@ ModelForm fit_form(const CampaignAnalysis& campaign, const FitSetup& setup,
 
 PreparedFit prepare_fit(const CampaignAnalysis& campaign, const FitSetup& setup) {
   PreparedFit prepared;
+  prepared.cost = setup.cost;
   const ModelForm form = fit_form(campaign, setup, prepared.notes);
   prepared.objective =
       std::make_shared<const EdcObjective>(form, edc_dataset(campaign), setup.cost);

@@ -39,6 +39,7 @@ EdcCostSettings cost_settings(int harmonics, int max_harmonics, double model_err
 struct PreparedFit {
   std::shared_ptr<const EdcObjective> objective;
   std::vector<std::string> notes;
+  EdcCostSettings cost;  // the set-up's cost settings, before the σ budget was calibrated
 };
 
 /// The paper's form (eq. (7), θ of eq. (9)) of the base model with the recordings' mass and the

@@ -174,7 +174,8 @@ void ModelForm::free_stiffness(double relative) {
 }
 
 bool ModelForm::is_stiffness(int i) const {
-  return i >= 0 && i < size() && bindings_[static_cast<std::size_t>(i)].kind == BindingKind::Stiffness;
+  return i >= 0 && i < size() &&
+         bindings_[static_cast<std::size_t>(i)].kind == BindingKind::Stiffness;
 }
 
 bool ModelForm::frees_stiffness_power(int power) const {
@@ -199,7 +200,8 @@ ModelForm ModelForm::holding_stiffness(const Eigen::VectorXd& theta) const {
     if (b.kind == BindingKind::Stiffness) {
       out.base_.set_parameter(b.term_index, b.term_parameter, theta(i));
     } else {
-      out.add(parameters_[static_cast<std::size_t>(i)], b, std::clamp(theta(i), parameters_[i].lower, parameters_[i].upper));
+      out.add(parameters_[static_cast<std::size_t>(i)], b,
+              std::clamp(theta(i), parameters_[i].lower, parameters_[i].upper));
     }
   }
   return out;

@@ -188,9 +188,12 @@ void PositionDependentFriction::set_parameter(const std::string& name, double va
 
 nlohmann::json PositionDependentFriction::to_json() const {
   const Parameters& p = parameters_;
-  nlohmann::json out = {{"type", type()},   {"alpha_n_m2", p.alpha_n_m2},
-                        {"beta_n_m", p.beta_n_m}, {"gamma_n", p.gamma_n},
-                        {"ks", p.ks},        {"vt_m_s", p.vt_m_s}};
+  nlohmann::json out = {{"type", type()},
+                        {"alpha_n_m2", p.alpha_n_m2},
+                        {"beta_n_m", p.beta_n_m},
+                        {"gamma_n", p.gamma_n},
+                        {"ks", p.ks},
+                        {"vt_m_s", p.vt_m_s}};
   if (presliding()) out["presliding_length_m"] = p.presliding_length_m;  // the sliding law omits it
   return out;
 }

@@ -32,11 +32,11 @@ namespace oscilab::analysis {
 class PositionDependentFriction final : public ModelTerm {
  public:
   struct Parameters {
-    double alpha_n_m2 = 0.0;  // α of eq. (6)
-    double beta_n_m = 0.0;    // β
-    double gamma_n = 0.0;     // γ = f_d(0)
-    double ks = 1.0;          // k_s ≥ 1: static / dynamic friction ratio
-    double vt_m_s = 1e-2;     // v_t > 0: transition velocity
+    double alpha_n_m2 = 0.0;           // α of eq. (6)
+    double beta_n_m = 0.0;             // β
+    double gamma_n = 0.0;              // γ = f_d(0)
+    double ks = 1.0;                   // k_s ≥ 1: static / dynamic friction ratio
+    double vt_m_s = 1e-2;              // v_t > 0: transition velocity
     double presliding_length_m = 0.0;  // δ ≥ 0: 0 the sliding law of eq. (5), > 0 presliding
   };
 

@@ -221,9 +221,10 @@ void add_analyze_command(CLI::App& app) {
   command->add_option("--model-out", o->model_out_path,
                       "write the identified model (JSON): the recordings' mass and the stiffness "
                       "slice's K(z), with the friction and damping of --model");
-  command->add_option("--model", o->model,
-                      "starting friction and damping for --model-out: paper | illustrative | "
-                      "MODEL.json")
+  command
+      ->add_option("--model", o->model,
+                   "starting friction and damping for --model-out: paper | illustrative | "
+                   "MODEL.json")
       ->capture_default_str();
   command
       ->add_option("--freq", o->freq_hz,

@@ -95,12 +95,13 @@ void print_result(const analysis::DiagnosisResult& r, const analysis::EdcDataset
       std::printf("step: nothing accepted (joint dBIC must be < -%.0f with the EDC improved)\n",
                   bic_threshold);
     } else {
-      std::printf("step: %s%s accepted, joint dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g%s\n",
-                  step.effect.c_str(),
-                  step.embodiment == "friction-regime" ? " (as the friction's own regime)" : "",
-                  step.delta_bic_joint, step.cost_before_j, step.cost_after_j,
-                  step.weighted_before, step.weighted_after,
-                  step.withdrawn ? " -- withdrawn: its strength vanished after later effects" : "");
+      std::printf(
+          "step: %s%s accepted, joint dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g%s\n",
+          step.effect.c_str(),
+          step.embodiment == "friction-regime" ? " (as the friction's own regime)" : "",
+          step.delta_bic_joint, step.cost_before_j, step.cost_after_j, step.weighted_before,
+          step.weighted_after,
+          step.withdrawn ? " -- withdrawn: its strength vanished after later effects" : "");
     }
     for (const auto& t : step.trials) {
       if (!t.solved) {

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "analysis/common/input_error.h"
+#include "analysis/diagnosis/campaign_fit.h"
 #include "analysis/figures/fit_figures.h"
 #include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/edc_fit.h"
@@ -107,11 +108,12 @@ void run(const FitCommandOptions& o) {
   setup.stiffness = stiffness;
   setup.cost = cost_settings(o.cost);
   const analysis::PreparedFit prepared = analysis::prepare_fit(campaign, setup);
-  const analysis::EdcObjective& objective = *prepared.objective;
-  const analysis::EdcDataset& data = objective.data();
+  std::shared_ptr<const analysis::EdcObjective> fitted_objective = prepared.objective;
+  const analysis::EdcObjective& prepared_objective = *prepared.objective;
+  const analysis::EdcDataset& data = prepared_objective.data();
   const std::vector<std::string>& notes = prepared.notes;
 
-  std::printf("fit: %d levels (", objective.level_count());
+  std::printf("fit: %d levels (", prepared_objective.level_count());
   for (std::size_t g = 0; g < data.groups.size(); ++g) {
     std::printf("%s%zu in the %s well at %.4g Hz", g ? ", " : "", data.groups[g].levels.size(),
                 data.groups[g].positive_well ? "z+*" : "z-*", data.groups[g].freq_hz);
@@ -119,19 +121,23 @@ void run(const FitCommandOptions& o) {
   std::printf("), %zu left out\n", data.excluded.size());
   for (const auto& e : data.excluded) std::printf("  left out: %s\n", e.c_str());
   for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());
-  print_sigma_budget(objective);
+  print_sigma_budget(prepared_objective);
 
   analysis::FitResult fit;
   {
     ProgressBar bar("fit");
     const ProgressFn draw = bar.callback();
     const long budget = analysis::evaluation_budget(options);
-    fit = analysis::fit_edc(objective, options, [&](const analysis::FitProgress& p) {
-      if (draw && p.stage != analysis::FitStage::Uncertainty) {
-        draw(std::min(1.0, static_cast<double>(p.evaluations) / static_cast<double>(budget)));
-      }
-    });
+    analysis::CampaignFit result =
+        analysis::fit_campaign(prepared, campaign, options, [&](const analysis::FitProgress& p) {
+          if (draw && p.stage != analysis::FitStage::Uncertainty) {
+            draw(std::min(1.0, static_cast<double>(p.evaluations) / static_cast<double>(budget)));
+          }
+        });
+    fit = std::move(result.fit);
+    fitted_objective = std::move(result.objective);
   }
+  const analysis::EdcObjective& objective = *fitted_objective;
   print_table(fit, objective);
 
   daq::write_fit_json(o.out_path, fit, objective, o.recordings, notes);
@@ -182,8 +188,11 @@ void add_fit_command(CLI::App& app) {
       ->add_option("--bootstrap", o->search.uncertainty.bootstrap_replicates,
                    "bootstrap replicates over levels (0: none)")
       ->capture_default_str();
-  command->add_option("--stiffness", o->stiffness, "K(z) from the model or from the records' RFS")
-      ->check(CLI::IsMember({"model", "rfs"}))
+  command
+      ->add_option("--stiffness", o->stiffness,
+                   "K(z): model (the model's, held) | rfs (the records' slice cubic, held) | "
+                   "identified (free, identified with the friction from the slice on)")
+      ->check(CLI::IsMember({"model", "rfs", "identified"}))
       ->capture_default_str();
   command
       ->add_option("--freq", o->freq_hz,

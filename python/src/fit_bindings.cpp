@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/diagnosis/campaign_fit.h"
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/fit_setup.h"
@@ -90,13 +91,13 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
   analysis::validate(options, "");
   options.method = analysis::parse_fit_method(method);
   options.genetic.elite = analysis::default_elite(population);
-  const analysis::EdcObjective& objective = *problem.prepared.objective;
+  std::shared_ptr<const analysis::EdcObjective> objective = problem.prepared.objective;
   const long budget = analysis::evaluation_budget(options);
   analysis::FitResult fit;
   run_job(
       [&](const ReportFn& report, const CancelToken& cancel) {
-        fit = analysis::fit_edc(
-            objective, options,
+        analysis::CampaignFit result = analysis::fit_campaign(
+            problem.prepared, *problem.campaign, options,
             [&](const analysis::FitProgress& p) {
               ProgressReport r;
               r.fraction = p.stage == analysis::FitStage::Uncertainty
@@ -111,9 +112,11 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
               report(r);
             },
             cancel);
+        fit = std::move(result.fit);
+        objective = std::move(result.objective);
       },
       progress);
-  return to_python(daq::fit_json(fit, objective, problem.records, problem.prepared.notes));
+  return to_python(daq::fit_json(fit, *objective, problem.records, problem.prepared.notes));
 }
 
 }  // namespace

@@ -4,12 +4,18 @@
 //   diagnosis_study bias SEEDS            the estimator's bias: measured EDC, |Z1| and harmonic
 //                                         ratios of the paper's model against its converged
 //                                         harmonic balance (H = 31), at 8, 9, 10 Hz, noise ×1, ×3
-//   diagnosis_study power EFFECT SCALE FREQ NOISE SEED
+//   diagnosis_study power EFFECT SCALE FREQ NOISE SEED [LEVELS]
 //                                         one blind diagnosis of the paper's model plus EFFECT at
-//                                         SCALE × its reference strength
-//   diagnosis_study control SEED FREQ NOISE
+//                                         SCALE × its reference strength (presliding-regime: the
+//                                         friction's own presliding regime, SCALE = δ in µm;
+//                                         one-sided-damper: outside the vocabulary)
+//   diagnosis_study control SEED FREQ NOISE [LEVELS]
 //                                         one blind diagnosis of the paper's model with its
 //                                         friction parameters θ (eq. (9)) moved by up to ±30 %
+//
+// LEVELS: stepped-sine levels per well, 0.2 → 2.7 N evenly (26 by default). Every diagnosis is
+// run as a lab runs it, the stiffness identified from the records (`--stiffness identified`);
+// OSCILAB_STUDY_TRUE_STIFFNESS=1 gives it the truth's K(z) instead (labelled in the output).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +29,7 @@
 #include "analysis/hbm/level_response.h"
 #include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
+#include "analysis/identification/fit_setup.h"
 #include "analysis/model/position_dependent_friction.h"
 #include "tests/analysis/diagnosis/hidden_effect_campaign.h"
 #include "tests/analysis/identification/twin_data.h"
@@ -74,50 +81,89 @@ int bias_study(int seeds) {
 void print_header() {
   std::printf(
       "case,effect,scale,freq_hz,noise_scale,seed,verdict,correct,status,seconds,"
-      "baseline_reduced_chi2,noise_reduced_chi2,steps,accepted\n");
+      "baseline_reduced_chi2,noise_reduced_chi2,steps,accepted,levels,stiffness,gap_explained,"
+      "final_reduced_chi2,embodiment\n");
+}
+
+bool true_stiffness() {
+  const char* flag = std::getenv("OSCILAB_STUDY_TRUE_STIFFNESS");
+  return flag && std::string(flag) == "1";
+}
+
+// The verdict a correct diagnosis gives for a hidden effect: its vocabulary name (the friction's
+// presliding regime is presliding-hysteresis), none for an effect outside the vocabulary (whose
+// test is gap_explained false).
+std::string expected_verdict(const std::string& effect) {
+  if (effect == "presliding-regime") return "presliding-hysteresis";
+  if (effect == "one-sided-damper") return "-";
+  return effect;
 }
 
 void print_result(const std::string& kind, const std::string& effect, double scale, double freq,
-                  double noise, int seed, const DiagnosisResult& r) {
-  std::string accepted;
+                  double noise, int seed, int levels, const DiagnosisResult& r) {
+  std::string accepted, embodiment = "-";
   for (const DiagnosisStep& s : r.steps) {
     if (s.effect != "none") accepted += (accepted.empty() ? "" : "+") + s.effect;
+    if (s.effect == r.verdict && !s.embodiment.empty()) embodiment = s.embodiment;
   }
-  const bool correct = r.verdict == effect;
-  std::printf("%s,%s,%g,%g,%g,%d,%s,%d,%s,%.1f,%.4g,%.4g,%zu,%s\n", kind.c_str(), effect.c_str(),
-              scale, freq, noise, seed, r.verdict.c_str(), correct ? 1 : 0,
+  const bool correct =
+      effect == "one-sided-damper" ? !r.gap_explained : r.verdict == expected_verdict(effect);
+  std::printf("%s,%s,%g,%g,%g,%d,%s,%d,%s,%.1f,%.4g,%.4g,%zu,%s,%d,%s,%d,%.4g,%s\n", kind.c_str(),
+              effect.c_str(), scale, freq, noise, seed, r.verdict.c_str(), correct ? 1 : 0,
               r.incomplete ? "incomplete" : "complete", r.seconds, r.baseline_maps.reduced_chi2,
-              r.noise_reduced_chi2, r.steps.size(), accepted.empty() ? "-" : accepted.c_str());
+              r.noise_reduced_chi2, r.steps.size(), accepted.empty() ? "-" : accepted.c_str(),
+              levels, true_stiffness() ? "true" : "identified", r.gap_explained ? 1 : 0,
+              r.final_maps.reduced_chi2, embodiment.c_str());
   std::fflush(stdout);
 }
 
-DiagnosisResult run_blind(const Model& truth, int seed, double freq, double noise) {
+// `count` levels per well, evenly from 0.2 to 2.7 N (the paper's grid at 26).
+std::vector<double> level_grid(int count) {
+  std::vector<double> levels;
+  for (int i = 0; i < count; ++i) levels.push_back(0.2 + 2.5 * i / (count - 1));
+  return levels;
+}
+
+DiagnosisResult run_blind(const Model& truth, int seed, double freq, double noise, int levels) {
   testing::CampaignSpec spec;
   spec.freq_hz = freq;
   spec.noise_scale = noise;
-  const CampaignAnalysis campaign = testing::record_campaign(
-      truth, static_cast<std::uint64_t>(seed), testing::paper_levels_n(), spec);
+  const CampaignAnalysis campaign =
+      testing::record_campaign(truth, static_cast<std::uint64_t>(seed), level_grid(levels), spec);
+  // As a lab: the mass known, K(z) identified from the records starting from their stiffness
+  // slice; the friction started from the paper's values (the truth of none but the control's
+  // centre). With the true stiffness only when asked (labelled `true` in the output).
+  FitSetup setup;
   std::vector<std::string> notes;
-  const Model base = campaign_model(paper_model(), campaign, StiffnessSource::Model, notes);
+  ModelForm form = ModelForm::paper(paper_model());
+  if (true_stiffness()) {
+    // The paper's K(z) of Table 1, the truth's but for a hidden stiffness power, held fixed.
+    form = ModelForm::paper(campaign_model(paper_model(), campaign, StiffnessSource::Model, notes));
+  } else {
+    setup.stiffness = StiffnessSource::Identified;
+    form = fit_form(campaign, setup, notes);
+  }
   DiagnosisOptions options;
   options.seed = static_cast<std::uint64_t>(seed);
   const char* seconds = std::getenv("OSCILAB_DIAGNOSE_MAX_SECONDS");
   if (seconds) options.max_seconds = std::atof(seconds);
-  DiagnosisResult result = diagnose(campaign, ModelForm::paper(base), options);
+  DiagnosisResult result = diagnose(campaign, form, options);
   if (const char* path = std::getenv("OSCILAB_STUDY_REPORT")) {
     std::ofstream(path) << diagnosis_report_json(result, {"virtual rig"}).dump(2) << '\n';
   }
   return result;
 }
 
-int power_study(const std::string& effect, double scale, double freq, double noise, int seed) {
+int power_study(const std::string& effect, double scale, double freq, double noise, int seed,
+                int levels) {
   print_header();
   const Model truth = testing::truth_with_effect(effect, scale);
-  print_result("power", effect, scale, freq, noise, seed, run_blind(truth, seed, freq, noise));
+  print_result("power", effect, scale, freq, noise, seed, levels,
+               run_blind(truth, seed, freq, noise, levels));
   return 0;
 }
 
-int control_study(int seed, double freq, double noise) {
+int control_study(int seed, double freq, double noise, int levels) {
   print_header();
   // θ of eq. (9) moved by a uniform factor in [0.7, 1.3] each, drawn from the seed.
   std::mt19937_64 rng(static_cast<std::uint64_t>(seed) * 7919);
@@ -127,7 +173,8 @@ int control_study(int seed, double freq, double noise) {
   Eigen::VectorXd theta = form.initial();
   for (int i = 0; i < theta.size(); ++i) theta[i] *= factor(rng);
   const Model truth = form.build(form.clamp(theta));
-  print_result("control", "none", 0.0, freq, noise, seed, run_blind(truth, seed, freq, noise));
+  print_result("control", "none", 0.0, freq, noise, seed, levels,
+               run_blind(truth, seed, freq, noise, levels));
   return 0;
 }
 
@@ -136,15 +183,19 @@ int control_study(int seed, double freq, double noise) {
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "bias" && argc == 3) return bias_study(std::atoi(argv[2]));
-  if (mode == "power" && argc == 7) {
+  if (mode == "power" && (argc == 7 || argc == 8)) {
+    const int levels = argc == 8 ? std::atoi(argv[7]) : 26;
+    if (levels < 5) return 2;
     return power_study(argv[2], std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]),
-                       std::atoi(argv[6]));
+                       std::atoi(argv[6]), levels);
   }
-  if (mode == "control" && argc == 5) {
-    return control_study(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]));
+  if (mode == "control" && (argc == 5 || argc == 6)) {
+    const int levels = argc == 6 ? std::atoi(argv[5]) : 26;
+    if (levels < 5) return 2;
+    return control_study(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]), levels);
   }
   std::fprintf(stderr,
-               "usage: diagnosis_study bias SEEDS | power EFFECT SCALE FREQ NOISE SEED | "
-               "control SEED FREQ NOISE\n");
+               "usage: diagnosis_study bias SEEDS | power EFFECT SCALE FREQ NOISE SEED [LEVELS] | "
+               "control SEED FREQ NOISE [LEVELS]\n");
   return 2;
 }

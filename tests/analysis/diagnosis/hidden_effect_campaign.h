@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,49 @@ inline std::vector<HiddenEffect> hidden_effects() {
   return out;
 }
 
+/// Outside the vocabulary: viscous damping that engages only beyond z_s, c (z − z_s)² ż (a
+/// damper a test builds, no term of Oscilab's).
+class OneSidedDamper final : public ModelTerm {
+ public:
+  OneSidedDamper(double c_ns_m3, double z_s_m) : c_(c_ns_m3), z_s_(z_s_m) {}
+  std::string type() const override { return "one-sided-damper"; }
+  TermKind kind() const override { return TermKind::Dissipative; }
+  double force(double z, double v, const double*) const override {
+    const double d = std::max(0.0, z - z_s_);
+    return c_ * d * d * v;
+  }
+  TermPartials partials(double z, double v, const double*) const override {
+    const double d = std::max(0.0, z - z_s_);
+    return {2.0 * c_ * d * v, c_ * d * d};
+  }
+  std::vector<std::string> parameter_names() const override { return {}; }
+  double parameter(const std::string& name) const override {
+    throw InputError("one-sided-damper: no parameter " + name);
+  }
+  void set_parameter(const std::string& name, double) override {
+    throw InputError("one-sided-damper: no parameter " + name);
+  }
+  nlohmann::json to_json() const override { return {{"type", type()}}; }
+  std::unique_ptr<ModelTerm> clone() const override {
+    return std::make_unique<OneSidedDamper>(*this);
+  }
+
+ private:
+  double c_, z_s_;
+};
+
+/// The paper's model with its friction in the presliding regime of length δ (eqs. (5)–(6), the
+/// Coulomb part a Dahl state of the contact).
+inline Model paper_with_presliding(double length_m) {
+  Model model = paper_model();
+  for (std::size_t i = 0; i < model.terms().size(); ++i) {
+    if (model.terms()[i]->type() == "position-dependent-friction") {
+      model.set_parameter(i, "presliding_length_m", length_m);
+    }
+  }
+  return model;
+}
+
 /// The paper's model plus `effect` at `scale` × its reference strength (the campaign's strengths
 /// above; stiffness powers at 10 % of k2 and 5 % of k3 of Table 1 for c2 and c3). The scale
 /// multiplies the term's force (F_c, f_s, c_p) and keeps its shape (presliding length, v_s).
@@ -51,6 +95,15 @@ inline Model truth_with_effect(const std::string& effect, double scale) {
       first.add_term(rest.terms()[i]->clone());
     }
     return first;
+  }
+  if (effect == "presliding-regime") {
+    // The friction's own presliding regime: `scale` is δ in µm (a length, not a strength).
+    return paper_with_presliding(1e-6 * scale);
+  }
+  if (effect == "one-sided-damper") {
+    // Outside the vocabulary: c (z − z₊*)² ż beyond the positive well, c = 2e6 N s/m³ × scale.
+    model.add_term(std::make_unique<OneSidedDamper>(2e6 * scale, model.well(true).z_m));
+    return model;
   }
   if (effect == "presliding-hysteresis") {
     model.add_term(std::make_unique<DahlFriction>(0.06 * scale, 3e3 * scale));

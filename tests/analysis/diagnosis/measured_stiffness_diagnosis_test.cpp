@@ -26,36 +26,6 @@
 namespace oscilab::analysis {
 namespace {
 
-// Outside the vocabulary: viscous damping that engages only beyond z_s, c (z − z_s)² ż.
-class OneSidedDamper final : public ModelTerm {
- public:
-  OneSidedDamper(double c_ns_m3, double z_s_m) : c_(c_ns_m3), z_s_(z_s_m) {}
-  std::string type() const override { return "one-sided-damper"; }
-  TermKind kind() const override { return TermKind::Dissipative; }
-  double force(double z, double v, const double*) const override {
-    const double d = std::max(0.0, z - z_s_);
-    return c_ * d * d * v;
-  }
-  TermPartials partials(double z, double v, const double*) const override {
-    const double d = std::max(0.0, z - z_s_);
-    return {2.0 * c_ * d * v, c_ * d * d};
-  }
-  std::vector<std::string> parameter_names() const override { return {}; }
-  double parameter(const std::string& name) const override {
-    throw InputError("one-sided-damper: no parameter " + name);
-  }
-  void set_parameter(const std::string& name, double) override {
-    throw InputError("one-sided-damper: no parameter " + name);
-  }
-  nlohmann::json to_json() const override { return {{"type", type()}}; }
-  std::unique_ptr<ModelTerm> clone() const override {
-    return std::make_unique<OneSidedDamper>(*this);
-  }
-
- private:
-  double c_, z_s_;
-};
-
 // The diagnosis a lab runs: `diagnose --model paper --stiffness identified` (the paper's model as
 // the starting point of the friction and the stiffness, the stiffness identified).
 DiagnosisResult diagnose_as_a_lab(const Model& truth, std::uint64_t seed,
@@ -96,20 +66,10 @@ TEST(MeasuredStiffnessDiagnosis, PaperModelWithoutEffectSaysNone) {
   EXPECT_TRUE(identified);
 }
 
-Model paper_with_presliding(double length_m) {
-  Model model = paper_model();
-  for (std::size_t i = 0; i < model.terms().size(); ++i) {
-    if (model.terms()[i]->type() == "position-dependent-friction") {
-      model.set_parameter(i, "presliding_length_m", length_m);
-    }
-  }
-  return model;
-}
-
 class FrictionRegimePresliding : public ::testing::TestWithParam<double> {};
 
 TEST_P(FrictionRegimePresliding, IsNamedAndTheGapClosesToTheNoise) {
-  const DiagnosisResult r = diagnose_as_a_lab(paper_with_presliding(GetParam()), 1);
+  const DiagnosisResult r = diagnose_as_a_lab(testing::paper_with_presliding(GetParam()), 1);
   EXPECT_EQ(r.verdict, "presliding-hysteresis");
   EXPECT_TRUE(r.gap_explained) << r.message;
   EXPECT_LE(r.final_maps.reduced_chi2, r.final_noise_reduced_chi2);
@@ -135,7 +95,7 @@ TEST(MeasuredStiffnessDiagnosis, MovedFrictionControlStartedFarSaysNone) {
 
 TEST(MeasuredStiffnessDiagnosis, EffectOutsideTheVocabularyLeavesTheGapOpenAndSaysSo) {
   Model truth = paper_model();
-  truth.add_term(std::make_unique<OneSidedDamper>(2e6, truth.well(true).z_m));
+  truth.add_term(std::make_unique<testing::OneSidedDamper>(2e6, truth.well(true).z_m));
   const DiagnosisResult r = diagnose_as_a_lab(truth, 2);
   EXPECT_FALSE(r.gap_explained);
   EXPECT_GT(r.final_maps.reduced_chi2, r.final_noise_reduced_chi2);

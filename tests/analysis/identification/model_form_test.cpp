@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/common/input_error.h"
+#include "analysis/model/polynomial_stiffness.h"
 #include "analysis/model/position_dependent_friction.h"
 #include "analysis/model/reference_models.h"
 #include "analysis/model/viscous_damping.h"
@@ -94,6 +95,60 @@ TEST(ModelForm, OfTermsBindsNamedParameters) {
   EXPECT_THROW(ModelForm::of_terms(base, {{5, {"c_ns_m", 0.0, 2.0, false}}}), InputError);
   EXPECT_THROW(ModelForm::of_terms(base, {{1, {"c_ns_m", 1.0, 0.5, false}}}), InputError);
   EXPECT_THROW(ModelForm::of_terms(base, {{1, {"c_ns_m", 0.0, 2.0, true}}}), InputError);
+}
+
+// The stiffness identified: K(z)'s four coefficients join θ after the friction, bounded ±30 %
+// about their values (or about 5 % of the largest term's force at the wells, for a small one);
+// built models carry them, held forms keep them fixed and expand() puts them back.
+TEST(ModelForm, FreeStiffnessJoinsTheSearchAndCanBeHeld) {
+  ModelForm form = ModelForm::paper(paper_model());
+  form.free_stiffness();
+  ASSERT_EQ(form.size(), 10);
+  EXPECT_EQ(form.names()[6], "stiffness_c0_n");
+  EXPECT_EQ(form.names()[9], "stiffness_c3_n_m3");
+  EXPECT_FALSE(form.is_stiffness(5));
+  EXPECT_TRUE(form.is_stiffness(6));
+  EXPECT_TRUE(form.frees_stiffness_power(2));
+  EXPECT_FALSE(form.frees_stiffness_power(5));
+  // Table 1: k3 = 735 000 N/m³ is c3, bounded to ±30 %.
+  EXPECT_NEAR(form.initial()(9), 735000.0, 1e-6);
+  EXPECT_NEAR(form.parameters()[9].lower, 0.7 * 735000.0, 1e-6);
+  EXPECT_NEAR(form.parameters()[9].upper, 1.3 * 735000.0, 1e-6);
+  Eigen::VectorXd theta = form.initial();
+  theta(9) = 700000.0;
+  const Model built = form.build(theta);
+  const auto& k = dynamic_cast<const PolynomialStiffness&>(*built.terms()[0]);
+  EXPECT_EQ(k.coefficients()[3], 700000.0);
+  EXPECT_LT((form.theta_of(built) - theta).norm(), 1e-9);
+  const ModelForm held = form.holding_stiffness(theta);
+  ASSERT_EQ(held.size(), 6);
+  const auto& held_k = dynamic_cast<const PolynomialStiffness&>(*held.base().terms()[0]);
+  EXPECT_EQ(held_k.coefficients()[3], 700000.0);
+  Eigen::VectorXd friction = held.initial();
+  friction(5) = 1.5;
+  const Eigen::VectorXd back = form.expand(friction, theta);
+  EXPECT_EQ(back(5), 1.5);
+  EXPECT_EQ(back(9), 700000.0);
+  EXPECT_THROW(form.free_stiffness(), InputError);  // already free
+}
+
+// A law changed instead of a term added: the friction's presliding length becomes free, and the
+// models built from the form carry the friction's state.
+TEST(ModelForm, ChangeTermFreesAParameterOfALawItHolds) {
+  ModelForm form = ModelForm::paper(paper_model());
+  form.change_term("position-dependent-friction", {{"presliding_length_m", 1e-6, 1e-3, true}},
+                   {1e-5});
+  ASSERT_EQ(form.size(), 7);
+  EXPECT_EQ(form.base().state_size(), 1);
+  Eigen::VectorXd theta = form.initial();
+  EXPECT_EQ(theta(6), 1e-5);
+  theta(6) = 3e-6;
+  const Model model = form.build(theta);
+  EXPECT_EQ(model.terms()[1]->parameter("presliding_length_m"), 3e-6);
+  EXPECT_EQ(model.state_size(), 1);
+  EXPECT_THROW(form.change_term("dahl-friction", {{"fc_n", 0.1, 1.0, false}}, {0.5}), InputError);
+  EXPECT_THROW(form.change_term("viscous-damping", {{"c_ns_m", 0.0, 1.0, false}}, {2.0}),
+               InputError);  // outside its bounds
 }
 
 }  // namespace
