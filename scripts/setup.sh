@@ -25,6 +25,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev qt6-svg-dev libqcustomplot-dev libqcustomplot2.1-qt6
   xvfb xauth clang-format clang-tidy
+  slurmctld slurmd slurm-client munge
 )
 DEFAULT_SAMPLE=samples/stepped_positive.flac
 JOBS=$(nproc 2>/dev/null || echo 2)

@@ -1,6 +1,7 @@
 #include "analysis/diagnosis/diagnosis.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -166,6 +167,27 @@ double joint_reduced_chi2(const EdcEvaluation& evaluation, const DiscrepancyMaps
          std::max(1, residuals - parameters);
 }
 
+// Halton's radical inverse of k in `base`: a space-filling sequence in [0, 1).
+double halton(int k, int base) {
+  double value = 0.0, fraction = 1.0;
+  for (int i = k; i > 0; i /= base) {
+    fraction /= base;
+    value += fraction * (i % base);
+  }
+  return value;
+}
+constexpr std::array<int, 8> kPrimes = {2, 3, 5, 7, 11, 13, 17, 19};
+constexpr int kBoundRestarts = 4;
+
+// Whether a parameter other than the stiffness's sits within 1e-3 of a bound (unit cube).
+bool at_a_bound(const ModelForm& form, const Eigen::VectorXd& theta) {
+  const Eigen::VectorXd unit = form.to_unit(theta);
+  for (int i = 0; i < form.size(); ++i) {
+    if (!form.is_stiffness(i) && (unit(i) <= 1e-3 || unit(i) >= 1.0 - 1e-3)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form,
@@ -231,6 +253,34 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     maps = std::move(settled.maps);
   };
   settle();
+  // A baseline at a bound: the weakly identified f_d(0) of §5 (or another friction parameter)
+  // can be pushed onto its bound by a search that stopped in the wrong basin, and nothing after
+  // it recovers. Then the refit is restarted from space-filling points of the friction's unit
+  // cube (Halton, bases 2, 3, 5 …; the stiffness at its settled values) and the best is settled.
+  if (!cancel.cancelled() && at_a_bound(current, theta)) {
+    const double before = joint_chi2(evaluation, maps.response, use_fp);
+    JointRefit best;
+    best.joint_chi2 = before;
+    const Eigen::VectorXd unit = current.to_unit(theta);
+    for (int k = 1; k <= kBoundRestarts && !cancel.cancelled(); ++k) {
+      Eigen::VectorXd start = unit;
+      int dimension = 0;
+      for (int i = 0; i < current.size(); ++i) {
+        if (!current.is_stiffness(i)) start(i) = halton(k, kPrimes[dimension++ % kPrimes.size()]);
+      }
+      JointRefit fit = joint_refit(*objective, current.from_unit(start), use_fp,
+                                   static_cast<int>(options.candidate_evaluations), cancel);
+      result.evaluations += fit.evaluations;
+      if (fit.theta.size() > 0 && fit.joint_chi2 < best.joint_chi2) best = std::move(fit);
+    }
+    ++result.baseline_restarts;
+    if (best.theta.size() > 0 && best.joint_chi2 < before) {
+      theta = best.theta;
+      current = current.with_initial(theta);
+      settle();
+      result.baseline_restart_improved = true;
+    }
+  }
   result.baseline.theta = theta;
   result.baseline.names = current.names();
   result.baseline.evaluation = evaluation;

@@ -107,6 +107,10 @@ struct DiagnosisResult {
   bool gap_explained = true;
   std::vector<LevelDiscrepancy> largest_residual_levels;  // of the final model, largest |r| first
   std::vector<std::string> excluded_levels;
+  /// The settled baseline had a friction parameter at a bound, so its refit was restarted from
+  /// space-filling points (1 when it was); whether a restart found a lower joint χ².
+  int baseline_restarts = 0;
+  bool baseline_restart_improved = false;
   double seconds = 0.0;
   long evaluations = 0;
 };

@@ -197,7 +197,9 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
                           p.emplace_back(b.names[i], b.theta(static_cast<Eigen::Index>(i)));
                         return p;
                       }())},
-                     {"maps", maps_json(result.baseline_maps)}};
+                     {"maps", maps_json(result.baseline_maps)},
+                     {"restarted_at_bound", result.baseline_restarts > 0},
+                     {"restart_improved", result.baseline_restart_improved}};
   nlohmann::json steps = nlohmann::json::array();
   for (const DiagnosisStep& s : result.steps) {
     nlohmann::json candidates = nlohmann::json::array();

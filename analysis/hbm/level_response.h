@@ -22,7 +22,7 @@ struct LevelResponse {
   std::vector<Eigen::VectorXd> coefficients;
   int newton_iterations = 0;
   bool used_arclength = false;  // the fast path failed and a full continuation was run
-  int harmonics = 0;            // H of the responses (more than asked when a contact rang)
+  int harmonics = 0;            // H of the responses (more than asked when a contact rings)
 };
 
 /// The most harmonics level_response() raises H to for a ringing contact.
@@ -40,10 +40,10 @@ int contact_resolving_harmonics(const Model& model, double freq_hz, bool positiv
 /// the levels increase, on the branch a sweep up follows). If a solve fails, or the sign of
 /// det ∂r/∂x flips (the step crossed a fold onto the unstable part), the whole set is computed
 /// instead by pseudo-arclength continuation from rest with a landing at every level, taking each
-/// level's first crossing. When that fails too and the model's stuck contact rings above the
-/// harmonics kept (contact_resolving_harmonics), the set is computed again with H raised to
-/// resolve the ringing (at most kMaxContactHarmonics; `harmonics` says which H). Throws
-/// InputError for decreasing or negative levels or a model that harmonic balance cannot handle.
+/// level's first crossing. When the model's stuck contact rings above the harmonics asked for
+/// (contact_resolving_harmonics), every level is solved with H raised to resolve the ringing (at
+/// most kMaxContactHarmonics; `harmonics` says the H used). Throws InputError for decreasing or
+/// negative levels or a model that harmonic balance cannot handle.
 LevelResponse level_response(const Model& model, double freq_hz, bool positive_well,
                              const std::vector<double>& levels_n, const HbmOptions& hbm = {});
 
