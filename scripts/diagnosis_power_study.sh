@@ -103,10 +103,8 @@ nl -ba -w1 -s' ' "$out/jobs.txt" |
 
 # Results and summary: hit rate per effect, scale and condition; false-positive rate of the
 # controls; how often the gap was said open.
-header=$("$study" control 1 9 1 2>/dev/null | head -1 || true)
-[ -n "$header" ] || header="case,effect,scale,freq_hz,noise_scale,seed,verdict,correct,status,seconds,baseline_reduced_chi2,noise_reduced_chi2,steps,accepted,levels,stiffness,gap_explained,final_reduced_chi2,embodiment"
 {
-  echo "$header"
+  "$study" header
   for f in "$out"/rows/*.csv; do [ -s "$f" ] && cat "$f"; done
 } > "$out/results.csv"
 awk -F, 'NR > 1 {

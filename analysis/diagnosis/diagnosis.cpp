@@ -210,9 +210,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   // initial θ. An identified stiffness is held at its start (the slice's cubic or the model's)
   // in the global search on the EDC, which barely sees it, and freed when the model is settled
   // on the EDC and the fingerprints, which pin it.
-  bool identified_stiffness = false;
-  for (int i = 0; i < form.size(); ++i)
-    identified_stiffness = identified_stiffness || form.is_stiffness(i);
+  const bool identified_stiffness = form.identifies_stiffness();
   const ModelForm search_form =
       identified_stiffness ? form.holding_stiffness(form.initial()) : form;
   EdcCostSettings base_cost = options.cost;

@@ -139,10 +139,13 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
     add(std::move(c));
   }
   {
-    // Dahl: F_c up to the largest forcing, presliding stiffness σ0 such that the presliding
-    // length F_c/σ0 spans 1e-3 … 1 of the largest amplitude.
+    // Dahl: F_c up to the largest forcing, presliding stiffness σ0 up to 1e4 F_c,max/Z_max (the
+    // presliding length F_c/σ0 down to 1e-4 of the largest amplitude) and at most F_c,max / 1 µm:
+    // a stiffer contact rings beyond what harmonic balance resolves (as for the friction regime
+    // below, contact_resolving_harmonics).
     const double fc_max = std::min(f0_max, 2.0 * s_max / (4.0 * z_max));
-    const double sigma_lo = fc_max / z_max, sigma_hi = 1e4 * fc_max / z_max;
+    const double sigma_lo = fc_max / z_max,
+                 sigma_hi = std::max(2.0 * sigma_lo, std::min(1e4 * fc_max / z_max, fc_max / 1e-6));
     EffectCandidate c{
         "presliding-hysteresis",
         std::make_unique<DahlFriction>(0.1 * fc_max, std::sqrt(sigma_lo * sigma_hi)),

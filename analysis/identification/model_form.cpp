@@ -178,6 +178,13 @@ bool ModelForm::is_stiffness(int i) const {
          bindings_[static_cast<std::size_t>(i)].kind == BindingKind::Stiffness;
 }
 
+bool ModelForm::identifies_stiffness() const {
+  for (int i = 0; i < size(); ++i) {
+    if (is_stiffness(i)) return true;
+  }
+  return false;
+}
+
 bool ModelForm::frees_stiffness_power(int power) const {
   const std::string name = "c" + std::to_string(power);
   for (const Binding& b : bindings_) {

@@ -61,8 +61,9 @@ class ModelForm {
   /// model's values: the stiffness identified from the data rather than given. Throws
   /// InputError when the model has no polynomial-stiffness term or its K is already free.
   void free_stiffness(double relative = 0.3);
-  /// Whether parameter i is one of free_stiffness()'s.
+  /// Whether parameter i is one of free_stiffness()'s, and whether the form has any.
   bool is_stiffness(int i) const;
+  bool identifies_stiffness() const;
   /// Whether the form frees the power zᵖ of its (first) polynomial stiffness.
   bool frees_stiffness_power(int power) const;
   /// The form with its stiffness parameters held at `theta`'s values (the others free, in their

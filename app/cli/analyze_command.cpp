@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "analysis/common/input_error.h"
 #include "analysis/edc/well.h"
@@ -162,6 +163,9 @@ void run(const AnalyzeOptions& options) {
     overrides.well_positive = analysis::well_from_string(options.well) == analysis::Well::Positive;
   }
   overrides.ignore_sidecar_levels = options.detect_levels;
+  // The starting model of --model-out is read before the recordings: a bad one costs no analysis.
+  std::optional<analysis::Model> start_model;
+  if (!options.model_out_path.empty()) start_model = analysis::model_from_spec(options.model);
   InputTimes times;
   const analysis::CampaignAnalysis campaign =
       analyze_recordings(options.recordings, overrides, options.settings, &times);
@@ -179,9 +183,13 @@ void run(const AnalyzeOptions& options) {
   if (!options.model_out_path.empty()) {
     // The lab's model: the recordings' mass and the stiffness slice's K(z), the friction and
     // damping of --model as a start for a fit or a diagnosis.
+    if (!campaign.stiffness) {
+      throw InputError("--model-out: the records give no stiffness slice to take K(z) from: " +
+                       campaign.rfs_message);
+    }
     std::vector<std::string> notes;
-    const analysis::Model model = analysis::campaign_model(
-        analysis::model_from_spec(options.model), campaign, analysis::StiffnessSource::Rfs, notes);
+    const analysis::Model model =
+        analysis::campaign_model(*start_model, campaign, analysis::StiffnessSource::Rfs, notes);
     analysis::save_model(model, options.model_out_path);
     for (const std::string& note : notes) std::printf("model: %s\n", note.c_str());
     std::printf("model written to %s\n", options.model_out_path.c_str());

@@ -192,7 +192,6 @@ void add_fit_command(CLI::App& app) {
       ->add_option("--stiffness", o->stiffness,
                    "K(z): model (the model's, held) | rfs (the records' slice cubic, held) | "
                    "identified (free, identified with the friction from the slice on)")
-      ->check(CLI::IsMember({"model", "rfs", "identified"}))
       ->capture_default_str();
   command
       ->add_option("--freq", o->freq_hz,

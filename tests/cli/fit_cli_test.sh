@@ -118,6 +118,27 @@ if "$cli" diagnose "$pos" "$neg" --max-seconds 0.001 --no-png --out "$work/diag_
 else
   fail "diagnose --max-seconds: $(tail -3 "$work/diag_cut.log")"
 fi
+# The stiffness identified (the default): the report's baseline holds K(z)'s coefficients, and
+# the report says whether the gap is explained.
+for key in '"stiffness_c3_n_m3"' '"gap_explained": true' '"gap"'; do
+  grep -q -- "$key" "$work/diag/report.json" && pass "report has $key" || fail "report lacks $key"
+done
+grep -q "gap explained" "$work/diag.log" && pass "diagnose says the gap is explained" ||
+  fail "diagnose does not say whether the gap is explained: $(tail -3 "$work/diag.log")"
+expect_error "diagnose unknown stiffness" 'stiffness' "$cli" diagnose "$pos" "$neg" --stiffness slice --out "$work/d5"
+expect_error "fit unknown stiffness" 'stiffness' "$cli" fit "$pos" "$neg" --stiffness slice --out "$work/f5.json"
+[ -e "$work/f5.json" ] && fail "fit wrote an output on a bad --stiffness" || pass "no FIT JSON on a bad --stiffness"
+
+# The lab's model from its random record: its mass and the slice's K(z), the friction of --model.
+if "$cli" analyze "$src/samples/random.flac" --model-out "$work/lab.json" > "$work/lab.log" 2>&1 &&
+  grep -q '"polynomial-stiffness"' "$work/lab.json" && grep -q '"position-dependent-friction"' "$work/lab.json" &&
+  "$cli" model "$work/lab.json" > /dev/null 2>&1; then
+  pass "analyze --model-out writes a model the CLI reads back"
+else
+  fail "analyze --model-out: $(tail -3 "$work/lab.log")"
+fi
+expect_error "analyze --model-out with an unknown model" 'nope.json' "$cli" analyze "$src/samples/random.flac" --model-out "$work/lab2.json" --model "$work/nope.json"
+[ -e "$work/lab2.json" ] && fail "analyze wrote a model on a bad --model" || pass "no model written on a bad --model"
 expect_error "diagnose negative time bound" 'max-seconds' "$cli" diagnose "$pos" "$neg" --max-seconds -1 --out "$work/d4"
 expect_error "diagnose unknown form" 'model-form' "$cli" diagnose "$pos" --model-form cubic --out "$work/d2"
 expect_error "diagnose without mass" 'nope.flac' "$cli" diagnose "$work/nope.flac" --out "$work/d3"

@@ -13,6 +13,8 @@
 //                                         one blind diagnosis of the paper's model with its
 //                                         friction parameters θ (eq. (9)) moved by up to ±30 %
 //
+//   diagnosis_study header                the result rows' CSV header
+//
 // LEVELS: stepped-sine levels per well, 0.2 → 2.7 N evenly (26 by default). Every diagnosis is
 // run as a lab runs it, the stiffness identified from the records (`--stiffness identified`);
 // OSCILAB_STUDY_TRUE_STIFFNESS=1 gives it the truth's K(z) instead (labelled in the output).
@@ -182,6 +184,10 @@ int control_study(int seed, double freq, double noise, int levels) {
 
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "header" && argc == 2) {
+    print_header();
+    return 0;
+  }
   if (mode == "bias" && argc == 3) return bias_study(std::atoi(argv[2]));
   if (mode == "power" && (argc == 7 || argc == 8)) {
     const int levels = argc == 8 ? std::atoi(argv[7]) : 26;
@@ -195,7 +201,7 @@ int main(int argc, char** argv) {
     return control_study(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]), levels);
   }
   std::fprintf(stderr,
-               "usage: diagnosis_study bias SEEDS | power EFFECT SCALE FREQ NOISE SEED [LEVELS] | "
-               "control SEED FREQ NOISE [LEVELS]\n");
+               "usage: diagnosis_study header | bias SEEDS | power EFFECT SCALE FREQ NOISE SEED "
+               "[LEVELS] | control SEED FREQ NOISE [LEVELS]\n");
   return 2;
 }
