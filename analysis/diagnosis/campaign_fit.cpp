@@ -12,7 +12,8 @@ CampaignFit fit_campaign(const PreparedFit& prepared, const CampaignAnalysis& ca
                          const CancelToken& cancel) {
   const EdcObjective& objective = *prepared.objective;
   const ModelForm& form = objective.form();
-  if (!form.identifies_stiffness()) return {fit_edc(objective, options, progress, cancel), prepared.objective};
+  if (!form.identifies_stiffness())
+    return {fit_edc(objective, options, progress, cancel), prepared.objective};
 
   const auto start = std::chrono::steady_clock::now();
   // The search over the friction, K(z) held at its start, its σ budget calibrated there.
