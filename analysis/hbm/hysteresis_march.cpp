@@ -11,6 +11,45 @@ double state_part(const ModelTerm& term, double z_m, double z_dot_m_s, const dou
   return term.force(z_m, z_dot_m_s, state) - term.force(z_m, z_dot_m_s, nullptr);
 }
 
+// One step of a term's state from sample k to k + 1 along the Hermite path between them, through
+// its turning point when the step holds one (hermite_turning_point): the combined sensitivities
+// ∂s₁/∂s₀ (a, and its log), ∂s₁/∂z_k, ∂s₁/∂z_{k+1}, ∂s₁/∂ż_k, ∂s₁/∂ż_{k+1} (the last two through
+// the turning point's z only).
+struct MarchStep {
+  double a = 1.0, log_a = 0.0;
+  double dz0 = 0.0, dz1 = 0.0, dv0 = 0.0, dv1 = 0.0;
+  bool affine = true;
+};
+
+MarchStep march_step(const ModelTerm& term, double z0, double v0, double z1, double v1, double dt,
+                     double& s) {
+  MarchStep out;
+  const HermiteTurn turn = hermite_turning_point(z0, v0, z1, v1, dt);
+  StateStepSensitivity first;
+  if (!turn.inside) {
+    term.advance_state_sensitivity(z0, z1, &s, first);
+    out.a = first.d_state;
+    out.log_a = first.log_d_state;
+    out.dz0 = first.d_z0;
+    out.dz1 = first.d_z1;
+    out.affine = first.affine;
+    return out;
+  }
+  StateStepSensitivity second;
+  term.advance_state_sensitivity(z0, turn.z_m, &s, first);
+  term.advance_state_sensitivity(turn.z_m, z1, &s, second);
+  // s₁ = g₂(g₁(s₀, z0, z*), z*, z1): the chain rule, z* moving with the orbit's samples.
+  const double d_turn = second.d_state * first.d_z1 + second.d_z0;
+  out.a = first.d_state * second.d_state;
+  out.log_a = first.log_d_state + second.log_d_state;
+  out.dz0 = second.d_state * first.d_z0 + d_turn * turn.d_z0;
+  out.dz1 = second.d_z1 + d_turn * turn.d_z1;
+  out.dv0 = d_turn * turn.d_v0;
+  out.dv1 = d_turn * turn.d_v1;
+  out.affine = first.affine && second.affine;
+  return out;
+}
+
 }  // namespace
 
 double small_loop_stiffness_n_m(const Model& model, double z_m) {
@@ -54,49 +93,6 @@ int HysteresisMarch::forces(const Model& model, const Eigen::VectorXd& z_m,
   return exact_ ? exact_forces(model, z_m, z_dot_m_s, period_s, force_n)
                 : marched_forces(model, z_m, z_dot_m_s, period_s, force_n);
 }
-
-namespace {
-
-// One step of a term's state from sample k to k + 1 along the Hermite path between them, through
-// its turning point when the step holds one (hermite_turning_point): the combined sensitivities
-// ∂s₁/∂s₀ (a, and its log), ∂s₁/∂z_k, ∂s₁/∂z_{k+1}, ∂s₁/∂ż_k, ∂s₁/∂ż_{k+1} (the last two through
-// the turning point's z only).
-struct MarchStep {
-  double a = 1.0, log_a = 0.0;
-  double dz0 = 0.0, dz1 = 0.0, dv0 = 0.0, dv1 = 0.0;
-  bool affine = true;
-};
-
-MarchStep march_step(const ModelTerm& term, double z0, double v0, double z1, double v1, double dt,
-                     double& s) {
-  MarchStep out;
-  const HermiteTurn turn = hermite_turning_point(z0, v0, z1, v1, dt);
-  StateStepSensitivity first;
-  if (!turn.inside) {
-    term.advance_state_sensitivity(z0, z1, &s, first);
-    out.a = first.d_state;
-    out.log_a = first.log_d_state;
-    out.dz0 = first.d_z0;
-    out.dz1 = first.d_z1;
-    out.affine = first.affine;
-    return out;
-  }
-  StateStepSensitivity second;
-  term.advance_state_sensitivity(z0, turn.z_m, &s, first);
-  term.advance_state_sensitivity(turn.z_m, z1, &s, second);
-  // s₁ = g₂(g₁(s₀, z0, z*), z*, z1): the chain rule, z* moving with the orbit's samples.
-  const double d_turn = second.d_state * first.d_z1 + second.d_z0;
-  out.a = first.d_state * second.d_state;
-  out.log_a = first.log_d_state + second.log_d_state;
-  out.dz0 = second.d_state * first.d_z0 + d_turn * turn.d_z0;
-  out.dz1 = second.d_z1 + d_turn * turn.d_z1;
-  out.dv0 = d_turn * turn.d_v0;
-  out.dv1 = d_turn * turn.d_v1;
-  out.affine = first.affine && second.affine;
-  return out;
-}
-
-}  // namespace
 
 int HysteresisMarch::exact_forces(const Model& model, const Eigen::VectorXd& z_m,
                                   const Eigen::VectorXd& z_dot_m_s, double period_s,

@@ -40,18 +40,7 @@ void DahlFriction::advance_state(double z0_m, double z_dot0_m_s, double z1_m, do
 
 bool DahlFriction::advance_state_sensitivity(double z0_m, double z1_m, double* state,
                                              StateStepSensitivity& out) const {
-  const double kappa = value(1) / value(0);  // 1/m
-  const double dz = z1_m - z0_m;
-  if (dz == 0.0) {
-    out = {1.0, -kappa, kappa, 0.0, true};
-    return true;
-  }
-  const double d = dz > 0.0 ? 1.0 : -1.0;
-  const double log_a = -kappa * std::abs(dz);
-  const double a = std::exp(log_a);
-  const double slope = kappa * a * (1.0 - d * state[0]);
-  state[0] = d + (state[0] - d) * a;
-  out = {a, -slope, slope, log_a, true};
+  dahl_step(value(1) / value(0), z0_m, z1_m, state, out);  // κ = σ0/F_c
   return true;
 }
 

@@ -1,5 +1,6 @@
 #include "analysis/model/model_term.h"
 
+#include <cmath>
 #include <vector>
 
 namespace oscilab::analysis {
@@ -37,6 +38,21 @@ HermiteTurn hermite_turning_point(double z0_m, double z_dot0_m_s, double z1_m, d
   turn.d_v0 = h10 * dt_s;
   turn.d_v1 = h11 * dt_s;
   return turn;
+}
+
+void dahl_step(double kappa_1_m, double z0_m, double z1_m, double* state,
+               StateStepSensitivity& out) {
+  const double dz = z1_m - z0_m;
+  if (dz == 0.0) {
+    out = {1.0, -kappa_1_m, kappa_1_m, 0.0, true};
+    return;
+  }
+  const double d = dz > 0.0 ? 1.0 : -1.0;
+  const double log_a = -kappa_1_m * std::abs(dz);
+  const double a = std::exp(log_a);
+  const double slope = kappa_1_m * a * (1.0 - d * state[0]);
+  state[0] = d + (state[0] - d) * a;
+  out = {a, -slope, slope, log_a, true};
 }
 
 void ModelTerm::advance_rate_independent(double z0_m, double z_dot0_m_s, double z1_m,

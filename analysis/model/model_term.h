@@ -44,6 +44,13 @@ struct HermiteTurn {
 HermiteTurn hermite_turning_point(double z0_m, double z_dot0_m_s, double z1_m, double z_dot1_m_s,
                                   double dt_s);
 
+/// The Dahl state's exact step along a monotone stretch z0 → z1 (Dahl 1968): with d = sgn Δz and
+/// a = e^(−κ|Δz|), s₁ = d + (s₀ − d) a; ∂s₁/∂s₀ = a, ∂s₁/∂z₁ = −∂s₁/∂z₀ = κ a (1 − d s₀) (at Δz = 0
+/// the mean of both sides, κ). κ in 1/m: σ0/F_c of the Dahl element, 1/δ of a friction's
+/// presliding regime.
+void dahl_step(double kappa_1_m, double z0_m, double z1_m, double* state,
+               StateStepSensitivity& out);
+
 /// One named contribution to the restoring surface R(z, ż) of eq. (1): m z̈ + Σ F_i(z, ż, s_i) = f.
 ///
 /// A term may carry an internal state s (for hysteresis: Dahl, Maxwell slip) whose rate is

@@ -130,18 +130,7 @@ void PositionDependentFriction::advance_state(double z0_m, double z_dot0_m_s, do
 bool PositionDependentFriction::advance_state_sensitivity(double z0_m, double z1_m, double* state,
                                                           StateStepSensitivity& out) const {
   if (!presliding()) return false;
-  const double kappa = 1.0 / parameters_.presliding_length_m;  // 1/m
-  const double dz = z1_m - z0_m;
-  if (dz == 0.0) {
-    out = {1.0, -kappa, kappa, 0.0, true};
-    return true;
-  }
-  const double d = sign_of(dz);
-  const double log_a = -kappa * std::abs(dz);
-  const double a = std::exp(log_a);
-  const double slope = kappa * a * (1.0 - d * state[0]);
-  state[0] = d + (state[0] - d) * a;
-  out = {a, -slope, slope, log_a, true};
+  dahl_step(1.0 / parameters_.presliding_length_m, z0_m, z1_m, state, out);  // κ = 1/δ
   return true;
 }
 

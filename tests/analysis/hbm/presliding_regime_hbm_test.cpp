@@ -16,6 +16,7 @@
 #include "analysis/model/position_dependent_friction.h"
 #include "analysis/model/reference_models.h"
 #include "analysis/simulation/stepped_sine_run.h"
+#include "tests/analysis/hbm/hbm_jacobian_check.h"
 
 namespace oscilab::analysis {
 namespace {
@@ -69,6 +70,26 @@ TEST(PreslidingRegime, StateLawAndForceSplit) {
   EXPECT_NEAR(partials.d_dz_dot,
               (friction.force(z, v + h, &state) - friction.force(z, v - h, &state)) / (2 * h),
               1e-4);
+}
+
+// The turning point of the Hermite path between two samples of z = cos t that straddle its top
+// (t = −0.1 and 0.2, Δt = 0.3): z* = 1 within the cubic Hermite's bound Δt⁴ max|z''''| / 384 =
+// 2.1e-5 (measured 1.7e-5); θ* = 1/3 within the slope's bound Δt³ max|z''''| / (72√3) = 2.2e-4 in
+// ż, over |z''| = 1 and Δt: 7.2e-4 (measured 5.6e-4); no turn where ż keeps its sign; the
+// weights sum to 1 (the turning z moves with the samples) and match a difference of z*.
+TEST(PreslidingRegime, HermiteTurningPointOfACosine) {
+  const double t0 = -0.1, t1 = 0.2, dt = t1 - t0;
+  const HermiteTurn turn =
+      hermite_turning_point(std::cos(t0), -std::sin(t0), std::cos(t1), -std::sin(t1), dt);
+  ASSERT_TRUE(turn.inside);
+  EXPECT_NEAR(turn.theta, 1.0 / 3.0, 7.2e-4);
+  EXPECT_NEAR(turn.z_m, 1.0, 2.1e-5);
+  EXPECT_NEAR(turn.d_z0 + turn.d_z1, 1.0, 1e-12);
+  const double h = 1e-7;
+  const HermiteTurn shifted =
+      hermite_turning_point(std::cos(t0) + h, -std::sin(t0), std::cos(t1), -std::sin(t1), dt);
+  EXPECT_NEAR((shifted.z_m - turn.z_m) / h, turn.d_z0, 1e-6);
+  EXPECT_FALSE(hermite_turning_point(0.0, 1.0, 0.1, 0.5, 0.1).inside);
 }
 
 TEST(PreslidingRegime, JsonRoundTripAndRefusals) {
@@ -141,27 +162,7 @@ TEST(PreslidingRegime, LoopEnergyMatchesClosedForm) {
 TEST(PreslidingRegime, ExactJacobianMatchesCentralDifferences) {
   for (double length : {1e-6, 1e-5, 1e-4, 1e-3}) {
     const Model model = paper_with_presliding(length);
-    HbmOptions options;
-    options.harmonics = 5;
-    HarmonicBalance hbm(model, 9.0, options);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(hbm.size());
-    for (int i = 0; i < hbm.size(); ++i) x[i] = 4e-4 * std::sin(1.7 * i + 0.3) / (1 + i);
-    x[0] = model.well(true).z_m;
-    Eigen::VectorXd r, r_plus, r_minus;
-    Eigen::MatrixXd jacobian;
-    hbm.residual_and_jacobian(x, 1.0, r, jacobian);
-    const double h = 1e-10;
-    double worst = 0.0;
-    for (int j = 0; j < hbm.size(); ++j) {
-      Eigen::VectorXd xp = x, xm = x;
-      xp[j] += h;
-      xm[j] -= h;
-      hbm.residual(xp, 1.0, r_plus);
-      hbm.residual(xm, 1.0, r_minus);
-      worst =
-          std::max(worst, ((r_plus - r_minus) / (2 * h) - jacobian.col(j)).cwiseAbs().maxCoeff());
-    }
-    EXPECT_LT(worst / jacobian.cwiseAbs().maxCoeff(), 1e-4) << "presliding length " << length;
+    EXPECT_LT(testing::jacobian_error_rel(model), 1e-4) << "presliding length " << length;
   }
 }
 
