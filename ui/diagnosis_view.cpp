@@ -141,9 +141,7 @@ void DiagnosisView::show_steps(const analysis::DiagnosisResult& r, double bic_th
     for (const auto& t : s.trials) {
       step_table_->setItem(row, 0, cell(QString::number(i + 1)));
       step_table_->setItem(
-          row, 1,
-          cell(QString::fromStdString(
-              t.embodiment == "friction-regime" ? t.effect + " (friction regime)" : t.effect)));
+          row, 1, cell(QString::fromStdString(analysis::candidate_label(t.effect, t.embodiment))));
       step_table_->setItem(
           row, 2, cell(QString::fromStdString(analysis::candidate_outcome(s, t, bic_threshold))));
       step_table_->setItem(row, 3,

@@ -126,6 +126,11 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
                          const DiagnosisOptions& options, const ProgressFn& progress = {},
                          const CancelToken& cancel = {});
 
+/// A candidate as people read it: the effect, and for an embodiment other than an added term how
+/// it enters ("presliding-hysteresis (friction regime)"): what the CLI, the report's outcomes and
+/// the app show.
+std::string candidate_label(const std::string& effect, const std::string& embodiment);
+
 /// The `count` levels of `maps` with the largest |residual_sigma|, largest first.
 std::vector<LevelDiscrepancy> largest_residual_levels(const DiscrepancyMaps& maps,
                                                       std::size_t count);

@@ -102,6 +102,13 @@ nlohmann::json parameters_json(const std::vector<std::pair<std::string, double>>
 
 }  // namespace
 
+std::string candidate_label(const std::string& effect, const std::string& embodiment) {
+  if (embodiment.empty() || embodiment == "added-term") return effect;
+  std::string words = embodiment;
+  std::replace(words.begin(), words.end(), '-', ' ');
+  return effect + " (" + words + ")";
+}
+
 std::vector<LevelDiscrepancy> largest_residual_levels(const DiscrepancyMaps& maps,
                                                       std::size_t count) {
   std::vector<LevelDiscrepancy> out;
@@ -149,9 +156,7 @@ std::string candidate_outcome(const DiagnosisStep& step, const CandidateTrial& t
   }
   if (best && best != &trial && best->delta_bic_joint < trial.delta_bic_joint &&
       best->delta_bic_joint < -bic_threshold) {
-    const std::string label = best->embodiment == "added-term" || best->embodiment.empty()
-                                  ? best->effect
-                                  : best->effect + " as " + best->embodiment;
+    const std::string label = candidate_label(best->effect, best->embodiment);
     std::snprintf(text, sizeof text, "rejected: %s explains more (joint dBIC %.3g)", label.c_str(),
                   best->delta_bic_joint);
     return text;

@@ -95,21 +95,18 @@ void print_result(const analysis::DiagnosisResult& r, const analysis::EdcDataset
       std::printf("step: nothing accepted (joint dBIC must be < -%.0f with the EDC improved)\n",
                   bic_threshold);
     } else {
-      std::printf(
-          "step: %s%s accepted, joint dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g%s\n",
-          step.effect.c_str(),
-          step.embodiment == "friction-regime" ? " (as the friction's own regime)" : "",
-          step.delta_bic_joint, step.cost_before_j, step.cost_after_j, step.weighted_before,
-          step.weighted_after,
-          step.withdrawn ? " -- withdrawn: its strength vanished after later effects" : "");
+      std::printf("step: %s accepted, joint dBIC %.1f, cost %.4g -> %.4g J, chi2 %.4g -> %.4g%s\n",
+                  analysis::candidate_label(step.effect, step.embodiment).c_str(),
+                  step.delta_bic_joint, step.cost_before_j, step.cost_after_j, step.weighted_before,
+                  step.weighted_after,
+                  step.withdrawn ? " -- withdrawn: its strength vanished after later effects" : "");
     }
     for (const auto& t : step.trials) {
       if (!t.solved) {
         std::printf("    %-30s not solved\n", t.effect.c_str());
         continue;
       }
-      const std::string label =
-          t.embodiment == "friction-regime" ? t.effect + " (regime)" : t.effect;
+      const std::string label = analysis::candidate_label(t.effect, t.embodiment);
       std::printf("    %-30s dBIC edc %9.1f joint %9.1f  [%s]  %s\n", label.c_str(), t.delta_bic,
                   t.delta_bic_joint, evidence_text(t.evidence).c_str(),
                   analysis::candidate_outcome(step, t, bic_threshold).c_str());
