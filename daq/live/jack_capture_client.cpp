@@ -177,7 +177,10 @@ std::string JackCaptureClient::activate() {
 
 void JackCaptureClient::deactivate() {
   closing_.store(true, std::memory_order_release);
-  if (client_ != nullptr) jack_deactivate(client_);
+  // A server that shut down (or was killed) took the client's activation with it: libjack's
+  // jack_deactivate then talks to a server that is gone and can crash inside libjack (seen
+  // under AddressSanitizer after a SIGKILL). jack_client_close alone releases the client.
+  if (client_ != nullptr && !shutdown_.load(std::memory_order_acquire)) jack_deactivate(client_);
 }
 
 void JackCaptureClient::close() {
