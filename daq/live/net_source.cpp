@@ -94,6 +94,11 @@ bool NetSource::serve(TcpSocket& peer) {
     stream_protocol::Frame frame;
     while (decoder.next(frame)) {
       using stream_protocol::FrameType;
+      if (!frame.refused.empty()) {  // one frame left out, the stream goes on
+        malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+        post_event({kNoTime, EventKind::MalformedFrame, frame.refused});
+        continue;
+      }
       if (!greeted && frame.type != FrameType::Hello) {
         malformed_frames_.fetch_add(1, std::memory_order_relaxed);
         post_event({kNoTime, EventKind::MalformedFrame, "the sender did not open with HELLO"});

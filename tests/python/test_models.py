@@ -88,3 +88,14 @@ def paper_terms():
 def test_missing_model_file_raises_os_error(tmp_path):
     with pytest.raises(OSError):
         oscilab.Model.load(tmp_path / "missing.json")
+
+
+def test_json_nested_too_deep_raises_value_error_not_a_crash():
+    # 100 000 nested arrays would overflow the stack when copied; a list holding itself never ends.
+    deep = '{"mass_kg": 0.26, "terms": [], "x": ' + "[" * 100000 + "]" * 100000 + "}"
+    with pytest.raises(ValueError, match="^model: JSON nested deeper than 64 levels"):
+        oscilab.Model.from_json(deep)
+    itself = []
+    itself.append(itself)
+    with pytest.raises(ValueError, match="nested deeper than 64 levels"):
+        oscilab.Model.from_json({"mass_kg": 0.26, "terms": [], "x": itself})

@@ -152,6 +152,44 @@ TEST(StreamProtocol, RejectsHostileFramesWithAReason) {
   EXPECT_NE(decode_error(bad_sidecar).find("unknown unit"), std::string::npos);
 }
 
+// A whole HELLO or EVENT frame of `text`, however it is nested.
+std::vector<std::uint8_t> json_frame(FrameType type, const std::string& text) {
+  std::vector<std::uint8_t> bytes = {'O', 'S', 'C', 'S', 1, static_cast<std::uint8_t>(type), 0, 0};
+  for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<std::uint8_t>(text.size() >> (8 * i)));
+  bytes.insert(bytes.end(), text.begin(), text.end());
+  return bytes;
+}
+
+TEST(StreamProtocol, RefusesAJsonDepthBombFrameAloneAndGoesOn) {
+  // 100 000 nested arrays fit in 200 kB, under the frame limit; copied, they overflow the stack.
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::vector<std::uint8_t> bytes =
+      json_frame(FrameType::Hello, "{\"protocol\": \"oscilab-stream/1\", \"junk\": " + deep + "}");
+  append_hello({"id", two_channels()}, bytes);
+  const std::vector<std::uint8_t> event =
+      json_frame(FrameType::Event, "{\"kind\": \"mark\", \"data\": {\"x\": " + deep + "}}");
+  bytes.insert(bytes.end(), event.begin(), event.end());
+  const double values[2] = {1.0, 2.0};
+  append_data(0, 0, 1, 2, values, bytes);
+
+  FrameDecoder decoder;
+  decoder.feed(bytes.data(), bytes.size());
+  std::vector<Frame> frames;
+  Frame frame;
+  while (decoder.next(frame)) frames.push_back(frame);
+  EXPECT_EQ(decoder.error(), "");
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_EQ(frames[0].refused,
+            "HELLO frame refused: JSON nested deeper than 64 levels (at byte 104)");
+  EXPECT_TRUE(frames[1].refused.empty());
+  EXPECT_TRUE(frames[1].hello.has_value());
+  EXPECT_EQ(frames[2].refused,
+            "EVENT frame refused: JSON nested deeper than 64 levels (at byte 93)");
+  EXPECT_FALSE(frames[2].event.has_value());
+  EXPECT_EQ(frames[3].type, FrameType::Data);  // the stream goes on after both
+  EXPECT_EQ(frames[3].rows, 1);
+}
+
 TEST(StreamProtocol, RandomBytesNeverCrashAndMemoryStaysBounded) {
   // 2000 streams of random bytes after a valid HELLO, some with a valid prefix: the decoder
   // either waits for more or reports an error; it never reads past what it was given (ASan

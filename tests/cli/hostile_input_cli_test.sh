@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# oscilab-cli against hostile input:
+#   hostile_input_cli_test.sh OSCILAB_CLI SOURCE_DIR
+# Whatever a file, an option or a network peer holds, the command ends with exit status 2 and
+# one line on stderr naming the problem, and leaves no partial output; a network frame is refused
+# alone and the stream goes on.
+source "$(dirname "$0")/cli_checks.sh"
+pos=$src/samples/stepped_positive.flac
+
+expect_error() {  # description, expected text, command...
+  local what=$1 text=$2
+  shift 2
+  "$@" > "$work/err.out" 2> "$work/err.log"
+  local status=$?
+  if [ $status -eq 2 ] && grep -q -- "$text" "$work/err.log" && [ "$(wc -l < "$work/err.log")" -eq 1 ]; then
+    pass "$what"
+  else
+    fail "$what: status $status, $(head -c 300 "$work/err.log")"
+  fi
+}
+expect_absent() {  # description, paths...
+  local what=$1
+  shift
+  local left=""
+  for path in "$@"; do [ -e "$path" ] && left="$left $path"; done
+  [ -z "$left" ] && pass "$what" || fail "$what: left$left"
+}
+
+# --- JSON nested 100 000 deep under an unknown key of a sidecar: refused, not a stack overflow.
+cp "$pos" "$work/bomb.flac"
+python3 - "$src/samples/stepped_positive.json" "$work/bomb.json" <<'PY'
+import json, sys
+sidecar = json.load(open(sys.argv[1]))
+text = json.dumps(sidecar)
+open(sys.argv[2], "w").write(text[:-1] + ', "junk": ' + "[" * 100000 + "]" * 100000 + "}")
+PY
+expect_error "info: a depth bomb in a sidecar" "bomb.json: JSON nested deeper than 64 levels" \
+  "$cli" info "$work/bomb.flac"
+expect_error "analyze: a depth bomb in a sidecar" "bomb.json: JSON nested deeper than 64 levels" \
+  "$cli" analyze "$work/bomb.flac" --edc "$work/bomb_edc.csv"
+expect_absent "analyze: no EDC table after a refused sidecar" "$work/bomb_edc.csv"
+python3 -c "print('{\"mass_kg\": 0.26, \"terms\": [], \"x\": ' + '[' * 100000 + ']' * 100000 + '}')" \
+  > "$work/bomb_model.json"
+expect_error "hbm: a depth bomb in a model" "bomb_model.json: JSON nested deeper than 64 levels" \
+  "$cli" hbm --model "$work/bomb_model.json" --freq 9 --f0 0.1:1 --out "$work/bomb_branch.csv"
+expect_absent "hbm: no branch after a refused model" "$work/bomb_branch.csv"
+
+# --- A network sender (the stream protocol, docs/stream-protocol.md) whose frames are given as
+# arguments: hello, data:FIRST_SAMPLE:ROWS (sequence numbers counted), event:JSON, bomb-hello,
+# bomb-event, bye. It connects as soon as the recorder listens.
+cat > "$work/send.py" <<'PY'
+import json, socket, struct, sys, time
+port, sidecar_path = int(sys.argv[1]), sys.argv[2]
+sidecar = json.load(open(sidecar_path))
+sidecar.pop("excitation", None)
+deep = "[" * 100000 + "]" * 100000
+def frame(kind, payload):
+    return b"OSCS" + struct.pack("<BBHI", 1, kind, 0, len(payload)) + payload
+out, sequence = b"", 0
+for item in sys.argv[3:]:
+    if item == "hello":
+        out += frame(1, json.dumps({"protocol": "oscilab-stream/1", "stream_id": "s",
+                                    "sidecar": sidecar}).encode())
+    elif item == "bomb-hello":
+        out += frame(1, ('{"protocol": "oscilab-stream/1", "junk": ' + deep + "}").encode())
+    elif item == "bomb-event":
+        out += frame(3, ('{"t_s": 0, "kind": "mark", "data": {"x": ' + deep + "}}").encode())
+    elif item.startswith("event:"):
+        out += frame(3, item[6:].encode())
+    elif item.startswith("data:"):
+        _, first, rows = item.split(":")
+        values = [0.001 * i for i in range(2 * int(rows))]
+        out += frame(2, struct.pack("<QQII", sequence, int(first), int(rows), 2) +
+                     struct.pack("<%dd" % len(values), *values))
+        sequence += 1
+    elif item == "bye":
+        out += frame(4, b"")
+for _ in range(100):
+    try:
+        connection = socket.create_connection(("127.0.0.1", port))
+        break
+    except OSError:
+        time.sleep(0.1)
+connection.sendall(out)
+connection.shutdown(socket.SHUT_WR)
+connection.recv(1)
+PY
+record_from() {  # name, frames...: records what the sender sends into $work/NAME.wav
+  local name=$1
+  shift
+  local port=$((20000 + RANDOM % 30000))
+  timeout 60 "$cli" record --source "net:127.0.0.1:$port" --out "$work/$name.wav" --wait 30 \
+    > "$work/$name.log" 2>&1 &
+  local recorder=$!
+  timeout 60 python3 "$work/send.py" "$port" "$src/samples/stepped_positive.json" "$@"
+  wait $recorder
+}
+if record_from net_bomb bomb-hello hello data:0:512 bomb-event data:512:512 bye; then
+  pass "record --source net: depth bombs in HELLO and EVENT frames, exit 0"
+else
+  fail "record net depth bomb: status $?, $(tail -3 "$work/net_bomb.log")"
+fi
+[ "$(grep -c '"kind":"malformed-frame".*nested deeper than 64 levels' "$work/net_bomb.events.jsonl")" -eq 2 ] \
+  && pass "both bombs logged as malformed frames" \
+  || fail "events: $(cut -c1-200 "$work/net_bomb.events.jsonl")"
+grep -q '"kind":"source-ended"' "$work/net_bomb.events.jsonl" \
+  && pass "the stream went on to its BYE" || fail "no source-ended event"
+"$cli" info "$work/net_bomb.wav" > "$work/net_bomb.info" 2>&1 && grep -q "samples: *1024$" "$work/net_bomb.info" \
+  && pass "both DATA frames recorded" || fail "net_bomb.wav: $(cat "$work/net_bomb.info")"
+
+echo "$passes passed, $failures failed"
+[ $failures -eq 0 ]
