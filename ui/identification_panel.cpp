@@ -14,6 +14,8 @@
 #include <QListWidget>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QSplitter>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -29,6 +31,7 @@
 #include "ui/figure_data_job.h"
 #include "ui/figure_dialog.h"
 #include "ui/fit_settings_form.h"
+#include "ui/flow_layout.h"
 #include "ui/response_dialog.h"
 #include "ui/table_cells.h"
 
@@ -116,7 +119,8 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   connect(fit_button_, &QPushButton::clicked, this, &IdentificationPanel::start_fit);
   connect(diagnose_button_, &QPushButton::clicked, this, &IdentificationPanel::start_diagnosis);
   connect(cancel_button_, &QPushButton::clicked, this, &IdentificationPanel::cancel);
-  auto* buttons = new QHBoxLayout;
+  // The job buttons, then the result buttons, in rows that wrap with the panel's width.
+  auto* buttons = new FlowLayout(nullptr, 6, 4);
   buttons->addWidget(fit_button_);
   buttons->addWidget(diagnose_button_);
   buttons->addWidget(cancel_button_);
@@ -144,11 +148,10 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   });
   connect(branch_button_, &QPushButton::clicked, this, [this] { open_branch_dialog(); });
   connect(map_button_, &QPushButton::clicked, this, [this] { open_map_dialog(); });
-  auto* result_buttons = new QHBoxLayout;
-  result_buttons->addWidget(figures_button_);
-  result_buttons->addWidget(export_button_);
-  result_buttons->addWidget(branch_button_);
-  result_buttons->addWidget(map_button_);
+  buttons->addWidget(figures_button_);
+  buttons->addWidget(export_button_);
+  buttons->addWidget(branch_button_);
+  buttons->addWidget(map_button_);
   progress_ = new QProgressBar;
   progress_->setRange(0, 1000);
   progress_->setTextVisible(false);
@@ -182,14 +185,43 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   tabs_->addTab(diagnosis_view_->missing_energy_page(), tr("Missing energy"));
   tabs_->addTab(diagnosis_view_->budget_page(), tr("\u03c3 budget"));
 
+  // Seven tabs in a panel a third of a laptop screen wide: no scroll arrows to hide the last
+  // ones; a tab too narrow for its name elides it and says it in full on hover.
+  tabs_->setUsesScrollButtons(false);
+  tabs_->setElideMode(Qt::ElideRight);
+  for (int i = 0; i < tabs_->count(); ++i) tabs_->setTabToolTip(i, tabs_->tabText(i));
+
+  // The set-up (recordings and settings) above the results, in a splitter: on a short screen the
+  // set-up scrolls and the results keep most of the height; the user moves the divider.
+  auto* setup = new QWidget;
+  auto* setup_layout = new QVBoxLayout(setup);
+  setup_layout->setContentsMargins(0, 0, 0, 0);
+  setup_layout->addWidget(records);
+  setup_layout->addWidget(settings_form_);
+  setup_layout->addStretch(1);
+  auto* setup_scroll = new QScrollArea;
+  setup_scroll->setObjectName("fit_setup");
+  setup_scroll->setWidget(setup);
+  setup_scroll->setWidgetResizable(true);
+  setup_scroll->setFrameShape(QFrame::NoFrame);
+  setup_scroll->setMinimumHeight(80);
+  auto* results = new QWidget;
+  auto* results_layout = new QVBoxLayout(results);
+  results_layout->setContentsMargins(0, 0, 0, 0);
+  results_layout->addLayout(buttons);
+  results_layout->addWidget(progress_);
+  results_layout->addWidget(status_label_);
+  results_layout->addWidget(tabs_, 1);
+  splitter_ = new QSplitter(Qt::Vertical);
+  splitter_->setObjectName("fit_splitter");
+  splitter_->addWidget(setup_scroll);
+  splitter_->addWidget(results);
+  splitter_->setChildrenCollapsible(false);
+  splitter_->setStretchFactor(0, 0);
+  splitter_->setStretchFactor(1, 1);
   auto* layout = new QVBoxLayout(this);
-  layout->addWidget(records);
-  layout->addWidget(settings_form_);
-  layout->addLayout(buttons);
-  layout->addLayout(result_buttons);
-  layout->addWidget(progress_);
-  layout->addWidget(status_label_);
-  layout->addWidget(tabs_, 1);
+  layout->setContentsMargins(4, 4, 4, 4);
+  layout->addWidget(splitter_);
   update_result_buttons();
 }
 

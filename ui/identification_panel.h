@@ -20,6 +20,7 @@ class QListWidget;
 class QProgressBar;
 class QPushButton;
 class QSpinBox;
+class QSplitter;
 
 class QTableWidget;
 class QTabWidget;
@@ -174,6 +175,7 @@ class IdentificationPanel : public QWidget {
   QProgressBar* progress_ = nullptr;
   QLabel* status_label_ = nullptr;
   QTabWidget* tabs_ = nullptr;
+  QSplitter* splitter_ = nullptr;  // the set-up above the results
   QTableWidget* parameter_table_ = nullptr;
   DiagnosisView* diagnosis_view_ = nullptr;
   QCustomPlot* edc_plot_ = nullptr;

@@ -92,7 +92,7 @@ LiveTraceView::LiveTraceView(QWidget* parent) : QWidget(parent) {
   // One axis rect per trace, stacked over a shared time axis.
   plot_ = new QCustomPlot;
   plot_->setObjectName("trace_plot");
-  plot_->setMinimumSize(320, 400);
+  plot_->setMinimumSize(220, 300);  // four traces stay readable on a 768-high screen
   plot_->plotLayout()->clear();
   plot_->plotLayout()->setRowSpacing(2);
   auto* margins = new QCPMarginGroup(plot_);

@@ -1,5 +1,6 @@
 #include "ui/main_window.h"
 
+#include <algorithm>
 #include <exception>
 
 #include <QAction>
@@ -7,11 +8,13 @@
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QGuiApplication>
 #include <QInputDialog>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressBar>
+#include <QScreen>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QTimer>
@@ -92,7 +95,7 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   auto* dock = new QDockWidget(tr("Fit and diagnosis"), this);
   dock->setObjectName("identification_dock");
   dock->setWidget(identification_panel_);
-  identification_panel_->setMinimumWidth(520);
+  identification_panel_->setMinimumWidth(360);
   addDockWidget(Qt::RightDockWidgetArea, dock);
   // From the rig to a fitted model: a finished live recording opens for review and fitting, and
   // each fitted model's EDC is drawn over the live measurement.
@@ -177,7 +180,14 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
 
   setWindowTitle(tr("Oscilab"));
   statusBar()->showMessage(tr("Open recordings with File \u25b8 Open (Ctrl+O)."));
-  resize(1500, 900);
+  // 1500×900, or less on a smaller screen: the window never starts larger than the screen.
+  QSize size(1500, 900);
+  if (const QScreen* screen = QGuiApplication::primaryScreen()) {
+    size = size.boundedTo(screen->availableGeometry().size());
+  }
+  resize(size);
+  // The panel takes about two fifths of the width, the review the rest.
+  resizeDocks({dock}, {std::max(400, size.width() * 2 / 5)}, Qt::Horizontal);
 }
 
 MainWindow::~MainWindow() = default;
