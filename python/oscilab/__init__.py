@@ -31,8 +31,7 @@ from ._native._oscilab import (  # noqa: F401  (re-exported)
     virtual_rig,
     write_recording,
 )
-
-__version__ = "0.1.0"
+from ._native._oscilab import __version__  # noqa: F401  (CMakeLists.txt's project VERSION)
 
 __all__ = [
     "Analysis",

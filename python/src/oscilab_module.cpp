@@ -49,6 +49,7 @@ PYBIND11_MODULE(_oscilab, m) {
       }
     }
   });
+  m.attr("__version__") = OSCILAB_VERSION;  // CMakeLists.txt: project(Oscilab VERSION ...)
   bind_recording(m);
   bind_analysis(m);
   bind_models(m);
