@@ -108,5 +108,39 @@ grep -q '"kind":"source-ended"' "$work/net_bomb.events.jsonl" \
 "$cli" info "$work/net_bomb.wav" > "$work/net_bomb.info" 2>&1 && grep -q "samples: *1024$" "$work/net_bomb.info" \
   && pass "both DATA frames recorded" || fail "net_bomb.wav: $(cat "$work/net_bomb.info")"
 
+# --- Absurd numeric options: refused before anything is allocated or written.
+neg=$src/samples/stepped_negative.flac
+expect_error "simulate --hold 1e9" "more than the 5e+07 one run holds" \
+  "$cli" simulate --hold 1e9 --out "$work/s1.flac"
+expect_error "simulate --rate 1e9" "262.5 s at 1e+09 Hz" \
+  "$cli" simulate --rate 1e9 --out "$work/s2.flac"
+expect_error "simulate --test random --duration 1e9" "random excitation: duration 1e+09 s" \
+  "$cli" simulate --test random --duration 1e9 --out "$work/s3.flac"
+expect_absent "simulate: nothing written" "$work/s1.flac" "$work/s1.json" "$work/s2.flac" \
+  "$work/s3.flac"
+expect_error "hbm --sweep-time 1e9" "amplitude sweep: 1e+09 s up" \
+  "$cli" hbm --sweep-time 1e9 --sweep "$work/sweep.csv" --out "$work/b1.csv"
+expect_error "hbm --map-step 0" "bifurcation map: levels: need" \
+  "$cli" hbm --map-step 0 --map "$work/map.csv" --out "$work/b2.csv"
+expect_error "hbm --samples -1" "samples: -1 must be 0" \
+  "$cli" hbm --samples -1 --out "$work/b3.csv"
+expect_absent "hbm: no branch, sweep or map CSV" "$work/b1.csv" "$work/sweep.csv" "$work/b2.csv" \
+  "$work/map.csv" "$work/b3.csv"
+expect_error "fit --evaluations 1e12" "--evaluations: 1000000000000 is more than 10000000" \
+  "$cli" fit "$pos" "$neg" --evaluations 1000000000000 --out "$work/f1.json"
+expect_error "fit --evaluations 2^66" "--evaluations: .* is more than 10000000" \
+  "$cli" fit "$pos" "$neg" --evaluations 73786976294838206464 --out "$work/f2.json"
+expect_error "fit --threads -1" "--threads: -1 must be 0 (all cores) to 1024" \
+  "$cli" fit "$pos" "$neg" --threads -1 --out "$work/f3.json"
+expect_error "fit --max-harmonics 5" "--max-harmonics: 5 must be in 15 … 63" \
+  "$cli" fit "$pos" "$neg" --max-harmonics 5 --out "$work/f4.json"
+expect_error "diagnose --threads -1" "--threads: -1 must be 0 (all cores) to 1024" \
+  "$cli" diagnose "$pos" "$neg" --threads -1 --out "$work/diag"
+expect_absent "fit, diagnose: nothing written" "$work/f1.json" "$work/f2.json" "$work/f3.json" \
+  "$work/f4.json" "$work/diag"
+expect_error "record --wait -1" "--wait: -1 s must be >= 0" \
+  "$cli" record --source "net:127.0.0.1:$((20000 + RANDOM % 30000))" --wait -1 --out "$work/w.wav"
+expect_absent "record --wait -1: nothing written" "$work/w.wav" "$work/w.json"
+
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]
