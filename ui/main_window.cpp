@@ -21,6 +21,7 @@
 #include <QToolBar>
 
 #include "analysis/common/input_error.h"
+#include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/edc_objective.h"
 #include "daq/recording/format_reader.h"
@@ -67,6 +68,13 @@ QString summary(const daq::Recording& recording) {
     }
   }
   return text;
+}
+
+// A random or other non-stepped record has no levels to fit: it stays out of the fit panel. A
+// record that does not say its excitation joins (the analysis finds its levels, or not).
+bool joins_fit(const daq::Recording& recording) {
+  const auto& excitation = recording.sidecar.excitation;
+  return !excitation || excitation->type.empty() || excitation->type == "stepped-sine";
 }
 
 }  // namespace
@@ -236,7 +244,7 @@ bool MainWindow::load(const QString& path, QString& error) {
   sync_recordings();
   show_recording(recording);
   last_directory_ = QFileInfo(path).absolutePath();
-  identification_panel_->add_recording(path_utf8);
+  if (joins_fit(*recording)) identification_panel_->add_recording(path_utf8);
   schedule_analysis();
   return true;
 }
@@ -366,6 +374,12 @@ void MainWindow::on_analysis_finished(bool cancelled) {
     statusBar()->showMessage(tr("Analysis: %1").arg(QString::fromStdString(analysis_->errors[0])));
   }
   analysis_label_->setText(text);
+  // The fit panel shows the measurement it would fit at once, before any fit.
+  try {
+    identification_panel_->show_measured(analysis::edc_dataset(analysis_->campaign));
+  } catch (const InputError& error) {  // no usable stepped-sine level
+    identification_panel_->show_measured({}, QString::fromStdString(error.what()));
+  }
 
   // A session's selection, now that its levels exist.
   std::vector<LevelKey> keys;
@@ -458,7 +472,9 @@ bool MainWindow::open_session(const QString& path) {
   sync_recordings();
   identification_panel_->set_recordings({});
   for (const OpenedRecording& opened : opened_) {
-    identification_panel_->add_recording(opened.path.toStdString());
+    if (joins_fit(*opened.recording)) {
+      identification_panel_->add_recording(opened.path.toStdString());
+    }
   }
   const auto is_open = [this](const std::string& p) {
     for (const OpenedRecording& opened : opened_) {
