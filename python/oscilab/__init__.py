@@ -6,17 +6,22 @@ simulate them in time and with the virtual rig, follow harmonic-balance branches
 friction model and diagnose missing effects, and run the live chain as an iterator.
 
 Arrays are NumPy arrays in SI units (N, m, s, J, Hz, kg); tables are dicts of columns named like
-the CLI's CSV columns, JSON results are dicts with the CLI's keys (docs/contracts.md). Bad input
-raises ValueError with the CLI's one-line message; a file that cannot be found, opened or written
-raises OSError (FileNotFoundError when missing). Long calls release the GIL, report progress to
+the CLI's CSV columns, JSON results are dicts with the CLI's keys (docs/contracts.md). Errors are
+oscilab.Error: bad input raises InputError (a ValueError) with the CLI's one-line message naming
+the keyword argument, file, field or value; a file that cannot be opened or written raises
+FileError (an OSError), MissingFileError (a FileNotFoundError) when it does not exist. Long calls release the GIL, report progress to
 an optional callback and stop on Ctrl-C (KeyboardInterrupt, raised once the C++ job has
 stopped). See docs/python.md.
 """
 
 from ._native._oscilab import (  # noqa: F401  (re-exported)
     Analysis,
+    Error,
+    FileError,
     FitProblem,
+    InputError,
     LiveSession,
+    MissingFileError,
     Model,
     Recording,
     analyze,
@@ -35,8 +40,12 @@ from ._native._oscilab import __version__  # noqa: F401  (CMakeLists.txt's proje
 
 __all__ = [
     "Analysis",
+    "Error",
+    "FileError",
     "FitProblem",
+    "InputError",
     "LiveSession",
+    "MissingFileError",
     "Model",
     "Recording",
     "analyze",

@@ -106,14 +106,15 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
                                                                const py::object& progress) {
   daq::MappingOverrides overrides;
   if (!a.freq_hz.is_none()) {
-    const double freq = a.freq_hz.cast<double>();
+    const double freq = number_argument(a.freq_hz, "freq_hz");
     if (!(std::isfinite(freq) && freq > 0.0)) {
       throw InputError("freq_hz: " + std::to_string(freq) + " is not a positive number");
     }
     overrides.excitation_freq_hz = freq;
   }
   if (!a.well.is_none()) {
-    overrides.well_positive = well_argument(a.well.cast<std::string>()) == analysis::Well::Positive;
+    overrides.well_positive =
+        well_argument(text_argument(a.well, "well")) == analysis::Well::Positive;
   }
   overrides.ignore_sidecar_levels = a.detect_levels;
   analysis::PipelineSettings settings;
@@ -125,8 +126,11 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
   // Recordings in memory go through the same mapping and campaign analysis as files.
   std::vector<analysis::MeasurementChannels> in_memory;
   std::vector<std::string> paths;
-  const bool single = py::isinstance<daq::Recording>(recordings) ||
-                      py::isinstance<py::str>(recordings) || py::hasattr(recordings, "__fspath__");
+  const bool single = py::isinstance<daq::Recording>(recordings) || is_path(recordings);
+  if (!single && !py::isinstance<py::iterable>(recordings)) {
+    throw py::type_error("recordings: expected a path, a Recording or a sequence of them, not " +
+                         py::str(py::type::of(recordings).attr("__name__")).cast<std::string>());
+  }
   const py::list items =
       single ? py::list(py::make_tuple(recordings)) : py::list(py::iterable(recordings));
   bool any_recording = false;

@@ -133,8 +133,38 @@ Eigen::VectorXd to_vector(const py::handle& object, const std::string& where) {
   return out;
 }
 
+bool is_path(const py::handle& object) {
+  return py::isinstance<py::str>(object) || py::isinstance<py::bytes>(object) ||
+         py::hasattr(object, "__fspath__");
+}
+
 std::string path_string(const py::handle& object) {
-  return py::str(py::module_::import("os").attr("fspath")(object)).cast<std::string>();
+  // os.fsdecode(os.fspath(p)): str, bytes (file-system encoding) and os.PathLike, as open() takes.
+  const py::module_ os = py::module_::import("os");
+  return os.attr("fsdecode")(os.attr("fspath")(object)).cast<std::string>();
+}
+
+namespace {
+
+std::string type_name(const py::handle& object) {
+  return py::str(py::type::of(object).attr("__name__")).cast<std::string>();
+}
+
+}  // namespace
+
+double number_argument(const py::handle& object, const std::string& name) {
+  const bool number = (py::isinstance<py::int_>(object) || py::isinstance<py::float_>(object) ||
+                       py::hasattr(object, "__float__")) &&
+                      !py::isinstance<py::str>(object) && !py::isinstance<py::bytes>(object);
+  if (!number) throw py::type_error(name + ": expected a number, not " + type_name(object));
+  return py::float_(py::reinterpret_borrow<py::object>(object)).cast<double>();
+}
+
+std::string text_argument(const py::handle& object, const std::string& name) {
+  if (!py::isinstance<py::str>(object)) {
+    throw py::type_error(name + ": expected a str, not " + type_name(object));
+  }
+  return object.cast<std::string>();
 }
 
 analysis::Well well_argument(const std::string& well) {
@@ -146,9 +176,7 @@ analysis::Well well_argument(const std::string& well) {
 }
 
 std::vector<std::string> path_list(const py::handle& object, const std::string& where) {
-  if (py::isinstance<py::str>(object) || py::hasattr(object, "__fspath__")) {
-    return {path_string(object)};
-  }
+  if (is_path(object)) return {path_string(object)};
   std::vector<std::string> out;
   try {
     for (const auto& item : object) out.push_back(path_string(item));

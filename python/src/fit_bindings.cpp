@@ -34,7 +34,13 @@ std::shared_ptr<const analysis::CampaignAnalysis> campaign_of(const py::object& 
   }
   AnalysisArguments arguments;
   arguments.freq_hz = freq_hz;
-  const bool single = py::isinstance<py::str>(recordings) || py::hasattr(recordings, "__fspath__");
+  const bool single = is_path(recordings);
+  if (!single && !py::isinstance<daq::Recording>(recordings) &&
+      !py::isinstance<py::iterable>(recordings)) {
+    throw py::type_error(
+        "recordings: expected a path, a Recording, an Analysis or a sequence of them, not " +
+        py::str(py::type::of(recordings).attr("__name__")).cast<std::string>());
+  }
   // A sequence is read once (it may be a generator).
   const py::object items = single || py::isinstance<daq::Recording>(recordings)
                                ? recordings
@@ -43,7 +49,7 @@ std::shared_ptr<const analysis::CampaignAnalysis> campaign_of(const py::object& 
   bool all_paths = !py::isinstance<daq::Recording>(items);
   if (!single && all_paths) {
     for (const auto& item : items) {
-      all_paths &= py::isinstance<py::str>(item) || py::hasattr(item, "__fspath__");
+      all_paths &= is_path(item);
     }
   }
   if (all_paths) {

@@ -1,6 +1,7 @@
 // Models of eq. (1): the paper's (eq. (7), Tables 1 and 3), the illustrative (eq. (14), Table 2),
 // from and to the project's model JSON, built from terms; equilibria and eq. (4) frequencies.
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +16,22 @@ namespace oscilab::python {
 namespace {
 
 using analysis::Model;
+
+// A model file that does not exist is a missing file (MissingFileError, a FileNotFoundError),
+// before the core's "cannot open": `what` says which argument named it and what it could be.
+std::string existing_model_file(const py::handle& path, const std::string& what) {
+  const std::string text = path_string(path);
+  if (!std::filesystem::exists(text)) throw InputError(text + ": file not found (" + what + ")");
+  return text;
+}
+
+// 'paper', 'illustrative' or a model JSON path, as the CLI's --model.
+Model model_from_spec_argument(const py::handle& spec, const std::string& where) {
+  const std::string text = path_string(spec);
+  if (text == "paper" || text == "illustrative") return analysis::model_from_spec(text);
+  return analysis::load_model(
+      existing_model_file(spec, where + ": not 'paper', 'illustrative' or a model JSON file"));
+}
 
 // Evaluates f at every element of a number or an array of numbers (broadcasting a single value
 // against an array); a number in gives a float out.
@@ -63,9 +80,7 @@ Model model_argument(const py::handle& object) {
   if (py::isinstance<py::dict>(object)) {
     return analysis::model_from_json(json_argument(object, "model"), "model");
   }
-  if (py::isinstance<py::str>(object) || py::hasattr(object, "__fspath__")) {
-    return analysis::model_from_spec(path_string(object));
-  }
+  if (is_path(object)) return model_from_spec_argument(object, "model");
   throw InputError("model: expected a Model, a model dict, 'paper', 'illustrative' or a path");
 }
 
@@ -95,8 +110,10 @@ make the others. Raises ValueError naming the term and field for bad input.
             analysis::PaperFriction f;
             double* fields[] = {&f.fd_zminus_n, &f.fd_zero_n, &f.fd_zplus_n,
                                 &f.ks,          &f.c_ns_m,    &f.vt_m_s};
+            const char* names[] = {"fd_zminus_n", "fd_zero_n", "fd_zplus_n",
+                                   "ks",          "c_ns_m",    "vt_m_s"};
             for (int i = 0; i < 6; ++i) {
-              if (!given[i].is_none()) *fields[i] = given[i].cast<double>();
+              if (!given[i].is_none()) *fields[i] = number_argument(given[i], names[i]);
             }
             return analysis::paper_model(f);
           },
@@ -116,11 +133,16 @@ make the others. Raises ValueError naming the term and field for bad input.
           },
           py::arg("json"), "A model from its JSON (a dict or JSON text, format oscilab-model/1).")
       .def_static(
-          "load", [](const py::object& path) { return analysis::load_model(path_string(path)); },
-          py::arg("path"), "Reads a model JSON file (OSError when it cannot be opened).")
+          "load",
+          [](const py::object& path) {
+            return analysis::load_model(existing_model_file(path, "path: a model JSON file"));
+          },
+          py::arg("path"),
+          "Reads a model JSON file (MissingFileError, a FileNotFoundError, when it does not "
+          "exist; FileError, an OSError, when it cannot be opened).")
       .def_static(
           "from_spec",
-          [](const py::object& spec) { return analysis::model_from_spec(path_string(spec)); },
+          [](const py::object& spec) { return model_from_spec_argument(spec, "spec"); },
           py::arg("spec"),
           "A model as the CLI's --model names it: 'paper', 'illustrative' or a model JSON path.")
       .def(

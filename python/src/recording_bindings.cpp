@@ -1,5 +1,6 @@
 // Recordings: read any format read_recording knows (libsndfile containers, CSV and the readers
 // behind daq/recording/format_reader.h), build one from arrays and a sidecar, write it.
+#include <cmath>
 #include <string>
 
 #include "analysis/common/input_error.h"
@@ -7,6 +8,7 @@
 #include "daq/recording/recording.h"
 #include "daq/recording/recording_summary.h"
 #include "daq/recording/sidecar.h"
+#include "daq/recording/stored_samples.h"
 
 namespace oscilab::python {
 namespace {
@@ -17,9 +19,17 @@ daq::Sidecar sidecar_argument(const py::handle& object) {
   return daq::parse_sidecar(json_argument(object, "sidecar"), "sidecar");
 }
 
-Recording make_recording(const py::handle& sidecar_object, const py::handle& samples) {
+Recording make_unchecked_recording(const py::handle& sidecar_object, const py::handle& samples) {
   Recording recording;
-  recording.sidecar = sidecar_argument(sidecar_object);
+  // The samples are SI already: a channel's scale only maps them to stored values when the
+  // recording is written, so a channel without one gets 1.
+  nlohmann::json sidecar = json_argument(sidecar_object, "sidecar");
+  if (sidecar.is_object() && sidecar.contains("channels") && sidecar["channels"].is_array()) {
+    for (nlohmann::json& channel : sidecar["channels"]) {
+      if (channel.is_object() && !channel.contains("scale")) channel["scale"] = 1.0;
+    }
+  }
+  recording.sidecar = daq::parse_sidecar(sidecar, "sidecar");
   const auto& channels = recording.sidecar.channels;
   const auto n_channels = static_cast<Eigen::Index>(channels.size());
   if (py::isinstance<py::dict>(samples)) {
@@ -64,6 +74,38 @@ Recording make_recording(const py::handle& sidecar_object, const py::handle& sam
   for (py::ssize_t r = 0; r < array.shape(0); ++r) {
     for (py::ssize_t c = 0; c < n_channels; ++c) recording.samples_si(r, c) = view(r, c);
   }
+  return recording;
+}
+
+// Samples built in Python are checked as a file's are (daq/recording/stored_samples.cpp): a
+// non-finite sample outside the sidecar's invalid intervals is an error naming the channel and
+// the first such sample.
+void check_finite(const Recording& recording) {
+  const daq::Sidecar& sidecar = recording.sidecar;
+  const Eigen::MatrixXd& samples = recording.samples_si;
+  const daq::StoredSamples no_lines;
+  for (Eigen::Index c = 0; c < samples.cols(); ++c) {
+    Eigen::Index first_bad = -1;
+    Eigen::Index bad_count = 0;
+    for (Eigen::Index r = 0; r < samples.rows(); ++r) {
+      if (!std::isfinite(samples(r, c)) && !daq::declared_invalid(sidecar, r)) {
+        if (first_bad < 0) first_bad = r;
+        ++bad_count;
+      }
+    }
+    if (first_bad < 0) continue;
+    const double value = samples(first_bad, c);
+    throw InputError("samples: channel \"" + sidecar.channels[static_cast<std::size_t>(c)].name +
+                     "\": " + daq::sample_place(first_bad, sidecar.sample_rate_hz, no_lines) +
+                     (std::isnan(value) ? " is NaN" : " is infinite") + "; " +
+                     std::to_string(bad_count) + " of " + std::to_string(samples.rows()) +
+                     " samples of this channel are not finite");
+  }
+}
+
+Recording make_recording(const py::handle& sidecar_object, const py::handle& samples) {
+  Recording recording = make_unchecked_recording(sidecar_object, samples);
+  check_finite(recording);
   return recording;
 }
 

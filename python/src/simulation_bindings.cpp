@@ -140,7 +140,7 @@ void bind_simulation(py::module_& m) {
          const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
         const bool positive = well_argument(well) == analysis::Well::Positive;
-        const double z0 = z0_m.is_none() ? model.well(positive).z_m : z0_m.cast<double>();
+        const double z0 = z0_m.is_none() ? model.well(positive).z_m : number_argument(z0_m, "z0_m");
         analysis::TimeSimulator::Options options;
         options.relative_tolerance = relative_tolerance;
         options.absolute_tolerance = absolute_tolerance;
