@@ -84,3 +84,53 @@ def _edc_dataframe(self):
 
 
 Analysis.edc_dataframe = _edc_dataframe
+
+
+def _give_signatures():
+    """inspect.signature for the compiled functions, constructors and methods: each function and
+    method becomes a thin Python wrapper whose __signature__ is the one pybind11 states in its
+    docstring (oscilab/_signatures.py, which the stubs come from too); constructors give theirs
+    as the class's __signature__."""
+    import functools
+
+    from . import _signatures
+
+    def wrap(native, signature, qualname):
+        @functools.wraps(native)
+        def wrapper(*args, **kwargs):
+            return native(*args, **kwargs)
+
+        wrapper.__signature__ = signature
+        wrapper.__module__ = __name__
+        wrapper.__qualname__ = qualname
+        return wrapper
+
+    names = globals()
+    for name in __all__:
+        obj = names[name]
+        if type(obj).__name__ == "builtin_function_or_method":
+            signature = _signatures.signature(obj.__doc__, name)
+            if signature is not None:
+                names[name] = wrap(obj, signature, name)
+        elif isinstance(obj, type) and not issubclass(obj, BaseException):
+            init = vars(obj).get("__init__")
+            signature = _signatures.signature(getattr(init, "__doc__", None), "__init__", True)
+            if signature is not None:
+                obj.__signature__ = signature
+            for member_name, member in list(vars(obj).items()):
+                if member_name.startswith("_"):
+                    continue
+                qualname = f"{obj.__name__}.{member_name}"
+                if isinstance(member, staticmethod):
+                    native = member.__func__
+                    signature = _signatures.signature(native.__doc__, member_name)
+                    if signature is not None:
+                        setattr(obj, member_name, staticmethod(wrap(native, signature, qualname)))
+                elif type(member).__name__ == "instancemethod":
+                    native = member.__func__
+                    signature = _signatures.signature(native.__doc__, member_name)
+                    if signature is not None:
+                        setattr(obj, member_name, wrap(native, signature, qualname))
+
+
+_give_signatures()
