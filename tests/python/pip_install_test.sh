@@ -39,6 +39,8 @@ files = {str(f) for f in importlib.metadata.files("oscilab")}
 for module in ("liboscilab_cmaes.so", "oscilab_hdf5_module.so", "oscilab_png_module.so"):
     assert any(f.endswith("/" + module) for f in files), f"{module} is not in the wheel: {files}"
 assert any(f.startswith("oscilab/_native/_oscilab.") for f in files), files
+for typed in ("oscilab/py.typed", "oscilab/__init__.pyi", "oscilab/_signatures.py"):
+    assert typed in files, f"{typed} is not in the wheel"
 assert oscilab.Model.paper().summary()["mass_kg"] > 0
 print("installed oscilab", oscilab.__version__, "in", package)
 PY
