@@ -333,6 +333,14 @@ void Acquisition::Impl::publish_events() {
 
 void Acquisition::Impl::handle_event(StreamEvent event) {
   const std::lock_guard lock(mutex);  // events are rare: each is published as it comes
+  // Whatever the source: an event the analysis cannot trust (a level beyond Nyquist, a time
+  // beyond any clock) is logged with why, and neither analysed nor written to the sidecar.
+  if (const std::string problem = rate_hz > 0.0 ? stream_event_problem(event, rate_hz) : "";
+      !problem.empty()) {
+    log({event.t_s, EventKind::Warning, "ignored: " + problem, event.data});
+    publish_events();
+    return;
+  }
   if (event.kind == EventKind::Level && edc.running()) {
     const double f0 = event.data.value("f0_n", 0.0);
     const double freq = event.data.value("frequency_hz", edc.freq_hz());

@@ -52,7 +52,8 @@ cat > "$work/send.py" <<'PY'
 import json, socket, struct, sys, time
 port, sidecar_path = int(sys.argv[1]), sys.argv[2]
 sidecar = json.load(open(sidecar_path))
-sidecar.pop("excitation", None)
+# The excitation's frequency (the live EDC runs), its levels left to the stream's level events.
+sidecar["excitation"] = {"type": "stepped-sine", "frequency_hz": 9.0}
 deep = "[" * 100000 + "]" * 100000
 def frame(kind, payload):
     return b"OSCS" + struct.pack("<BBHI", 1, kind, 0, len(payload)) + payload
@@ -141,6 +142,39 @@ expect_absent "fit, diagnose: nothing written" "$work/f1.json" "$work/f2.json" "
 expect_error "record --wait -1" "--wait: -1 s must be >= 0" \
   "$cli" record --source "net:127.0.0.1:$((20000 + RANDOM % 30000))" --wait -1 --out "$work/w.wav"
 expect_absent "record --wait -1: nothing written" "$work/w.wav" "$work/w.json"
+
+# --- Absurd network fields: each frame refused alone (one malformed-frame event), the stream
+# goes on, the clock never jumps, nothing beyond Nyquist reaches the analysis or the sidecar.
+level() { echo "event:{\"t_s\": 1.0, \"kind\": \"level\", \"data\": $1}"; }
+if record_from net_fields hello data:0:512 \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 1e9}')" \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 300}')" \
+    "$(level '{"f0_n": "x", "frequency_hz": 9}')" \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 9, "steady_from_s": 1e300}')" \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 9}')" \
+    data:512:512 data:9223372036854775808:512 data:1024:512 bye; then
+  pass "record --source net: absurd level events and a DATA clock jump, exit 0 (no hang)"
+else
+  fail "record net fields: status $?, $(tail -3 "$work/net_fields.log")"
+fi
+events=$work/net_fields.events.jsonl
+for text in "frequency_hz 1e+09 is not in (0, 256) Hz" "frequency_hz 300 is not in (0, 256) Hz" \
+    "f0_n is not a number" "steady_from_s 1e+300 is not a stream time" \
+    "DATA frame refused: first_sample 9223372036854775808 is 1.8e+16 s past"; do
+  grep -q "\"malformed-frame\".*$text" "$events" && pass "refused: $text" \
+    || fail "not refused: $text: $(cut -c1-160 "$events")"
+done
+grep -q '"kind":"source-ended","t_s":3.0' "$events" \
+  && pass "the stream clock ends at 3 s: the jump never moved it" \
+  || fail "clock: $(grep source-ended "$events")"
+python3 - "$work/net_fields.json" <<'PY' && pass "the sidecar holds the one valid level" || fail "sidecar levels"
+import json, sys
+excitation = json.load(open(sys.argv[1]))["excitation"]
+assert excitation["frequency_hz"] == 9.0, excitation
+assert [level["f0_n"] for level in excitation["levels"]] == [0.5], excitation
+PY
+"$cli" info "$work/net_fields.wav" 2>&1 | grep -q "samples: *1536$" \
+  && pass "the three valid DATA frames recorded" || fail "net_fields.wav samples"
 
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]

@@ -2,6 +2,7 @@
 
 #include "tests/daq/live/stream_test_layout.h"
 
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <set>
@@ -188,6 +189,31 @@ TEST(StreamProtocol, RefusesAJsonDepthBombFrameAloneAndGoesOn) {
   EXPECT_FALSE(frames[2].event.has_value());
   EXPECT_EQ(frames[3].type, FrameType::Data);  // the stream goes on after both
   EXPECT_EQ(frames[3].rows, 1);
+}
+
+// What a receiver acts on is checked against its clock: a level beyond Nyquist would hang the
+// cycle analysis and be written into the sidecar; a time of 1e300 s is no sample index.
+TEST(StreamEvent, ProblemNamesLevelsBeyondNyquistAndTimesBeyondAnyClock) {
+  const auto level = [](nlohmann::json data) {
+    return StreamEvent{1.0, EventKind::Level, "", std::move(data)};
+  };
+  EXPECT_EQ(stream_event_problem(level({{"f0_n", 0.5}, {"frequency_hz", 9.0}}), 512.0), "");
+  EXPECT_EQ(stream_event_problem(level({{"f0_n", 0.5}, {"frequency_hz", 1e9}}), 512.0),
+            "level event: frequency_hz 1e+09 is not in (0, 256) Hz (the Nyquist frequency of the "
+            "512 Hz stream)");
+  EXPECT_NE(stream_event_problem(level({{"frequency_hz", 256.0}}), 512.0), "");  // at Nyquist
+  EXPECT_NE(stream_event_problem(level({{"frequency_hz", 0.0}}), 512.0), "");
+  EXPECT_EQ(stream_event_problem(level({{"f0_n", -1.0}}), 512.0),
+            "level event: f0_n -1 N is not a finite amplitude >= 0");
+  EXPECT_EQ(stream_event_problem(level({{"f0_n", "x"}}), 512.0),
+            "level event: f0_n is not a number: \"x\"");
+  EXPECT_EQ(stream_event_problem(level({{"steady_to_s", 1e300}}), 512.0),
+            "level event: steady_to_s 1e+300 is not a stream time in [0, 1e9] s");
+  EXPECT_NE(stream_event_problem({1e300, EventKind::Discontinuity}, 512.0), "");
+  EXPECT_NE(stream_event_problem({1.0, EventKind::Invalid, "", {{"from_s", -5.0}}}, 512.0), "");
+  // No time (NaN) is allowed; kinds only logged are never refused.
+  EXPECT_EQ(stream_event_problem({std::nan(""), EventKind::Discontinuity}, 512.0), "");
+  EXPECT_EQ(stream_event_problem({1e300, EventKind::Mark, "", {{"f0_n", "x"}}}, 512.0), "");
 }
 
 TEST(StreamProtocol, RandomBytesNeverCrashAndMemoryStaysBounded) {
