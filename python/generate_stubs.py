@@ -111,6 +111,8 @@ def class_lines(cls, signatures):
             signature = function_signature(member.__func__, name, signatures)
             body.append("    @staticmethod")
             body.append(f"    def {name}{signature_text(signature)}: ...")
+        elif name == "__eq__":  # returns NotImplemented for other types: the C++ side's object
+            body.append("    def __eq__(self, other: object) -> bool: ...")
         elif callable(member):
             signature = function_signature(member, name, signatures)
             body.append(f"    def {name}{signature_text(signature)}: ...")

@@ -226,6 +226,20 @@ make the others. Raises ValueError naming the term and field for bad input.
                                [&model](double zz, double) { return model.potential_j(zz); });
           },
           py::arg("z_m"), "U(z) [J] of eq. (3), element-wise.")
+      .def(
+          "__eq__",
+          [](const Model& a, const py::object& other) -> py::object {
+            if (!py::isinstance<Model>(other))
+              return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+            return py::bool_(a.to_json() == other.cast<const Model&>().to_json());
+          },
+          py::arg("other"), "Equal models: the same model JSON (mass, terms, coefficients, name).")
+      .def(py::pickle([](const Model& model) { return py::make_tuple(model.to_json().dump()); },
+                      [](const py::tuple& state) {
+                        if (state.size() != 1) throw InputError("Model state: expected 1 item");
+                        return analysis::model_from_json(
+                            nlohmann::json::parse(state[0].cast<std::string>()), "model");
+                      }))
       .def("__repr__", [](const Model& model) {
         return "<oscilab.Model " + model.name() + ", m = " + std::to_string(model.mass_kg()) +
                " kg, " + std::to_string(model.terms().size()) + " terms>";

@@ -109,6 +109,44 @@ Recording make_recording(const py::handle& sidecar_object, const py::handle& sam
   return recording;
 }
 
+// A read-only NumPy view of the recording's samples (Eigen stores them column by column: a
+// Fortran-order array), kept alive by the Recording object `owner`: no copy on every access, and
+// a write raises instead of changing a copy.
+py::array_t<double> read_only_view(const Eigen::MatrixXd& samples, const py::handle& owner) {
+  const auto rows = static_cast<py::ssize_t>(samples.rows());
+  const auto cols = static_cast<py::ssize_t>(samples.cols());
+  const auto item = static_cast<py::ssize_t>(sizeof(double));
+  py::array_t<double> view({rows, cols}, {item, item * rows}, samples.data(), owner);
+  view.attr("setflags")(py::arg("write") = false);
+  return view;
+}
+
+// One channel (a column, contiguous) as a read-only view.
+py::array_t<double> read_only_column(const Recording& r, int index, const py::handle& owner) {
+  const auto rows = static_cast<py::ssize_t>(r.samples_si.rows());
+  py::array_t<double> view({rows}, {static_cast<py::ssize_t>(sizeof(double))},
+                           r.samples_si.col(index).data(), owner);
+  view.attr("setflags")(py::arg("write") = false);
+  return view;
+}
+
+// Equal samples: element by element, NaN equal to NaN (declared invalid samples are NaN).
+bool same_samples(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    const double x = a.data()[i];
+    const double y = b.data()[i];
+    if (!(x == y || (std::isnan(x) && std::isnan(y)))) return false;
+  }
+  return true;
+}
+
+Eigen::MatrixXd matrix_of(const py::handle& object) {
+  const auto array = py::array_t<double, py::array::f_style | py::array::forcecast>::ensure(object);
+  if (!array || array.ndim() != 2) throw InputError("Recording state: samples must be 2-D");
+  return Eigen::Map<const Eigen::MatrixXd>(array.data(), array.shape(0), array.shape(1));
+}
+
 daq::ChannelRole parse_role(const std::string& role) {
   for (daq::ChannelRole r : {daq::ChannelRole::Base, daq::ChannelRole::Mass,
                              daq::ChannelRole::Relative, daq::ChannelRole::Force}) {
@@ -170,8 +208,12 @@ written. Raises ValueError with the reader's message for an invalid sidecar.
           "The sidecar's channel descriptions (list of dicts: name, role, quantity, unit, scale, "
           "offset, sensor ...).")
       .def_property_readonly(
-          "samples", [](const Recording& r) { return to_array(r.samples_si); },
-          "Samples in SI units, 2-D array (samples × channels), a copy.")
+          "samples",
+          [](const py::object& self) {
+            return read_only_view(self.cast<const Recording&>().samples_si, self);
+          },
+          "Samples in SI units, 2-D array (samples × channels): a read-only view of the "
+          "recording's own samples (no copy; np.array(rec.samples) makes a writable copy).")
       .def_property_readonly(
           "samples_stored",
           [](const Recording& r) -> py::object {
@@ -200,28 +242,32 @@ written. Raises ValueError with the reader's message for an invalid sidecar.
       .def_property_readonly("sample_count", &Recording::sample_count, "Samples per channel.")
       .def(
           "channel",
-          [](const Recording& r, const std::string& name) {
+          [](const py::object& self, const std::string& name) {
+            const Recording& r = self.cast<const Recording&>();
             const int index = r.channel_index(name);
             if (index < 0) throw InputError("channel: no channel named \"" + name + "\"");
-            return to_array(Eigen::VectorXd(r.samples_si.col(index)));
+            return read_only_column(r, index, self);
           },
-          py::arg("name"), "The SI samples of the channel named `name` (1-D array).")
+          py::arg("name"),
+          "The SI samples of the channel named `name` (1-D array, a read-only view).")
       .def(
           "channel_by_role",
-          [](const Recording& r, const std::string& role) {
+          [](const py::object& self, const std::string& role) {
+            const Recording& r = self.cast<const Recording&>();
             const int index = r.channel_index(parse_role(role));
             if (index < 0)
               throw InputError("channel_by_role: no channel with role \"" + role + "\"");
-            return to_array(Eigen::VectorXd(r.samples_si.col(index)));
+            return read_only_column(r, index, self);
           },
           py::arg("role"),
           "The SI samples of the first channel with `role` (base, mass, relative, force).")
       .def(
           "__getitem__",
-          [](const Recording& r, const std::string& name) {
+          [](const py::object& self, const std::string& name) {
+            const Recording& r = self.cast<const Recording&>();
             const int index = r.channel_index(name);
             if (index < 0) throw py::key_error(name);
-            return to_array(Eigen::VectorXd(r.samples_si.col(index)));
+            return read_only_column(r, index, self);
           },
           py::arg("name"), "recording['y']: the SI samples of channel 'y'.")
       .def(
@@ -236,6 +282,38 @@ written. Raises ValueError with the reader's message for an invalid sidecar.
           "(.wav .flac .w64 .rf64 .aiff .caf .csv). Same as write_recording(recording, path).")
       .def("describe", &daq::describe_recording,
            "What the recording holds, as text: the output of `oscilab-cli info`.")
+      .def(
+          "__eq__",
+          [](const Recording& a, const py::object& other) -> py::object {
+            if (!py::isinstance<Recording>(other))
+              return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+            const Recording& b = other.cast<const Recording&>();
+            return py::bool_(daq::sidecar_to_json(a.sidecar) == daq::sidecar_to_json(b.sidecar) &&
+                             same_samples(a.samples_si, b.samples_si));
+          },
+          py::arg("other"),
+          "Equal recordings: the same sidecar and the same SI samples (NaN equal to NaN); where "
+          "they were read from does not matter.")
+      .def(py::pickle(
+          [](const Recording& r) {
+            // State: the sidecar as JSON text, the SI and stored samples, where it came from.
+            return py::make_tuple(daq::sidecar_to_json(r.sidecar).dump(), to_array(r.samples_si),
+                                  r.samples_stored.size() == 0
+                                      ? py::object(py::none())
+                                      : py::object(to_array(r.samples_stored)),
+                                  r.source_path, r.container);
+          },
+          [](const py::tuple& state) {
+            if (state.size() != 5) throw InputError("Recording state: expected 5 items");
+            Recording r;
+            r.sidecar =
+                daq::parse_sidecar(nlohmann::json::parse(state[0].cast<std::string>()), "sidecar");
+            r.samples_si = matrix_of(state[1]);
+            if (!state[2].is_none()) r.samples_stored = matrix_of(state[2]);
+            r.source_path = state[3].cast<std::string>();
+            r.container = state[4].cast<std::string>();
+            return r;
+          }))
       .def("__repr__", [](const Recording& r) {
         return "<oscilab.Recording " + std::to_string(r.samples_si.cols()) + " channels, " +
                std::to_string(r.sample_count()) + " samples at " +
