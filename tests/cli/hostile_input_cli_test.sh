@@ -176,5 +176,42 @@ PY
 "$cli" info "$work/net_fields.wav" 2>&1 | grep -q "samples: *1536$" \
   && pass "the three valid DATA frames recorded" || fail "net_fields.wav samples"
 
+# --- Outputs never over inputs, and all or nothing.
+"$cli" fit "$pos" "$neg" --evaluations 20 --threads 1 --out "$work/fit1.json" > /dev/null 2>&1
+cp "$work/fit1.json" "$work/fit1.before"
+expect_error "merge: --out one of its inputs" "--out: $work/fit1.json is an input of this command" \
+  "$cli" merge "$work/fit1.json" --out "$work/fit1.json"
+expect_error "merge: --out one of its inputs by another path" "is an input of this command" \
+  "$cli" merge "$work/fit1.json" --out "$work/nowhere/../fit1.json"
+cmp -s "$work/fit1.json" "$work/fit1.before" && pass "merge: the input FIT JSON is intact" \
+  || fail "merge overwrote its input"
+cp "$pos" "$work/run.flac"
+cp "$src/samples/stepped_positive.json" "$work/run.json"
+expect_error "analyze: --summary over the recording's sidecar" "--summary: $work/run.json is an input" \
+  "$cli" analyze "$work/run.flac" --summary "$work/run.json"
+expect_error "fit: --out over a recording" "--out: $work/run.flac is an input" \
+  "$cli" fit "$work/run.flac" "$neg" --out "$work/run.flac"
+cmp -s "$work/run.json" "$src/samples/stepped_positive.json" && cmp -s "$work/run.flac" "$pos" \
+  && pass "analyze, fit: recording and sidecar intact" || fail "an input was overwritten"
+ls "$work" | grep -q "\.tmp\." && fail "temporaries left: $(ls "$work" | grep tmp)" || pass "no temporary left"
+
+# A full disk: a small file system made for the test (root only; skipped elsewhere).
+small=$work/small
+mkdir -p "$small"
+if mount -t tmpfs -o size=256k tmpfs "$small" 2> /dev/null; then
+  trap 'umount "$small" 2> /dev/null; kill $(jobs -p) 2> /dev/null; rm -rf "$work"' EXIT
+  cat /dev/zero > "$small/fill" 2> /dev/null  # until the file system is full
+  expect_error "analyze on a full disk" "No space left on device" \
+    "$cli" analyze "$pos" --edc "$small/e.csv" --cycles "$small/c.csv"
+  expect_absent "analyze on a full disk: neither table nor temporary left" "$small/e.csv" "$small/c.csv"
+  [ "$(ls "$small")" = "fill" ] && pass "full disk: nothing but the filler" || fail "left: $(ls "$small")"
+  expect_error "merge on a full disk" "No space left on device" \
+    "$cli" merge "$work/fit1.json" "$work/fit1.json" "$work/fit1.json" --out "$small/m.csv"
+  [ "$(ls "$small")" = "fill" ] && pass "merge on a full disk: nothing left" || fail "left: $(ls "$small")"
+  rm -f "$small/fill"
+else
+  echo "skipped: the full-disk checks (mounting a small tmpfs needs root)"
+fi
+
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]
