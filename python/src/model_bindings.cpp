@@ -92,7 +92,8 @@ list of named terms (polynomial stiffness, position-dependent friction, viscous 
 ``Model(mass_kg, terms, name='')`` builds one from term dicts in the model JSON's form, e.g.
 ``{"type": "viscous-damping", "c_ns_m": 2.0}``; ``Model.paper()``, ``Model.illustrative()``,
 ``Model.from_json(...)``, ``Model.load(path)`` and ``Model.from_spec('paper'|'illustrative'|path)``
-make the others. Raises ValueError naming the term and field for bad input.
+make the others. Raises InputError (a ValueError) naming the term and field for bad input.
+Models pickle, and compare equal when their model JSON is.
 )doc")
       .def(py::init([](double mass_kg, const py::list& terms, const std::string& name) {
              return model_from_terms(mass_kg, terms, name);

@@ -2,6 +2,7 @@
 // file per concept (recording, analysis, models, simulation, hbm, fit and diagnose, live); this
 // one registers them and the error rule.
 #include <cctype>
+#include <cerrno>
 #include <cstring>
 #include <initializer_list>
 #include <string>
@@ -117,7 +118,11 @@ PYBIND11_MODULE(_oscilab, m) {
     } catch (const oscilab::InputError& e) {
       const std::string message = with_keyword_names(e.what());
       if (is_missing_file(message)) {
-        PyErr_SetString(missing_file_error_type, message.c_str());
+        // errno as for open(): `error.errno == errno.ENOENT` holds; str(error) stays the message.
+        const py::object error_object =
+            py::reinterpret_borrow<py::object>(missing_file_error_type)(message);
+        error_object.attr("errno") = ENOENT;
+        PyErr_SetObject(missing_file_error_type, error_object.ptr());
       } else if (is_file_problem(message)) {
         PyErr_SetString(file_error_type, message.c_str());
       } else {

@@ -165,8 +165,12 @@ one column per sidecar channel, one row per sample at ``sample_rate_hz``.
 ``Recording(sidecar, samples)`` builds one: ``sidecar`` is a dict (or JSON text) in the sidecar
 format of docs/contracts.md §1 (``sample_rate_hz``, ``mass_kg``, ``channels`` with ``name``,
 ``role``, ``quantity``, ``unit``, ``scale`` ...), ``samples`` a 2-D array (samples × channels) in
-SI or a dict channel name → 1-D array. Stored value = (SI / unit factor − offset) / scale when
-written. Raises ValueError with the reader's message for an invalid sidecar.
+SI or a dict channel name → 1-D array; a channel without ``scale`` gets 1. Stored value =
+(SI / unit factor − offset) / scale when written. Raises InputError (a ValueError) with the
+reader's message for an invalid sidecar, and for a NaN or infinite sample outside the sidecar's
+``invalid_intervals`` (naming the channel and the first such sample), as the readers do.
+
+Recordings pickle, and compare equal when their sidecars and SI samples are.
 )doc")
       .def(py::init([](const py::object& sidecar, const py::object& samples) {
              return make_recording(sidecar, samples);
@@ -339,8 +343,9 @@ written. Raises ValueError with the reader's message for an invalid sidecar.
 ``sidecar`` (a dict), that sidecar describes the file instead of the one beside it. Samples come
 back in SI units (calibration and unit conversion applied).
 
-Raises FileNotFoundError / OSError when the file cannot be found or opened, ValueError with the
-reader's one-line message (the CLI's) for anything it cannot trust.)doc");
+``path``: str, bytes or os.PathLike. Raises MissingFileError (a FileNotFoundError) when the file
+does not exist, FileError (an OSError) when it cannot be opened, InputError (a ValueError) with
+the reader's one-line message (the CLI's) for anything it cannot trust.)doc");
   m.def(
       "write_recording",
       [](const Recording& recording, const py::object& path) {
@@ -351,7 +356,7 @@ reader's one-line message (the CLI's) for anything it cannot trust.)doc");
       py::arg("recording"), py::arg("path"),
       "Writes a recording and its sidecar (same stem, .json); the container follows the "
       "extension. Both files are renamed into place, so a failure leaves no half-written "
-      "recording. Raises OSError when the file cannot be written.");
+      "recording. Raises FileError (an OSError) when the file cannot be written.");
   m.def(
       "describe_recording",
       [](const py::object& path) {

@@ -259,7 +259,7 @@ seed, ideal_sensors).
 Returns a dict: recording (a Recording: base_acc [m/s²] and y [m] with its sidecar; .write(path)
 gives the CLI's file), truth (arrays t_s, z_m, z_dot_m_s, z_ddot_m_s2, f_n, restoring_force_n,
 damping_force_n, work_in_j, dissipated_j, b_m), levels (true steady EDC per level), status,
-message. Raises ValueError when the integration fails.)doc");
+message. Raises InputError (a ValueError) when the integration fails.)doc");
 }
 
 }  // namespace oscilab::python

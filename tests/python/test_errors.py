@@ -2,6 +2,7 @@
 every path that raises them, paths as str, bytes and os.PathLike, arrays built in Python checked as
 a file's samples are, and wrong types as TypeError naming the argument."""
 
+import errno
 import json
 import os
 import pathlib
@@ -53,6 +54,7 @@ def test_a_missing_recording_is_a_missing_file_error_whatever_the_path_type(tmp_
     assert str(error.value) == message  # a bytes path is not mangled into "b'...'"
     assert isinstance(error.value, FileNotFoundError)
     assert isinstance(error.value, oscilab.Error)
+    assert error.value.errno == errno.ENOENT  # as open() would say
 
 
 def test_bytes_and_pathlike_paths_read_the_same_recording():
