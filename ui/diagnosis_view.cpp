@@ -1,5 +1,7 @@
 #include "ui/diagnosis_view.h"
 
+#include <algorithm>
+
 #include <QHeaderView>
 #include <QLabel>
 #include <QScrollArea>
@@ -202,6 +204,12 @@ void DiagnosisView::show_steps(const analysis::DiagnosisResult& r, double bic_th
   }
   add_cell_tooltips(step_table_);
   step_table_->resizeColumnsToContents();
+  // A long outcome or candidate is elided ("…", in full on hover) so that the columns after it
+  // stay in view in a narrow panel.
+  const int widest_px = step_table_->fontMetrics().horizontalAdvance(QStringLiteral("M")) * 16;
+  for (int c = 0; c < step_table_->columnCount() - 1; ++c) {
+    step_table_->setColumnWidth(c, std::min(step_table_->columnWidth(c), widest_px));
+  }
 }
 
 void DiagnosisView::show_residuals(const analysis::DiagnosisResult& r) {

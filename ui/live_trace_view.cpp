@@ -6,6 +6,7 @@
 #include <string>
 
 #include <QDoubleSpinBox>
+#include <QFontMetrics>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
@@ -179,7 +180,32 @@ void LiveTraceView::show_stream(const daq::Acquisition* acquisition,
 
 void LiveTraceView::set_layout(const std::optional<daq::Sidecar>& layout) {
   layout_ = layout;
-  for (int k = 0; k < kTraceCount; ++k) names_[std::size_t(k)]->setText(trace_name(k, layout_));
+  elide_names();
+}
+
+void LiveTraceView::elide_names() {
+  // Each trace's name within its axes: elided ("…") on a narrow plot rather than cut.
+  for (int k = 0; k < kTraceCount; ++k) {
+    QCPItemText* name = names_[std::size_t(k)];
+    const int width = rects_[std::size_t(k)]->width() - 12;
+    const QString text = trace_name(k, layout_);
+    name->setText(width > 0 ? QFontMetrics(name->font()).elidedText(text, Qt::ElideRight, width)
+                            : text);
+  }
+}
+
+void LiveTraceView::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  plot_->plotLayout()->update(QCPLayoutElement::upLayout);  // the axes' new sizes
+  elide_names();
+  // About 30 px per value tick label up each trace, so that they never run into each other.
+  constexpr int kTickHeightPx = 30;
+  for (QCPAxisRect* rect : rects_) {
+    rect->axis(QCPAxis::atLeft)
+        ->ticker()
+        ->setTickCount(std::clamp(rect->height() / kTickHeightPx, 2, 5));
+  }
+  plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 
 void LiveTraceView::set_window_s(double window_s) { window_box_->setValue(window_s); }
