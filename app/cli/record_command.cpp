@@ -103,8 +103,9 @@ void run(const RecordOptions& o) {
   acquisition->stop();
   const daq::AcquisitionStatus status = acquisition->status();
   if (terminal) std::fputc('\n', stderr);
-  print_status(status, true);
+  // A failed recording (a full disk) is the one line on stderr; what it holds opens as it is.
   if (!status.recorder_error.empty()) throw InputError(status.recorder_error);
+  print_status(status, true);
   const auto levels = acquisition->levels();
   std::printf("recorded %s: %llu samples (%.1f s)%s\n", o.out.c_str(),
               static_cast<unsigned long long>(status.recorded_samples),

@@ -209,6 +209,18 @@ if mount -t tmpfs -o size=256k tmpfs "$small" 2> /dev/null; then
     "$cli" merge "$work/fit1.json" "$work/fit1.json" "$work/fit1.json" --out "$small/m.csv"
   [ "$(ls "$small")" = "fill" ] && pass "merge on a full disk: nothing left" || fail "left: $(ls "$small")"
   rm -f "$small/fill"
+  # The recorder filling the disk: it stops cleanly, says so once, and leaves a recording whose
+  # header matches what was written, so that it opens.
+  expect_error "record on a full disk" "x.wav: write failed: .*No space left on device" \
+    "$cli" record --source rig --speed 0 --duration 600 --out "$small/x.wav"
+  "$cli" info "$small/x.wav" > "$work/full_info.txt" 2>&1 && grep -q "samples: *[1-9]" "$work/full_info.txt" \
+    && pass "record on a full disk: the recording opens with what was written" \
+    || fail "record on a full disk: $(head -2 "$work/full_info.txt")"
+  grep -q '"kind":"error".*recording stopped: .*No space left on device' "$small/x.events.jsonl" \
+    && pass "record on a full disk: the error is in the event log" \
+    || fail "event log: $(cut -c1-120 "$small/x.events.jsonl")"
+  ls "$small" | grep -q "\.tmp\." && fail "temporaries left: $(ls "$small")" \
+    || pass "record on a full disk: no temporary left"
 else
   echo "skipped: the full-disk checks (mounting a small tmpfs needs root)"
 fi
