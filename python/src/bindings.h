@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <pybind11/numpy.h>
@@ -69,6 +70,10 @@ analysis::Well well_argument(const std::string& well);
 struct ProgressReport {
   double fraction = 0.0;
   nlohmann::json extra = nlohmann::json::object();
+  /// Named values in their own order (a JSON object would sort them), handed on as the dict
+  /// `named_key`: a fit's best θ by parameter name, in θ's order.
+  std::string named_key;
+  std::vector<std::pair<std::string, double>> named;
 };
 using ReportFn = std::function<void(const ProgressReport&)>;
 
