@@ -228,11 +228,20 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   splitter_->setChildrenCollapsible(false);
   splitter_->setStretchFactor(0, 0);
   splitter_->setStretchFactor(1, 1);
-  splitter_->setSizes({200, 600});  // the results get three quarters of the height
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(4, 4, 4, 4);
   layout->addWidget(splitter_);
   update_result_buttons();
+}
+
+void IdentificationPanel::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  if (splitter_placed_ || splitter_->height() < 100) return;
+  // The set-up gets what it asks for up to a third of the height; the results the rest.
+  splitter_placed_ = true;
+  const int total = splitter_->height() - splitter_->handleWidth();
+  const int setup = std::min(splitter_->widget(0)->sizeHint().height(), total / 3);
+  splitter_->setSizes({setup, total - setup});
 }
 
 // The fit's worker emits fit_preview on this object: the workers must have ended before anything

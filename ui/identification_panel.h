@@ -132,6 +132,9 @@ class IdentificationPanel : public QWidget {
   /// An export of results ended; `ok` false with the reason in `message`.
   void export_finished(const QString& message, bool ok);
 
+ protected:
+  void resizeEvent(QResizeEvent* event) override;
+
  private:
   /// The recordings and the base model to fit or diagnose, or false with the reason shown.
   bool job_inputs(std::vector<std::string>& paths, analysis::FitSetup& setup);
@@ -187,6 +190,7 @@ class IdentificationPanel : public QWidget {
   QLabel* status_label_ = nullptr;
   QTabWidget* tabs_ = nullptr;
   QSplitter* splitter_ = nullptr;  // the set-up above the results
+  bool splitter_placed_ = false;   // the divider's first place, once the panel has a height
   QTableWidget* parameter_table_ = nullptr;
   DiagnosisView* diagnosis_view_ = nullptr;
   QCustomPlot* edc_plot_ = nullptr;
