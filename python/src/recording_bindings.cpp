@@ -5,9 +5,13 @@
 
 #include "analysis/common/input_error.h"
 #include "bindings.h"
+#include "daq/export/mat_export.h"
+#include "daq/export/uff58_export.h"
+#include "daq/recording/format_reader.h"
 #include "daq/recording/recording.h"
 #include "daq/recording/recording_summary.h"
 #include "daq/recording/sidecar.h"
+#include "daq/recording/sidecar_draft.h"
 #include "daq/recording/stored_samples.h"
 
 namespace oscilab::python {
@@ -284,6 +288,35 @@ Recordings pickle, and compare equal when their sidecars and SI samples are.
           py::arg("path"),
           "Writes samples and sidecar (same stem, .json); the container follows the extension "
           "(.wav .flac .w64 .rf64 .aiff .caf .csv). Same as write_recording(recording, path).")
+      .def(
+          "export_mat",
+          [](const Recording& r, const py::object& path) {
+            const std::string p = path_string(path);
+            py::gil_scoped_release release;
+            daq::write_recording_mat(r, p);
+          },
+          py::arg("path"),
+          "Writes the recording as a MATLAB v5 .mat file (`oscilab-cli export --mat`): t_s, one "
+          "variable per channel in SI, sample_rate_hz, mass_kg, sidecar_json, channel_names, "
+          "channel_variables, channel_units; NaN gaps kept.")
+      .def(
+          "export_uff",
+          [](const Recording& r, const py::object& path, int base_node, int mass_node,
+             int direction) {
+            daq::Uff58Options options;
+            options.base_node = base_node;
+            options.mass_node = mass_node;
+            options.direction = direction;
+            const std::string p = path_string(path);
+            py::gil_scoped_release release;
+            daq::write_recording_uff58(r, p, options);
+          },
+          py::arg("path"), py::kw_only(), py::arg("base_node") = 1, py::arg("mass_node") = 2,
+          py::arg("direction") = 1,
+          "Writes the recording as a Universal File (`oscilab-cli export --uff`): a dataset 164 "
+          "(SI) and one dataset 58 per channel. base_node: the table's node (base channels); "
+          "mass_node: the mass's (mass, relative, force); direction: 1..6 (±X, ±Y, ±Z, "
+          "rotation), 0 scalar. UFF has no missing value: a non-finite sample is an InputError.")
       .def("describe", &daq::describe_recording,
            "What the recording holds, as text: the output of `oscilab-cli info`.")
       .def(
@@ -357,6 +390,29 @@ the reader's one-line message (the CLI's) for anything it cannot trust.)doc");
       "Writes a recording and its sidecar (same stem, .json); the container follows the "
       "extension. Both files are renamed into place, so a failure leaves no half-written "
       "recording. Raises FileError (an OSError) when the file cannot be written.");
+  m.def(
+      "draft_sidecar",
+      [](const py::object& path) {
+        const std::string p = path_string(path);
+        daq::SidecarDraft draft;
+        {
+          py::gil_scoped_release release;
+          draft = daq::draft_sidecar(daq::format_for_file(p).describe(p));
+        }
+        py::dict out;
+        // json.loads keeps the draft's key order (the sidecar's), which a JSON object would sort.
+        out["sidecar"] = py::module_::import("json").attr("loads")(draft.sidecar.dump());
+        out["notes"] = py::cast(draft.notes);
+        out["complete"] = draft.complete;
+        return out;
+      },
+      py::arg("path"),
+      R"doc(A sidecar drafted from what a file holds (`oscilab-cli info FILE --draft-sidecar`), for
+a file another program wrote (TDMS, UFF 58, MATLAB, HDF5, a sound file ...) to check and complete.
+
+Returns a dict: sidecar (the draft, a dict in the sidecar's key order: write it beside the file
+as STEM.json, or pass it to read_recording(path, sidecar=...)), notes (what was guessed and what
+is missing, one line each), complete (True when every required field has a value).)doc");
   m.def(
       "describe_recording",
       [](const py::object& path) {
