@@ -8,6 +8,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "bindings.h"
+#include "daq/export/mat_export.h"
 #include "daq/recording/campaign_reader.h"
 #include "daq/recording/measurement_mapping.h"
 #include "python_types.h"
@@ -339,6 +340,17 @@ summary is the CLI's --summary JSON as a dict. Pass it to ``fit`` or ``diagnose`
           "The time signals of the restoring surface of one record (§3): t_s [s], z_m [m], "
           "z_dot_m_s [m/s], restoring_force_n [N] R = f − m z̈, and z_absolute (False: z's mean "
           "unknown).")
+      .def(
+          "export_edc_mat",
+          [](const AnalysisHandle& h, const py::object& path) {
+            const std::string p = path_string(path);
+            py::gil_scoped_release release;
+            daq::write_edc_mat(daq::edc_table_rows(*h.campaign), p);
+          },
+          py::arg("path"),
+          "Writes the EDC table as a MATLAB v5 .mat file (`oscilab-cli export --edc-mat`): one "
+          "column vector per contract column (well, f0_n, edc_mean_j, edc_std_j, cycles, record, "
+          "flags, ... usable).")
       .def("__repr__", [](const AnalysisHandle& h) {
         std::size_t levels = 0;
         for (const auto& r : h.campaign->records) levels += r.levels.size();

@@ -71,3 +71,19 @@ def test_a_drafted_sidecar_equals_the_clis_and_reads_the_file(exported, tmp_path
 def test_drafting_a_missing_file_is_a_missing_file_error(tmp_path):
     with pytest.raises(oscilab.MissingFileError):
         oscilab.draft_sidecar(tmp_path / "nothing.tdms")
+
+
+def test_edc_mat_export_equals_the_clis(tmp_path):
+    run_cli("export", *STEPPED, "--edc-mat", tmp_path / "cli_edc.mat")
+    oscilab.analyze(STEPPED).export_edc_mat(tmp_path / "py_edc.mat")
+    cli = scipy_io.loadmat(tmp_path / "cli_edc.mat")
+    python = scipy_io.loadmat(tmp_path / "py_edc.mat")
+    names = {k for k in cli if not k.startswith("__")}
+    assert {"well", "f0_n", "edc_mean_j", "edc_std_j", "cycles", "usable"} <= names
+    assert names == {k for k in python if not k.startswith("__")}
+    for name in names:
+        assert python[name].shape == cli[name].shape, name
+        if python[name].dtype == object:
+            assert [str(x) for x in python[name].ravel()] == [str(x) for x in cli[name].ravel()]
+        else:
+            np.testing.assert_array_equal(python[name], cli[name], err_msg=name)
