@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 #include "analysis/model/model.h"
 #include "analysis/model/model_json.h"
 #include "analysis/model/reference_models.h"
@@ -239,7 +240,8 @@ Models pickle, and compare equal when their model JSON is.
                       [](const py::tuple& state) {
                         if (state.size() != 1) throw InputError("Model state: expected 1 item");
                         return analysis::model_from_json(
-                            nlohmann::json::parse(state[0].cast<std::string>()), "model");
+                            parse_json_within_limits(state[0].cast<std::string>(), "Model state"),
+                            "model");
                       }))
       .def("__repr__", [](const Model& model) {
         return "<oscilab.Model " + model.name() + ", m = " + std::to_string(model.mass_kg()) +

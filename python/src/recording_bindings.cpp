@@ -4,6 +4,7 @@
 #include <string>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 #include "bindings.h"
 #include "daq/export/mat_export.h"
 #include "daq/export/uff58_export.h"
@@ -343,8 +344,9 @@ Recordings pickle, and compare equal when their sidecars and SI samples are.
           [](const py::tuple& state) {
             if (state.size() != 5) throw InputError("Recording state: expected 5 items");
             Recording r;
-            r.sidecar =
-                daq::parse_sidecar(nlohmann::json::parse(state[0].cast<std::string>()), "sidecar");
+            r.sidecar = daq::parse_sidecar(
+                parse_json_within_limits(state[0].cast<std::string>(), "Recording state"),
+                "sidecar");
             r.samples_si = matrix_of(state[1]);
             if (!state[2].is_none()) r.samples_stored = matrix_of(state[2]);
             r.source_path = state[3].cast<std::string>();
