@@ -157,11 +157,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   progress_ = new QProgressBar;
   progress_->setRange(0, 1000);
   progress_->setTextVisible(false);
-  // Shown while a job runs; its room is kept, so nothing below moves when it comes and goes.
-  QSizePolicy keep_room = progress_->sizePolicy();
-  keep_room.setRetainSizeWhenHidden(true);
-  progress_->setSizePolicy(keep_room);
-  progress_->hide();
+  progress_->hide();  // shown while a job runs: its height goes to the results otherwise
   status_label_ = new QLabel(tr("Add the recordings of both wells, then Fit or Diagnose."));
   status_label_->setWordWrap(true);
   parameter_table_ = new QTableWidget(0, 5);
