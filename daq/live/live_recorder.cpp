@@ -72,8 +72,10 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
   last_sync_ = std::chrono::steady_clock::now();
   sf_command(file_, SFC_SET_UPDATE_HEADER_AUTO, nullptr, SF_TRUE);
   // No destructor runs when a constructor throws: what is open is closed before rethrowing.
+  bool sidecar_written = false;
   try {
     write_sidecar_now(true);  // validates it too (InputError on a bad layout)
+    sidecar_written = true;
     events_fd_ =
         ::open(events_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
     if (events_fd_ < 0) throw InputError(events_path_ + ": cannot write: " + std::strerror(errno));
@@ -86,9 +88,15 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
       if (sidecar_dirty_) write_sidecar_now();
     }
   } catch (...) {
-    if (events_fd_ >= 0) ::close(events_fd_);
+    // A refused recording leaves none of its files behind.
+    if (events_fd_ >= 0) {
+      ::close(events_fd_);
+      ::unlink(events_path_.c_str());
+    }
     sf_close(file_);
     file_ = nullptr;
+    ::unlink(path_.c_str());
+    if (sidecar_written) ::unlink(sidecar_path_.c_str());
     throw;
   }
   nan_rows_.assign(kGapChunkRows * static_cast<std::size_t>(channels_),

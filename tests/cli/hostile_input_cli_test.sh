@@ -117,6 +117,14 @@ expect_error "simulate --rate 1e9" "262.5 s at 1e+09 Hz" \
   "$cli" simulate --rate 1e9 --out "$work/s2.flac"
 expect_error "simulate --test random --duration 1e9" "random excitation: duration 1e+09 s" \
   "$cli" simulate --test random --duration 1e9 --out "$work/s3.flac"
+expect_error "simulate --freq 1e9 (beyond Nyquist)" "excitation frequency 1e+09 Hz is not below the Nyquist" \
+  "$cli" simulate --freq 1e9 --out "$work/s4.flac"
+expect_error "simulate --band 2:300 at 512 Hz" "band's upper edge 300 Hz is not below the Nyquist" \
+  "$cli" simulate --test random --band 2:300 --out "$work/s5.flac"
+expect_error "record --source rig --freq 1e9" "is not below the Nyquist frequency" \
+  "$cli" record --source rig --freq 1e9 --speed 0 --duration 2 --out "$work/r1.wav"
+expect_absent "a refused recording leaves no file" "$work/r1.wav" "$work/r1.json" \
+  "$work/r1.events.jsonl" "$work/s4.flac" "$work/s5.flac"
 expect_absent "simulate: nothing written" "$work/s1.flac" "$work/s1.json" "$work/s2.flac" \
   "$work/s3.flac"
 expect_error "hbm --sweep-time 1e9" "amplitude sweep: 1e+09 s up" \
