@@ -48,7 +48,10 @@ class CMakeBuild(build_ext):
 
     def build_extension(self, ext):
         build_dir = os.environ.get("OSCILAB_CMAKE_BUILD_DIR")
-        build_dir = Path(build_dir).resolve() if build_dir else Path(self.build_temp).resolve() / "cmake"
+        if build_dir:
+            build_dir = Path(build_dir).resolve()
+        else:
+            build_dir = Path(self.build_temp).resolve() / "cmake"
         if not (build_dir / "CMakeCache.txt").exists():
             self.configure(build_dir)
         python = cmake_cache_value(build_dir, "Python3_EXECUTABLE")
@@ -95,7 +98,8 @@ class CMakeBuild(build_ext):
         if not python:
             return
         probe = "import sys; print('%d.%d' % sys.version_info[:2])"
-        theirs = subprocess.run([python, "-c", probe], capture_output=True, text=True).stdout.strip()
+        theirs = subprocess.run([python, "-c", probe], capture_output=True,
+                                text=True).stdout.strip()
         ours = "%d.%d" % sys.version_info[:2]
         if theirs and theirs != ours:
             raise RuntimeError(f"{build_dir}: configured for Python {theirs} ({python}), "
@@ -107,6 +111,10 @@ class CMakeBuild(build_ext):
 
 setup(
     version=project_version(),
+    package_dir={"": "python"},
+    packages=["oscilab", "oscilab._native"],
+    package_data={"oscilab": ["py.typed", "*.pyi"]},
+    include_package_data=False,
     ext_modules=[Extension("oscilab._native._oscilab", sources=[])],
     cmdclass={"build_ext": CMakeBuild},
     options={"build": {"build_base": "build-python-wheel"},

@@ -17,8 +17,9 @@ from pathlib import Path
 
 STUBS = Path(__file__).resolve().parent / "oscilab" / "__init__.pyi"
 
-HEADER = '''"""Type stubs of the oscilab package, generated from the module by python/generate_stubs.py
-(do not edit: run it after changing a binding; tests/python/test_stubs.py checks them)."""
+HEADER = '''"""Type stubs of the oscilab package, generated from the module by
+python/generate_stubs.py (do not edit: run it after changing a binding; tests/python/test_stubs.py
+checks them)."""
 
 import os
 from typing import Any, Callable, Iterable, Mapping

@@ -9,9 +9,10 @@ Arrays are NumPy arrays in SI units (N, m, s, J, Hz, kg); tables are dicts of co
 the CLI's CSV columns, JSON results are dicts with the CLI's keys (docs/contracts.md). Errors are
 oscilab.Error: bad input raises InputError (a ValueError) with the CLI's one-line message naming
 the keyword argument, file, field or value; a file that cannot be opened or written raises
-FileError (an OSError), MissingFileError (a FileNotFoundError) when it does not exist. Long calls release the GIL, report progress to
-an optional callback and stop on Ctrl-C (KeyboardInterrupt, raised once the C++ job has
-stopped). See docs/python.md.
+FileError (an OSError), MissingFileError (a FileNotFoundError) when it does not exist. Long
+calls release the GIL, report progress to an optional callback and stop on Ctrl-C
+(KeyboardInterrupt, raised once the C++ job has stopped). Functions and methods have real
+signatures (inspect.signature) and the package ships type stubs. See docs/python.md.
 """
 
 from ._native._oscilab import (  # noqa: F401  (re-exported)

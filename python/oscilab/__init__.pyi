@@ -1,5 +1,6 @@
-"""Type stubs of the oscilab package, generated from the module by python/generate_stubs.py
-(do not edit: run it after changing a binding; tests/python/test_stubs.py checks them)."""
+"""Type stubs of the oscilab package, generated from the module by
+python/generate_stubs.py (do not edit: run it after changing a binding; tests/python/test_stubs.py
+checks them)."""
 
 import os
 from typing import Any, Callable, Iterable, Mapping
