@@ -50,6 +50,7 @@ __all__ = [
     "MissingFileError",
     "Model",
     "Recording",
+    "Result",
     "analyze",
     "describe_recording",
     "diagnose",
@@ -64,6 +65,45 @@ __all__ = [
     "virtual_rig",
     "write_recording",
 ]
+
+
+class Result(dict):
+    """A result with the CLI's JSON keys (fit, diagnose): a dict in every way, which prints short.
+
+    ``repr()`` gives the status and the other numbers and words at the top level, and only the
+    size of each list or dict (a fit's levels and history alone run to ~60 kB of text);
+    Jupyter shows the same as a table (``_repr_html_``). ``dict(result)`` or ``result[key]``
+    for the rest; ``json.dump(result, f)`` writes the CLI's file.
+    """
+
+    def _rows(self):
+        for key, value in self.items():
+            if isinstance(value, dict) and len(value) <= 8 and all(
+                    isinstance(v, (int, float, str, bool)) or v is None for v in value.values()):
+                yield key, value, True  # small and flat, such as parameters: in full
+            elif isinstance(value, (dict, list)):
+                kind = "dict" if isinstance(value, dict) else "list"
+                yield key, f"<{kind} of {len(value)}>", False
+            elif isinstance(value, str) and len(value) > 80:
+                yield key, f"<str of {len(value)}>", False
+            else:
+                yield key, value, True
+
+    def __repr__(self):
+        parts = [f"{key}={value!r}" if plain else f"{key}={value}"
+                 for key, value, plain in self._rows()]
+        return "oscilab.Result(" + ", ".join(parts) + ")"
+
+    def _repr_html_(self):
+        import html
+
+        rows = "".join(f"<tr><th style='text-align:left'>{html.escape(str(key))}</th>"
+                       f"<td style='text-align:left'>{html.escape(repr(value) if plain else value)}"
+                       "</td></tr>" for key, value, plain in self._rows())
+        return f"<table><caption>oscilab.Result</caption>{rows}</table>"
+
+    def __reduce__(self):
+        return (Result, (dict(self),))
 
 
 def to_dataframe(table):
@@ -93,15 +133,25 @@ def _give_signatures():
     """inspect.signature for the compiled functions, constructors and methods: each function and
     method becomes a thin Python wrapper whose __signature__ is the one pybind11 states in its
     docstring (oscilab/_signatures.py, which the stubs come from too); constructors give theirs
-    as the class's __signature__."""
+    as the class's __signature__. The reports of fit and diagnose come back as a Result."""
     import functools
 
     from . import _signatures
 
+    # The calls whose dict is a report with the CLI's JSON keys: returned as a Result.
+    reports = {"fit", "diagnose", "FitProblem.fit"}
+
     def wrap(native, signature, qualname):
-        @functools.wraps(native)
-        def wrapper(*args, **kwargs):
-            return native(*args, **kwargs)
+        if qualname in reports:
+            signature = signature.replace(return_annotation="Result")
+
+            @functools.wraps(native)
+            def wrapper(*args, **kwargs):
+                return Result(native(*args, **kwargs))
+        else:
+            @functools.wraps(native)
+            def wrapper(*args, **kwargs):
+                return native(*args, **kwargs)
 
         wrapper.__signature__ = signature
         wrapper.__module__ = __name__
