@@ -14,7 +14,7 @@ _ModelLike = Model | dict[str, Any] | _StrPath
 _Progress = Callable[[dict[str, Any]], object]
 
 __version__: str
-__all__ = ['Analysis', 'Error', 'FileError', 'FitProblem', 'InputError', 'LiveSession', 'MissingFileError', 'Model', 'Recording', 'Result', 'analyze', 'describe_recording', 'diagnose', 'draft_sidecar', 'fit', 'hbm_branch', 'live', 'prepare_fit', 'read_recording', 'simulate', 'to_dataframe', 'virtual_rig', 'write_recording']
+__all__ = ['Analysis', 'Error', 'FileError', 'FitProblem', 'InputError', 'LiveSession', 'MissingFileError', 'Model', 'Recording', 'Result', 'analyze', 'bifurcation_map', 'describe_recording', 'diagnose', 'draft_sidecar', 'fit', 'hbm_branch', 'live', 'prepare_fit', 'read_recording', 'simulate', 'to_dataframe', 'virtual_rig', 'write_recording']
 
 
 class Analysis:
@@ -167,6 +167,8 @@ class Result(dict):
 
 
 def analyze(recordings: _Recordings, *, freq_hz: float | None = None, well: str | None = None, detect_levels: bool = False, harmonics: int = 8, highpass_hz: float = 1.0, lowpass_hz: float = 60.0, well_boundary_m: float = 0.0, progress: _Progress | None = None) -> Analysis: ...
+
+def bifurcation_map(model: _ModelLike = 'paper', *, freq_hz: float = 9.0, f0_n: tuple[float, float] = (0.1, 3.7), step_n: float = 0.05, levels_n: str | ArrayLike | None = None, well: str = 'both', hold_periods: int = 200, ramp_periods: int = 5, sampled_periods: int = 32, cluster_tolerance_m: float = 1e-05, progress: _Progress | None = None) -> dict: ...
 
 def describe_recording(path: _StrPath) -> str: ...
 

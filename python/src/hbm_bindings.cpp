@@ -12,6 +12,7 @@
 #include "analysis/hbm/branch_switching.h"
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model.h"
+#include "analysis/simulation/bifurcation_map.h"
 #include "bindings.h"
 #include "python_types.h"
 
@@ -198,6 +199,91 @@ points so far. follow_period_doubling: at the first period doubling switch onto 
 branch and continue it over the f0 range (and once more at its first period doubling: period 4),
 as `hbm --follow-period-doubling`; the result then has period_doubled, a list of such dicts with
 period (in forcing periods), f0_flip_n and f0_pitchfork_n [N].)doc");
+
+  m.def(
+      "bifurcation_map",
+      [](const py::object& model_arg, double freq_hz, std::pair<double, double> f0_n, double step_n,
+         const py::object& levels_n, const std::string& well, int hold_periods, int ramp_periods,
+         int sampled_periods, double cluster_tolerance_m, const py::object& progress) {
+        const analysis::Model model = model_argument(model_arg);
+        analysis::BifurcationMapOptions options;
+        options.freq_hz = freq_hz;
+        options.start_n = f0_n.first;
+        options.end_n = f0_n.second;
+        options.step_n = step_n;
+        if (!levels_n.is_none()) options.levels_n = levels_argument(levels_n);
+        if (well == "both") {
+          options.positive_well = options.negative_well = true;
+        } else {
+          const bool positive = well_argument(well) == analysis::Well::Positive;
+          options.positive_well = positive;
+          options.negative_well = !positive;
+        }
+        options.hold_periods = hold_periods;
+        options.ramp_periods = ramp_periods;
+        options.sampled_periods = sampled_periods;
+        options.cluster_tolerance_m = cluster_tolerance_m;
+        options.validate();
+        analysis::BifurcationMap map;
+        run_job(
+            [&](const ReportFn& report, const CancelToken& cancel) {
+              map = analysis::bifurcation_map(model, options, fraction_reporter(report), cancel);
+            },
+            progress);
+        std::vector<double> row_f0, row_z;
+        std::vector<int> row_period;
+        py::list row_well;
+        for (const analysis::BifurcationMapRow& r : map.rows) {
+          row_f0.push_back(r.f0_n);
+          row_z.push_back(r.z_m);
+          row_period.push_back(r.period);
+          row_well.append(r.positive_well ? "positive" : "negative");
+        }
+        py::dict rows;
+        rows["f0_n"] = to_array(row_f0);
+        rows["well"] = row_well;
+        rows["z_m"] = to_array(row_z);
+        rows["period"] = to_int_array(row_period);
+        std::vector<double> f0, spread, z_min, z_max;
+        std::vector<int> points;
+        py::list level_well;
+        for (const analysis::BifurcationMapLevel& l : map.levels) {
+          f0.push_back(l.f0_n);
+          points.push_back(l.distinct_points);
+          spread.push_back(l.spread_m);
+          z_min.push_back(l.z_min_m);
+          z_max.push_back(l.z_max_m);
+          level_well.append(l.positive_well ? "positive" : "negative");
+        }
+        py::dict levels;
+        levels["f0_n"] = to_array(f0);
+        levels["well"] = level_well;
+        levels["distinct_points"] = to_int_array(points);
+        levels["spread_m"] = to_array(spread);
+        levels["z_min_m"] = to_array(z_min);
+        levels["z_max_m"] = to_array(z_max);
+        py::dict d;
+        d["rows"] = rows;
+        d["levels"] = levels;
+        d["status"] = job_status_name(map.status);
+        d["message"] = map.message;
+        return d;
+      },
+      py::arg("model") = "paper", py::kw_only(), py::arg("freq_hz") = 9.0,
+      py::arg("f0_n") = std::pair<double, double>(0.1, 3.7), py::arg("step_n") = 0.05,
+      py::arg("levels_n") = py::none(), py::arg("well") = "both", py::arg("hold_periods") = 200,
+      py::arg("ramp_periods") = 5, py::arg("sampled_periods") = 32,
+      py::arg("cluster_tolerance_m") = 1e-5, py::arg("progress") = py::none(),
+      R"doc(Bifurcation map by time simulation (§5.2, Fig. 17; `oscilab-cli hbm --map`): a stepped sine
+at freq_hz [Hz] whose level steps from f0_n[0] to f0_n[1] by step_n [N] (or through levels_n, a
+sequence or 'A:STEP:B'), simulated from rest at the equilibrium of `well` ('positive',
+'negative' or 'both'), the state carried from level to level as on the rig; z sampled once per
+forcing period at the same phase (a Poincaré section) over the last sampled_periods of each hold
+of hold_periods (ramp_periods of ramp). One point per level: period 1; two: period 2.
+
+Returns a dict: rows (columns f0_n [N], well, z_m [m], period: the map CSV), levels (columns
+f0_n, well, distinct_points (sections closer than cluster_tolerance_m [m] are one), spread_m,
+z_min_m, z_max_m), status ('ok', 'cancelled' with the levels done), message.)doc");
 }
 
 }  // namespace oscilab::python

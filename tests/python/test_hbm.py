@@ -97,3 +97,25 @@ def test_period_doubled_branches_equal_cli_follow_period_doubling(tmp_path):
         assert_branch_prints_as(b, [r for r in rows if r["period"] == str(b["period"])])
     with pytest.raises(ValueError, match="follow_period_doubling"):
         oscilab.hbm_branch(follow_period_doubling=True, stability=False)
+
+
+def test_bifurcation_map_equals_the_clis_map_csv_for_both_wells(tmp_path):
+    run_cli("hbm", "--model", "paper", "--freq", 9, "--f0", "1.0:1.2", "--well", "both",
+            "--out", tmp_path / "branch.csv", "--map", tmp_path / "map.csv", "--map-step", 0.1,
+            "--map-hold", 30, "--map-sampled", 4)
+    rows = read_csv(tmp_path / "map.csv")
+    result = oscilab.bifurcation_map(f0_n=(1.0, 1.2), step_n=0.1, well="both", hold_periods=30,
+                                     sampled_periods=4)
+    assert result["status"] == "ok"
+    python = result["rows"]
+    assert len(python["z_m"]) == len(rows) == 2 * 3 * 4  # wells × levels × sections
+    assert python["well"] == [r["well"] for r in rows]
+    assert list(python["period"]) == [int(r["period"]) for r in rows]
+    np.testing.assert_allclose(python["f0_n"], [float(r["f0_n"]) for r in rows], rtol=1e-9)
+    # The CSV holds 10 significant digits.
+    np.testing.assert_allclose(python["z_m"], [float(r["z_m"]) for r in rows], rtol=1e-9)
+    levels = result["levels"]
+    assert levels["well"] == ["positive"] * 3 + ["negative"] * 3
+    assert list(levels["distinct_points"]) == [1] * 6  # period 1 at these levels
+    with pytest.raises(oscilab.InputError, match="well"):
+        oscilab.bifurcation_map(well="left")
