@@ -14,7 +14,7 @@ _ModelLike = Model | dict[str, Any] | _StrPath
 _Progress = Callable[[dict[str, Any]], object]
 
 __version__: str
-__all__ = ['Analysis', 'Error', 'FileError', 'FitProblem', 'InputError', 'LiveSession', 'MissingFileError', 'Model', 'Recording', 'Result', 'analyze', 'bifurcation_map', 'describe_recording', 'diagnose', 'draft_sidecar', 'fit', 'hbm_branch', 'live', 'prepare_fit', 'read_recording', 'simulate', 'to_dataframe', 'virtual_rig', 'write_recording']
+__all__ = ['Analysis', 'Error', 'FileError', 'FitProblem', 'InputError', 'LiveSession', 'MissingFileError', 'Model', 'Recording', 'Result', 'amplitude_sweep', 'analyze', 'bifurcation_map', 'describe_recording', 'diagnose', 'draft_sidecar', 'fit', 'hbm_branch', 'live', 'prepare_fit', 'read_recording', 'simulate', 'to_dataframe', 'virtual_rig', 'write_recording']
 
 
 class Analysis:
@@ -165,6 +165,8 @@ class Recording:
 class Result(dict):
     def __reduce__(self) -> Any: ...
 
+
+def amplitude_sweep(model: _ModelLike = 'paper', *, freq_hz: float = 9.0, f0_max_n: float = 3.7, up_s: float = 400.0, down_s: Any = None, well: str = 'positive', samples_per_period: int = 64, progress: _Progress | None = None) -> dict: ...
 
 def analyze(recordings: _Recordings, *, freq_hz: float | None = None, well: str | None = None, detect_levels: bool = False, harmonics: int = 8, highpass_hz: float = 1.0, lowpass_hz: float = 60.0, well_boundary_m: float = 0.0, progress: _Progress | None = None) -> Analysis: ...
 

@@ -12,6 +12,7 @@
 #include "analysis/hbm/branch_switching.h"
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model.h"
+#include "analysis/simulation/amplitude_sweep.h"
 #include "analysis/simulation/bifurcation_map.h"
 #include "bindings.h"
 #include "python_types.h"
@@ -199,6 +200,66 @@ points so far. follow_period_doubling: at the first period doubling switch onto 
 branch and continue it over the f0 range (and once more at its first period doubling: period 4),
 as `hbm --follow-period-doubling`; the result then has period_doubled, a list of such dicts with
 period (in forcing periods), f0_flip_n and f0_pitchfork_n [N].)doc");
+
+  m.def(
+      "amplitude_sweep",
+      [](const py::object& model_arg, double freq_hz, double f0_max_n, double up_s,
+         const py::object& down_s, const std::string& well, int samples_per_period,
+         const py::object& progress) {
+        const analysis::Model model = model_argument(model_arg);
+        analysis::AmplitudeSweepOptions options;
+        options.freq_hz = freq_hz;
+        options.f0_max_n = f0_max_n;
+        options.up_s = up_s;
+        options.down_s = down_s.is_none() ? up_s : number_argument(down_s, "down_s");
+        options.positive_well = well_argument(well) == analysis::Well::Positive;
+        options.samples_per_period = samples_per_period;
+        options.validate();
+        analysis::AmplitudeSweep sweep;
+        run_job(
+            [&](const ReportFn& report, const CancelToken& cancel) {
+              sweep = analysis::amplitude_sweep(model, options, fraction_reporter(report), cancel);
+            },
+            progress);
+        std::vector<double> f0, amp, t;
+        py::list direction;
+        for (const analysis::AmplitudeSweepPeriod& p : sweep.periods) {
+          f0.push_back(p.f0_n);
+          amp.push_back(p.amp_m);
+          t.push_back(p.t_s);
+          direction.append(p.up ? "up" : "down");
+        }
+        py::dict d;
+        d["f0_n"] = to_array(f0);
+        d["direction"] = direction;
+        d["amp_m"] = to_array(amp);
+        d["t_s"] = to_array(t);
+        const auto jump = [](const analysis::AmplitudeSweepJump& j) {
+          py::dict out;
+          out["f0_n"] = j.f0_n;
+          out["amp_before_m"] = j.amp_before_m;
+          out["amp_after_m"] = j.amp_after_m;
+          return out;
+        };
+        d["jump_up"] = jump(sweep.jump_up);
+        d["jump_down"] = jump(sweep.jump_down);
+        d["status"] = job_status_name(sweep.status);
+        d["message"] = sweep.message;
+        return d;
+      },
+      py::arg("model") = "paper", py::kw_only(), py::arg("freq_hz") = 9.0,
+      py::arg("f0_max_n") = 3.7, py::arg("up_s") = 400.0, py::arg("down_s") = py::none(),
+      py::arg("well") = "positive", py::arg("samples_per_period") = 64,
+      py::arg("progress") = py::none(),
+      R"doc(The amplitude sweep of §4.2 (Fig. 12) by time integration (`oscilab-cli hbm --sweep`): f0
+ramps slowly from 0 up to f0_max_n [N] in up_s [s] and back down in down_s [s] (default: up_s) at
+freq_hz [Hz], from rest at the equilibrium of `well`; where the harmonic-balance branch folds the
+response jumps (hysteresis).
+
+Returns a dict: one entry per forcing period, named like the sweep CSV: f0_n [N] (mid-period),
+direction ('up'/'down'), amp_m [m] ((max z − min z) / 2 over the period, from
+samples_per_period samples), t_s [s] (its start); jump_up and jump_down ({f0_n, amp_before_m,
+amp_after_m}: the largest period-to-period change each way), status, message.)doc");
 
   m.def(
       "bifurcation_map",

@@ -119,3 +119,20 @@ def test_bifurcation_map_equals_the_clis_map_csv_for_both_wells(tmp_path):
     assert list(levels["distinct_points"]) == [1] * 6  # period 1 at these levels
     with pytest.raises(oscilab.InputError, match="well"):
         oscilab.bifurcation_map(well="left")
+
+
+def test_amplitude_sweep_equals_the_clis_sweep_csv(tmp_path):
+    run_cli("hbm", "--model", "paper", "--freq", 9, "--f0", "0.1:1.0", "--well", "positive",
+            "--out", tmp_path / "branch.csv", "--sweep", tmp_path / "sweep.csv",
+            "--sweep-time", 10)
+    rows = read_csv(tmp_path / "sweep.csv")
+    sweep = oscilab.amplitude_sweep(f0_max_n=1.0, up_s=10.0, well="positive")
+    assert sweep["status"] == "ok"
+    assert len(sweep["f0_n"]) == len(rows) == 2 * 10 * 9  # both ways, 10 s at 9 Hz each
+    assert sweep["direction"] == [r["direction"] for r in rows]
+    for column in ("f0_n", "amp_m", "t_s"):  # the CSV holds 10 significant digits
+        np.testing.assert_allclose(sweep[column], [float(r[column]) for r in rows], rtol=1e-9,
+                                   atol=1e-15, err_msg=column)
+    assert sweep["jump_up"]["f0_n"] > sweep["jump_down"]["f0_n"]  # hysteresis
+    with pytest.raises(oscilab.InputError):
+        oscilab.amplitude_sweep(f0_max_n=-1.0)
