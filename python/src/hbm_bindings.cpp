@@ -130,12 +130,17 @@ void bind_hbm(py::module_& m) {
          bool stability, double max_step, const std::vector<double>& landing,
          bool follow_period_doubling, const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
-        const analysis::Well start_well = well_argument(well);
+        // 'both': one branch per well, as `hbm --well both`, in one job.
+        std::vector<analysis::Well> wells;
+        if (well == "both") {
+          wells = {analysis::Well::Positive, analysis::Well::Negative};
+        } else {
+          wells = {well_argument(well)};
+        }
         analysis::ContinuationOptions options;
         options.start = f0_n.first;
         options.end = f0_n.second;
         options.freq_hz = freq_hz;
-        options.positive_well = start_well == analysis::Well::Positive;
         options.hbm.harmonics = harmonics;
         options.hbm.subharmonic = subharmonic;
         options.hbm.samples = samples;
@@ -149,33 +154,48 @@ void bind_hbm(py::module_& m) {
               "follow_period_doubling: period doublings are found from the Floquet multipliers; "
               "drop stability=False");
         }
-        analysis::Branch branch;
-        std::vector<analysis::PeriodDoublingSwitch> doubled;
+        std::vector<analysis::Branch> branches(wells.size());
+        std::vector<std::vector<analysis::PeriodDoublingSwitch>> doubled(wells.size());
         run_job(
             [&](const ReportFn& report, const CancelToken& cancel) {
-              branch = analysis::continue_branch(model, options, fraction_reporter(report), cancel);
-              if (follow_period_doubling) {
-                doubled = analysis::follow_period_doublings(model, branch, options,
-                                                            fraction_reporter(report), cancel);
+              const double n = static_cast<double>(wells.size());
+              for (std::size_t i = 0; i < wells.size() && !cancel.cancelled(); ++i) {
+                const ProgressFn part = [&report, i, n](double fraction) {
+                  ProgressReport r;
+                  r.fraction = (static_cast<double>(i) + fraction) / n;
+                  report(r);
+                };
+                analysis::ContinuationOptions o = options;
+                o.positive_well = wells[i] == analysis::Well::Positive;
+                branches[i] = analysis::continue_branch(model, o, part, cancel);
+                if (follow_period_doubling) {
+                  doubled[i] =
+                      analysis::follow_period_doublings(model, branches[i], o, part, cancel);
+                }
               }
             },
             progress);
-        py::dict d = branch_dict(branch);
-        d["period"] = subharmonic;
-        if (follow_period_doubling) {
-          py::list list;
-          for (const analysis::PeriodDoublingSwitch& s : doubled) {
-            py::dict b = branch_dict(s.branch);
-            b["period"] = s.subharmonic;
-            b["status"] = job_status_name(s.status);
-            b["message"] = s.message;
-            b["f0_flip_n"] = s.f0_flip_n;
-            b["f0_pitchfork_n"] = s.f0_pitchfork_n;
-            list.append(b);
+        py::dict by_well;
+        for (std::size_t i = 0; i < wells.size(); ++i) {
+          py::dict d = branch_dict(branches[i]);
+          d["period"] = subharmonic;
+          if (follow_period_doubling) {
+            py::list list;
+            for (const analysis::PeriodDoublingSwitch& s : doubled[i]) {
+              py::dict b = branch_dict(s.branch);
+              b["period"] = s.subharmonic;
+              b["status"] = job_status_name(s.status);
+              b["message"] = s.message;
+              b["f0_flip_n"] = s.f0_flip_n;
+              b["f0_pitchfork_n"] = s.f0_pitchfork_n;
+              list.append(b);
+            }
+            d["period_doubled"] = list;
           }
-          d["period_doubled"] = list;
+          if (wells.size() == 1) return d;
+          by_well[py::str(wells[i] == analysis::Well::Positive ? "positive" : "negative")] = d;
         }
-        return d;
+        return by_well;
       },
       py::arg("model") = "paper", py::kw_only(), py::arg("freq_hz") = 9.0,
       py::arg("f0_n") = std::pair<double, double>(0.1, 3.7), py::arg("well") = "positive",
@@ -199,7 +219,8 @@ steps_rejected, period (1 for ν = 1). A continuation that stops early is status
 points so far. follow_period_doubling: at the first period doubling switch onto the period-2
 branch and continue it over the f0 range (and once more at its first period doubling: period 4),
 as `hbm --follow-period-doubling`; the result then has period_doubled, a list of such dicts with
-period (in forcing periods), f0_flip_n and f0_pitchfork_n [N].)doc");
+period (in forcing periods), f0_flip_n and f0_pitchfork_n [N]. well='both' (as `hbm --well
+both`): {'positive': branch, 'negative': branch}, both computed in one call.)doc");
 
   m.def(
       "amplitude_sweep",

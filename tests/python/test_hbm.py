@@ -62,7 +62,7 @@ def test_folds_and_stability_as_arrays(branches):
 
 def test_bad_options_raise_value_error():
     with pytest.raises(ValueError, match="well"):
-        oscilab.hbm_branch(well="both")
+        oscilab.hbm_branch(well="left")
     with pytest.raises(ValueError):
         oscilab.hbm_branch(harmonics=0)
 
@@ -136,3 +136,13 @@ def test_amplitude_sweep_equals_the_clis_sweep_csv(tmp_path):
     assert sweep["jump_up"]["f0_n"] > sweep["jump_down"]["f0_n"]  # hysteresis
     with pytest.raises(oscilab.InputError):
         oscilab.amplitude_sweep(f0_max_n=-1.0)
+
+
+def test_hbm_branch_of_both_wells_is_one_branch_per_well():
+    both = oscilab.hbm_branch(f0_n=(0.1, 1.0), well="both")
+    assert list(both) == ["positive", "negative"]
+    for well in ("positive", "negative"):
+        alone = oscilab.hbm_branch(f0_n=(0.1, 1.0), well=well)
+        assert both[well]["well"] == alone["well"]
+        np.testing.assert_array_equal(both[well]["f0_n"], alone["f0_n"])
+        np.testing.assert_array_equal(both[well]["amp_m"], alone["amp_m"])
