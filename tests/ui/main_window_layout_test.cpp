@@ -114,6 +114,8 @@ void check_tabs(const QWidget& window) {
 void check_window_fits(const MainWindow& window) {
   const QSize hint = window.minimumSizeHint();
   const QSize minimum = window.minimumSize();
+  qInfo("minimum size hint %dx%d, window %dx%d", hint.width(), hint.height(), window.width(),
+        window.height());
   QVERIFY2(
       hint.width() <= kLargestMinimum.width() && hint.height() <= kLargestMinimum.height(),
       qPrintable(QStringLiteral("minimum size hint %1x%2").arg(hint.width()).arg(hint.height())));
