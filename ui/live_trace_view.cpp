@@ -203,7 +203,7 @@ void LiveTraceView::resizeEvent(QResizeEvent* event) {
   for (QCPAxisRect* rect : rects_) {
     rect->axis(QCPAxis::atLeft)
         ->ticker()
-        ->setTickCount(std::clamp(rect->height() / kTickHeightPx, 2, 5));
+        ->setTickCount(std::clamp(rect->height() / kTickHeightPx, 3, 5));
   }
   plot_->replot(QCustomPlot::rpQueuedReplot);
 }
