@@ -5,7 +5,8 @@
 // label of the live status strip or the status bar is cut or overlaps its neighbour (a label is
 // as wide as its text, wraps within its height, or elides with its full text on hover); the
 // tables of the diagnosis say every cell in full on hover; the residual plots are tall enough for
-// their ticks; and the fit panel draws the measured EDC as soon as the records are analysed.
+// their ticks; a dialog of the fit panel leaves the window's size alone; and the fit panel draws
+// the measured EDC as soon as the records are analysed.
 #include <QApplication>
 #include <QDockWidget>
 #include <QLabel>
@@ -24,6 +25,7 @@
 #include "ui/live_monitor.h"
 #include "ui/live_settings.h"
 #include "ui/main_window.h"
+#include "ui/response_dialog.h"
 
 using oscilab::ui::IdentificationPanel;
 using oscilab::ui::LiveMonitor;
@@ -237,6 +239,14 @@ class MainWindowLayoutTest : public QObject {
         }
       }
     }
+    // A dialog of the fit panel comes and goes: the window keeps its size.
+    oscilab::ui::ResponseDialog* dialog = panel->open_branch_dialog();
+    QVERIFY(dialog != nullptr);
+    QVERIFY(QTest::qWaitForWindowExposed(dialog));
+    dialog->close();
+    QApplication::processEvents();
+    check_window_fits(*window_);
+    QCOMPARE(window_->size(), kScreen);
     // The residuals: two panels (one per well) with room for their ticks and legend.
     QCustomPlot* residuals = panel->residual_plot();
     tabs->setCurrentIndex(tabs->indexOf(panel->findChild<QWidget*>("residual_page")));
