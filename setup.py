@@ -67,12 +67,15 @@ class CMakeBuild(build_ext):
         subprocess.run(command, check=True)
 
         # <build>/python/oscilab is the package as CMake lays it out: the extension in _native/,
-        # Oscilab's modules beside it. The .py files come from the source tree (build_py).
+        # Oscilab's modules beside it. The .py, .pyi and py.typed files come from the source tree
+        # (build_py), and bytecode an import there left is not the wheel's.
         built = build_dir / "python" / "oscilab"
         package = Path(self.get_ext_fullpath(ext.name)).resolve().parent.parent
         for source in built.rglob("*"):
-            if source.is_file() and source.suffix != ".py":
-                target = package / source.relative_to(built)
+            relative = source.relative_to(built)
+            if (source.is_file() and source.suffix not in (".py", ".pyc", ".pyi")
+                    and source.name != "py.typed" and "__pycache__" not in relative.parts):
+                target = package / relative
                 target.parent.mkdir(parents=True, exist_ok=True)
                 shutil.copy2(source, target)
         if not Path(self.get_ext_fullpath(ext.name)).exists():
