@@ -22,6 +22,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libpagmo-dev libnlopt-cxx-dev libmatio-dev libhdf5-dev libcairo2-dev parallel
   python3-numpy python3-scipy python3-h5py python3-pytest python3-dev pybind11-dev
+  python3-setuptools python3-wheel python3-pip python3-venv
   libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev qt6-svg-dev libqcustomplot-dev libqcustomplot2.1-qt6
   xvfb xauth clang-format clang-tidy

@@ -1,7 +1,10 @@
 #include "ui/diagnosis_view.h"
 
+#include <algorithm>
+
 #include <QHeaderView>
 #include <QLabel>
+#include <QScrollArea>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -16,6 +19,30 @@ namespace {
 
 QTableWidgetItem* cell(const QString& text) { return read_only_cell(text); }
 QString number(double value, int digits = 4) { return number_text(value, digits); }
+
+// Each column's header says its name on hover (a narrow panel cuts it).
+void add_header_tooltips(QTableWidget* table) {
+  for (int c = 0; c < table->columnCount(); ++c) {
+    if (QTableWidgetItem* header = table->horizontalHeaderItem(c)) {
+      header->setToolTip(header->text().replace('\n', ' '));
+    }
+  }
+}
+
+// Every cell's full text on hover, after its column's name: a column cut by a narrow panel
+// still reads in full.
+void add_cell_tooltips(QTableWidget* table) {
+  for (int r = 0; r < table->rowCount(); ++r) {
+    for (int c = 0; c < table->columnCount(); ++c) {
+      QTableWidgetItem* item = table->item(r, c);
+      const QTableWidgetItem* header = table->horizontalHeaderItem(c);
+      if (item && header) {
+        item->setToolTip(
+            QStringLiteral("%1: %2").arg(header->text().replace('\n', ' '), item->text()));
+      }
+    }
+  }
+}
 
 // The verdict's supporting evidence and the response fingerprints before and after, for the
 // label under the verdict.
@@ -85,19 +112,31 @@ DiagnosisView::DiagnosisView(QWidget* parent) : QWidget(parent) {
        tr("\u0394\u03c7\u00b2 |Z2|/|Z1|"), tr("\u0394\u03c7\u00b2 |Z3|/|Z1|"), tr("supported by")});
   step_table_->horizontalHeader()->setStretchLastSection(true);
   step_table_->verticalHeader()->hide();
+  step_table_->verticalHeader()->setDefaultSectionSize(step_table_->fontMetrics().height() + 6);
   step_table_->setMinimumHeight(180);
   // The σ budget of the final model, per level.
   budget_table_ = new QTableWidget(0, 8);
-  budget_table_->setHorizontalHeaderLabels(
-      {tr("well"), tr("f0 [N]"), tr("S_mes [mJ]"), tr("\u03c3 cycles [mJ]"), tr("\u03c3 bias [mJ]"),
-       tr("\u03c3 model [mJ]"), tr("\u03c3 [mJ]"), tr("correction [mJ]")});
+  budget_table_->setHorizontalHeaderLabels({tr("well"), tr("f0\n[N]"), tr("S_mes\n[mJ]"),
+                                            tr("\u03c3 cycles\n[mJ]"), tr("\u03c3 bias\n[mJ]"),
+                                            tr("\u03c3 model\n[mJ]"), tr("\u03c3 total\n[mJ]"),
+                                            tr("correction\n[mJ]")});
   budget_table_->horizontalHeader()->setStretchLastSection(true);
   budget_table_->verticalHeader()->hide();
+  budget_table_->verticalHeader()->setDefaultSectionSize(budget_table_->fontMetrics().height() + 6);
+  add_header_tooltips(step_table_);
+  add_header_tooltips(budget_table_);
   budget_label_ = new QLabel;
   budget_label_->setWordWrap(true);
 
-  // A page of its own (residual_page()): one panel per well (figures::residual_figure).
-  residual_plot_ = new QCustomPlot(this);
+  // A page of its own (residual_page()): one panel per well (figures::residual_figure), tall
+  // enough for its ticks and legend; a short window scrolls it.
+  residual_plot_ = new QCustomPlot;
+  residual_plot_->setMinimumHeight(360);
+  residual_page_ = new QScrollArea(this);
+  residual_page_->setObjectName("residual_page");
+  residual_page_->setWidget(residual_plot_);
+  residual_page_->setWidgetResizable(true);
+  residual_page_->setFrameShape(QFrame::NoFrame);
   // A page of its own (missing_energy_page()): figures::missing_energy_figure.
   missing_energy_plot_ = new QCustomPlot(this);
 
@@ -110,7 +149,7 @@ DiagnosisView::DiagnosisView(QWidget* parent) : QWidget(parent) {
   budget_layout->addWidget(budget_table_, 1);
 }
 
-QWidget* DiagnosisView::residual_page() const { return residual_plot_; }
+QWidget* DiagnosisView::residual_page() const { return residual_page_; }
 
 QWidget* DiagnosisView::missing_energy_page() const { return missing_energy_plot_; }
 
@@ -163,7 +202,14 @@ void DiagnosisView::show_steps(const analysis::DiagnosisResult& r, double bic_th
       ++row;
     }
   }
+  add_cell_tooltips(step_table_);
   step_table_->resizeColumnsToContents();
+  // A long outcome or candidate is elided ("…", in full on hover) so that the columns after it
+  // stay in view in a narrow panel.
+  const int widest_px = step_table_->fontMetrics().horizontalAdvance(QStringLiteral("M")) * 16;
+  for (int c = 0; c < step_table_->columnCount() - 1; ++c) {
+    step_table_->setColumnWidth(c, std::min(step_table_->columnWidth(c), widest_px));
+  }
 }
 
 void DiagnosisView::show_residuals(const analysis::DiagnosisResult& r) {
@@ -212,6 +258,7 @@ void DiagnosisView::show_budget(const analysis::DiagnosisResult& r) {
     }
     ++row;
   }
+  add_cell_tooltips(budget_table_);
   budget_table_->resizeColumnsToContents();
 }
 

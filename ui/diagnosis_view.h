@@ -6,6 +6,7 @@
 
 class QCustomPlot;
 class QLabel;
+class QScrollArea;
 class QTableWidget;
 
 namespace oscilab::ui {
@@ -44,6 +45,7 @@ class DiagnosisView : public QWidget {
   QCustomPlot* residual_plot_ = nullptr;
   QCustomPlot* missing_energy_plot_ = nullptr;
   QWidget* budget_page_ = nullptr;
+  QScrollArea* residual_page_ = nullptr;  // the residual plot, scrolled on a short screen
   QLabel* budget_label_ = nullptr;
   QTableWidget* budget_table_ = nullptr;
 };

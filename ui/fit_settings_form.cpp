@@ -75,6 +75,12 @@ FitSettingsForm::FitSettingsForm(QWidget* parent)
   model_error_box_->setToolTip(
       tr("Each level's \u03c3: the \u03c3 budget (cycles, estimator bias, the model's truncation "
          "error, H corrected to a converged reference), or a fixed relative model-error floor"));
+  // Long choices elide in the closed box (the list shows them in full), so that the form fits a
+  // panel a third of a laptop screen wide.
+  for (QComboBox* box : {method_box_, stiffness_box_}) {
+    box->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    box->setMinimumContentsLength(14);
+  }
   auto* form = new QFormLayout(this);
   form->addRow(tr("Base model"), model_row);
   form->addRow(tr("Stiffness"), stiffness_box_);

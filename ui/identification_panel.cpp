@@ -14,6 +14,9 @@
 #include <QListWidget>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QSplitter>
+#include <QTabBar>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -29,6 +32,8 @@
 #include "ui/figure_data_job.h"
 #include "ui/figure_dialog.h"
 #include "ui/fit_settings_form.h"
+#include "ui/flow_layout.h"
+#include "ui/plot_helpers.h"
 #include "ui/response_dialog.h"
 #include "ui/table_cells.h"
 
@@ -116,7 +121,8 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   connect(fit_button_, &QPushButton::clicked, this, &IdentificationPanel::start_fit);
   connect(diagnose_button_, &QPushButton::clicked, this, &IdentificationPanel::start_diagnosis);
   connect(cancel_button_, &QPushButton::clicked, this, &IdentificationPanel::cancel);
-  auto* buttons = new QHBoxLayout;
+  // The job buttons, then the result buttons, in rows that wrap with the panel's width.
+  auto* buttons = new FlowLayout(nullptr, 6, 4);
   buttons->addWidget(fit_button_);
   buttons->addWidget(diagnose_button_);
   buttons->addWidget(cancel_button_);
@@ -144,14 +150,14 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   });
   connect(branch_button_, &QPushButton::clicked, this, [this] { open_branch_dialog(); });
   connect(map_button_, &QPushButton::clicked, this, [this] { open_map_dialog(); });
-  auto* result_buttons = new QHBoxLayout;
-  result_buttons->addWidget(figures_button_);
-  result_buttons->addWidget(export_button_);
-  result_buttons->addWidget(branch_button_);
-  result_buttons->addWidget(map_button_);
+  buttons->addWidget(figures_button_);
+  buttons->addWidget(export_button_);
+  buttons->addWidget(branch_button_);
+  buttons->addWidget(map_button_);
   progress_ = new QProgressBar;
   progress_->setRange(0, 1000);
   progress_->setTextVisible(false);
+  progress_->hide();  // shown while a job runs: its height goes to the results otherwise
   status_label_ = new QLabel(tr("Add the recordings of both wells, then Fit or Diagnose."));
   status_label_->setWordWrap(true);
   parameter_table_ = new QTableWidget(0, 5);
@@ -163,7 +169,8 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   edc_plot_->setMinimumHeight(260);
   edc_plot_->xAxis->setLabel(tr("forcing amplitude f0 [N]"));
   edc_plot_->yAxis->setLabel(tr("EDC [mJ]"));
-  edc_plot_->legend->setVisible(true);
+  edc_plot_->legend->setVisible(false);  // until something is drawn
+  set_plot_hint(edc_plot_, tr("The measured EDC appears once the recordings are analysed."));
   edc_plot_->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignLeft);
   convergence_plot_ = new QCustomPlot;
   convergence_plot_->xAxis->setLabel(tr("model evaluations"));
@@ -182,15 +189,55 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   tabs_->addTab(diagnosis_view_->missing_energy_page(), tr("Missing energy"));
   tabs_->addTab(diagnosis_view_->budget_page(), tr("\u03c3 budget"));
 
+  // Seven tabs in a panel a third of a laptop screen wide: no scroll arrows to hide the last
+  // ones; a tab too narrow for its name elides it and says it in full on hover.
+  tabs_->setUsesScrollButtons(false);
+  tabs_->setElideMode(Qt::ElideRight);
+  tabs_->tabBar()->setStyleSheet(QStringLiteral("QTabBar::tab { padding: 4px 7px; }"));
+  for (int i = 0; i < tabs_->count(); ++i) tabs_->setTabToolTip(i, tabs_->tabText(i));
+
+  // The set-up (recordings and settings) above the results, in a splitter: on a short screen the
+  // set-up scrolls and the results keep most of the height; the user moves the divider.
+  auto* setup = new QWidget;
+  auto* setup_layout = new QVBoxLayout(setup);
+  setup_layout->setContentsMargins(0, 0, 0, 0);
+  setup_layout->addWidget(records);
+  setup_layout->addWidget(settings_form_);
+  setup_layout->addStretch(1);
+  auto* setup_scroll = new QScrollArea;
+  setup_scroll->setObjectName("fit_setup");
+  setup_scroll->setWidget(setup);
+  setup_scroll->setWidgetResizable(true);
+  setup_scroll->setFrameShape(QFrame::NoFrame);
+  setup_scroll->setMinimumHeight(80);
+  auto* results = new QWidget;
+  auto* results_layout = new QVBoxLayout(results);
+  results_layout->setContentsMargins(0, 0, 0, 0);
+  results_layout->addLayout(buttons);
+  results_layout->addWidget(progress_);
+  results_layout->addWidget(status_label_);
+  results_layout->addWidget(tabs_, 1);
+  splitter_ = new QSplitter(Qt::Vertical);
+  splitter_->setObjectName("fit_splitter");
+  splitter_->addWidget(setup_scroll);
+  splitter_->addWidget(results);
+  splitter_->setChildrenCollapsible(false);
+  splitter_->setStretchFactor(0, 0);
+  splitter_->setStretchFactor(1, 1);
   auto* layout = new QVBoxLayout(this);
-  layout->addWidget(records);
-  layout->addWidget(settings_form_);
-  layout->addLayout(buttons);
-  layout->addLayout(result_buttons);
-  layout->addWidget(progress_);
-  layout->addWidget(status_label_);
-  layout->addWidget(tabs_, 1);
+  layout->setContentsMargins(4, 4, 4, 4);
+  layout->addWidget(splitter_);
   update_result_buttons();
+}
+
+void IdentificationPanel::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  if (splitter_placed_ || splitter_->height() < 100) return;
+  // The set-up gets what it asks for up to a third of the height; the results the rest.
+  splitter_placed_ = true;
+  const int total = splitter_->height() - splitter_->handleWidth();
+  const int setup = std::min(splitter_->widget(0)->sizeHint().height(), total / 3);
+  splitter_->setSizes({setup, total - setup});
 }
 
 // The fit's worker emits fit_preview on this object: the workers must have ended before anything
@@ -253,6 +300,7 @@ void IdentificationPanel::set_busy(bool busy) {
   add_button_->setEnabled(!busy);
   cancel_button_->setEnabled(busy);
   if (busy) progress_->setValue(0);
+  progress_->setVisible(busy);
   update_result_buttons();
 }
 
@@ -436,12 +484,44 @@ void IdentificationPanel::show_preview(std::shared_ptr<const FitPreview> preview
            tr("best so far (%1 evaluations)").arg(preview->evaluations));
 }
 
+void IdentificationPanel::show_measured(const analysis::EdcDataset& data, const QString& error) {
+  if (busy() || model_drawn_) return;
+  plot_edc(data.groups, {}, {});
+  if (!error.isEmpty()) {
+    status_label_->setText(tr("Nothing to fit: %1").arg(error));
+    return;
+  }
+  const analysis::EdcGroup* positive = data.group(true);
+  const analysis::EdcGroup* negative = data.group(false);
+  const auto count = [](const analysis::EdcGroup* g) { return g ? int(g->levels.size()) : 0; };
+  if (positive && negative) {
+    status_label_->setText(
+        tr("Measured: %1 levels around z\u208a*, %2 around z\u208b*. Fit identifies the friction "
+           "from both; Diagnose looks for what the model misses.")
+            .arg(count(positive))
+            .arg(count(negative)));
+  } else {
+    status_label_->setText(
+        tr("Measured: %1 levels around %2 only. Add a recording of the %3 well for the paper's "
+           "fit of both wells, or Fit this one.")
+            .arg(count(positive ? positive : negative))
+            .arg(positive ? tr("z\u208a*") : tr("z\u208b*"))
+            .arg(positive ? tr("z\u208b*") : tr("z\u208a*")));
+  }
+}
+
 void IdentificationPanel::plot_edc(const analysis::EdcObjective& objective,
                                    const std::vector<std::vector<double>>& edc_mod_j,
                                    const QString& model_name) {
+  model_drawn_ = true;
+  plot_edc(objective.data().groups, edc_mod_j, model_name);
+}
+
+void IdentificationPanel::plot_edc(const std::vector<analysis::EdcGroup>& groups,
+                                   const std::vector<std::vector<double>>& edc_mod_j,
+                                   const QString& model_name) {
   edc_plot_->clearPlottables();  // graphs and their error bars
-  const auto& groups = objective.data().groups;
-  for (std::size_t g = 0; g < groups.size() && g < edc_mod_j.size(); ++g) {
+  for (std::size_t g = 0; g < groups.size(); ++g) {
     const bool positive = groups[g].positive_well;
     const QString well = positive ? tr("z+* well") : tr("z-* well");
     QVector<double> f0, measured, error, predicted;
@@ -450,7 +530,9 @@ void IdentificationPanel::plot_edc(const analysis::EdcObjective& objective,
       f0.push_back(m.f0_n);
       measured.push_back(1e3 * m.edc_j);
       error.push_back(3e3 * m.edc_std_j);  // ±3σ as the paper's Fig. 10
-      predicted.push_back(1e3 * edc_mod_j[g][i]);
+      if (g < edc_mod_j.size() && i < edc_mod_j[g].size()) {
+        predicted.push_back(1e3 * edc_mod_j[g][i]);
+      }
     }
     QCPGraph* points = edc_plot_->addGraph();
     points->setName(well + tr(" measured \u00b13\u03c3"));
@@ -463,12 +545,17 @@ void IdentificationPanel::plot_edc(const analysis::EdcObjective& objective,
     bars->setDataPlottable(points);
     bars->setData(error);
     bars->setPen(QPen(kWellColor[positive ? 0 : 1]));
+    if (predicted.size() != f0.size()) continue;  // the measurement alone
     QCPGraph* line = edc_plot_->addGraph();
     line->setName(well + " " + model_name);
     line->setData(f0, predicted);
     QPen pen(kWellColor[positive ? 0 : 1], 2, Qt::DashLine);
     line->setPen(pen);
   }
+  edc_plot_->legend->setVisible(edc_plot_->legend->itemCount() > 0);
+  set_plot_hint(edc_plot_, edc_plot_->plottableCount() > 0
+                               ? QString()
+                               : tr("No stepped-sine level to show in the opened recordings."));
   edc_plot_->rescaleAxes();
   edc_plot_->xAxis->scaleRange(1.08);
   edc_plot_->yAxis->setRangeLower(0.0);

@@ -8,6 +8,7 @@
 #include <QWidget>
 
 #include "analysis/diagnosis/diagnosis.h"
+#include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/fit_setup.h"
 #include "ui/diagnosis_view.h"
@@ -20,6 +21,7 @@ class QListWidget;
 class QProgressBar;
 class QPushButton;
 class QSpinBox;
+class QSplitter;
 
 class QTableWidget;
 class QTabWidget;
@@ -76,6 +78,12 @@ class IdentificationPanel : public QWidget {
   void cancel();
   bool busy() const;
 
+  /// The measured EDC of the opened recordings as a fit would use it (analysis::edc_dataset of
+  /// their analysis), drawn in the EDC tab before any fit, with a hint that says what can be done
+  /// with it. `error`: why there is nothing to fit (no usable stepped-sine level). Nothing changes
+  /// while a job runs or once a job has drawn a model over the points.
+  void show_measured(const analysis::EdcDataset& data, const QString& error = {});
+
   /// The last fit that finished (not cancelled), with its objective; null before.
   const analysis::FitResult* fit_result() const;
   std::shared_ptr<const analysis::EdcObjective> fit_objective() const;
@@ -124,6 +132,9 @@ class IdentificationPanel : public QWidget {
   /// An export of results ended; `ok` false with the reason in `message`.
   void export_finished(const QString& message, bool ok);
 
+ protected:
+  void resizeEvent(QResizeEvent* event) override;
+
  private:
   /// The recordings and the base model to fit or diagnose, or false with the reason shown.
   bool job_inputs(std::vector<std::string>& paths, analysis::FitSetup& setup);
@@ -149,11 +160,15 @@ class IdentificationPanel : public QWidget {
   void show_diagnosis(const DiagnosisOutcome& outcome);
   void plot_edc(const analysis::EdcObjective& objective,
                 const std::vector<std::vector<double>>& edc_mod_j, const QString& model_name);
+  // The measured points (±3σ) of `groups` and, when `edc_mod_j` has them, the model's line.
+  void plot_edc(const std::vector<analysis::EdcGroup>& groups,
+                const std::vector<std::vector<double>>& edc_mod_j, const QString& model_name);
 
   FitJob* fit_job_ = nullptr;
   DiagnosisJob* diagnosis_job_ = nullptr;
   FigureDataJob* figure_data_job_ = nullptr;
   std::shared_ptr<const FitOutcome> fitted_;  // the last finished fit, for figures and dialogs
+  bool model_drawn_ = false;  // a job drew a model's EDC: the measured-only view stays away
   std::shared_ptr<const figures::FitFigureData> figure_data_;  // of fitted_, once computed
   std::function<void()> after_figure_data_;
   FigureDialog* figures_dialog_ = nullptr;
@@ -174,6 +189,8 @@ class IdentificationPanel : public QWidget {
   QProgressBar* progress_ = nullptr;
   QLabel* status_label_ = nullptr;
   QTabWidget* tabs_ = nullptr;
+  QSplitter* splitter_ = nullptr;  // the set-up above the results
+  bool splitter_placed_ = false;   // the divider's first place, once the panel has a height
   QTableWidget* parameter_table_ = nullptr;
   DiagnosisView* diagnosis_view_ = nullptr;
   QCustomPlot* edc_plot_ = nullptr;

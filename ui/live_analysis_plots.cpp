@@ -32,7 +32,7 @@ QCustomPlot* make_plot(const QString& name, const QString& title, const QString&
                        const QString& y_label) {
   auto* plot = new QCustomPlot;
   plot->setObjectName(name);
-  plot->setMinimumSize(220, 160);
+  plot->setMinimumSize(150, 130);  // five plots beside the traces on a 1366-wide screen
   add_plot_title(plot, title)->setMargins(QMargins(0, 2, 0, 0));
   frame_axes(plot, x_label, y_label);
   QFont legend_font = plot->font();
@@ -86,7 +86,7 @@ LiveAnalysisPlots::LiveAnalysisPlots(QWidget* parent) : QWidget(parent) {
   // EDC against f0 (Fig. 10, with the model as Fig. 15).
   edc_plot_ = make_plot("edc_plot", tr("Energy dissipated per cycle, level by level (Fig. 10)"),
                         tr("forcing amplitude f\u2080 [N]"), tr("EDC [mJ]"));
-  edc_plot_->setMinimumHeight(230);
+  edc_plot_->setMinimumHeight(170);
   edc_plot_->legend->setVisible(true);
   edc_plot_->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignLeft);
   const QString well_names[3] = {tr("z\u208a* measured \u00b13\u03c3"),

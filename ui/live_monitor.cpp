@@ -11,6 +11,7 @@
 #include <QLabel>
 #include <QScrollArea>
 #include <QSplitter>
+#include <QStyle>
 #include <QTableWidget>
 #include <QTimer>
 #include <QVBoxLayout>
@@ -71,7 +72,9 @@ LiveMonitor::LiveMonitor(QWidget* parent)
   scroll->setWidget(panel);
   scroll->setWidgetResizable(true);
   scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  scroll->setMinimumWidth(panel->sizeHint().width() + 20);
+  // The panel's narrowest width and room for the vertical scroll bar a short screen brings.
+  scroll->setMinimumWidth(panel->minimumWidth() + style()->pixelMetric(QStyle::PM_ScrollBarExtent) +
+                          4);
   scroll->setFrameShape(QFrame::NoFrame);
 
   message_label_ = new QLabel;

@@ -5,13 +5,13 @@
 #include <optional>
 
 #include <QElapsedTimer>
-#include <QGridLayout>
 #include <QHeaderView>
 #include <QLabel>
 #include <QScrollBar>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
+#include "ui/flow_layout.h"
 #include "ui/live_edc_plot_data.h"
 #include "ui/live_event_row.h"
 #include "ui/live_status_fields.h"
@@ -47,14 +47,13 @@ LiveStatusStrip::LiveStatusStrip(QWidget* parent)
   clock_->start();
   setObjectName("live_status_strip");
 
-  // Two rows of figures. Each label is as wide as its widest expected text, whatever it shows
-  // now, so that a changing figure never changes the page's layout.
+  // The figures in rows that wrap with the strip's width (FlowLayout). Each label is at least as
+  // wide as its widest expected text, whatever it shows now, so that a changing figure never
+  // changes the page's layout; a longer text widens its label instead of being cut or printed
+  // over its neighbour.
   auto* strip = new QWidget;
   strip->setObjectName("status_strip");
-  auto* strip_layout = new QGridLayout(strip);
-  strip_layout->setContentsMargins(0, 0, 0, 0);
-  strip_layout->setHorizontalSpacing(6);
-  strip_layout->setVerticalSpacing(2);
+  auto* strip_layout = new FlowLayout(strip, 6, 2);
   const std::map<std::string, QString> widest = {
       {"source", "replay stepped_positive.flac (running)"},
       {"rate", "rate 51200 Hz \u00d7100"},
@@ -76,36 +75,25 @@ LiveStatusStrip::LiveStatusStrip(QWidget* parent)
       {"card", "card 000"}};
   const std::vector<StatusField> fields =
       status_fields({}, {}, fault_tracker_, 0.0, 0.0);  // the keys, in order
-  // The source on the left over both rows (it wraps), the other figures in two rows of 9.
-  constexpr int kPerRow = 9;
-  std::vector<int> column_width(kPerRow, 0);
-  for (std::size_t i = 1; i < fields.size(); ++i) {
-    const auto text = widest.find(fields[i].key);
-    const int width =
-        fontMetrics().horizontalAdvance(text != widest.end() ? text->second : "0000000") + 14;
-    column_width[(i - 1) % kPerRow] = std::max(column_width[(i - 1) % kPerRow], width);
-  }
-  for (std::size_t i = 0; i < fields.size(); ++i) {
+  for (const StatusField& field : fields) {
     auto* label = new QLabel;
-    label->setObjectName(qs("status_" + fields[i].key));
+    label->setObjectName(qs("status_" + field.key));
     label->setStyleSheet(severity_style(Severity::Normal));
     label->setProperty("severity", 0);
-    if (i == 0) {
-      label->setWordWrap(true);
-      label->setFixedWidth(fontMetrics().horizontalAdvance(widest.at("source")) / 2 + 30);
-      strip_layout->addWidget(label, 0, 0, 2, 1);
-    } else {
-      const int column = static_cast<int>(i - 1) % kPerRow;
-      label->setFixedWidth(column_width[std::size_t(column)]);
-      strip_layout->addWidget(label, static_cast<int>(i - 1) / kPerRow, column + 1);
-    }
-    labels_.emplace_back(fields[i].key, label);
+    const auto text = widest.find(field.key);
+    // The style's padding (4 px each side) and a margin for bold or wider glyphs.
+    label->setMinimumWidth(
+        label->fontMetrics().horizontalAdvance(text != widest.end() ? text->second : "0000000") +
+        14);
+    label->setSizePolicy(QSizePolicy::Minimum, QSizePolicy::Fixed);
+    if (field.key == "source") label->setWordWrap(true);  // a long file name takes two lines
+    strip_layout->addWidget(label);
+    labels_.emplace_back(field.key, label);
   }
-  strip_layout->setColumnStretch(kPerRow + 1, 1);
   warning_label_ = new QLabel;
   warning_label_->setObjectName("level_warning");
   warning_label_->setStyleSheet(severity_style(Severity::Normal));
-  warning_label_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+  warning_label_->setWordWrap(true);  // a long warning takes a second line, never cut
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(strip);

@@ -19,11 +19,11 @@ class QTableWidget;
 
 namespace oscilab::ui {
 
-/// The live monitor's status strip: two rows of figures (live_status_fields.h: rate, stream
-/// time, samples, fault counters that turn amber and red as they rise, queue, recording, cycles,
-/// latency, alarms), the line about the level being filled with its warning, and the event log
-/// whose events it counts as faults. The event log is a separate widget the monitor places
-/// (event_log()). Used from the UI thread only.
+/// The live monitor's status strip: rows of figures that wrap with its width (live_status_fields.h:
+/// rate, stream time, samples, fault counters that turn amber and red as they rise, queue,
+/// recording, cycles, latency, alarms), the line about the level being filled with its warning, and
+/// the event log whose events it counts as faults. The event log is a separate widget the monitor
+/// places (event_log()). Used from the UI thread only.
 class LiveStatusStrip : public QWidget {
   Q_OBJECT
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include <QDoubleSpinBox>
+#include <QFontMetrics>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
@@ -92,7 +93,7 @@ LiveTraceView::LiveTraceView(QWidget* parent) : QWidget(parent) {
   // One axis rect per trace, stacked over a shared time axis.
   plot_ = new QCustomPlot;
   plot_->setObjectName("trace_plot");
-  plot_->setMinimumSize(320, 400);
+  plot_->setMinimumSize(220, 300);  // four traces stay readable on a 768-high screen
   plot_->plotLayout()->clear();
   plot_->plotLayout()->setRowSpacing(2);
   auto* margins = new QCPMarginGroup(plot_);
@@ -179,7 +180,32 @@ void LiveTraceView::show_stream(const daq::Acquisition* acquisition,
 
 void LiveTraceView::set_layout(const std::optional<daq::Sidecar>& layout) {
   layout_ = layout;
-  for (int k = 0; k < kTraceCount; ++k) names_[std::size_t(k)]->setText(trace_name(k, layout_));
+  elide_names();
+}
+
+void LiveTraceView::elide_names() {
+  // Each trace's name within its axes: elided ("…") on a narrow plot rather than cut.
+  for (int k = 0; k < kTraceCount; ++k) {
+    QCPItemText* name = names_[std::size_t(k)];
+    const int width = rects_[std::size_t(k)]->width() - 12;
+    const QString text = trace_name(k, layout_);
+    name->setText(width > 0 ? QFontMetrics(name->font()).elidedText(text, Qt::ElideRight, width)
+                            : text);
+  }
+}
+
+void LiveTraceView::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  plot_->plotLayout()->update(QCPLayoutElement::upLayout);  // the axes' new sizes
+  elide_names();
+  // About 30 px per value tick label up each trace, so that they never run into each other.
+  constexpr int kTickHeightPx = 30;
+  for (QCPAxisRect* rect : rects_) {
+    rect->axis(QCPAxis::atLeft)
+        ->ticker()
+        ->setTickCount(std::clamp(rect->height() / kTickHeightPx, 3, 5));
+  }
+  plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 
 void LiveTraceView::set_window_s(double window_s) { window_box_->setValue(window_s); }

@@ -58,9 +58,13 @@ class LiveTraceView : public QWidget {
   /// The operator changed the window length (the session keeps it).
   void window_changed(double window_s);
 
+ protected:
+  void resizeEvent(QResizeEvent* event) override;
+
  private:
   void sync_scroll_bar();
   void name_traces();
+  void elide_names();  // each trace's name elided to its axes' width
 
   const daq::Acquisition* acquisition_ = nullptr;
   std::optional<daq::Sidecar> layout_;

@@ -1,5 +1,6 @@
 #include "ui/main_window.h"
 
+#include <algorithm>
 #include <exception>
 
 #include <QAction>
@@ -7,17 +8,20 @@
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QGuiApplication>
 #include <QInputDialog>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressBar>
+#include <QScreen>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QTimer>
 #include <QToolBar>
 
 #include "analysis/common/input_error.h"
+#include "analysis/identification/edc_dataset.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/edc_objective.h"
 #include "daq/recording/format_reader.h"
@@ -66,6 +70,13 @@ QString summary(const daq::Recording& recording) {
   return text;
 }
 
+// A random or other non-stepped record has no levels to fit: it stays out of the fit panel. A
+// record that does not say its excitation joins (the analysis finds its levels, or not).
+bool joins_fit(const daq::Recording& recording) {
+  const auto& excitation = recording.sidecar.excitation;
+  return !excitation || excitation->type.empty() || excitation->type == "stepped-sine";
+}
+
 }  // namespace
 
 MainWindow::MainWindow(QWidget* parent, Loader loader)
@@ -92,7 +103,7 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   auto* dock = new QDockWidget(tr("Fit and diagnosis"), this);
   dock->setObjectName("identification_dock");
   dock->setWidget(identification_panel_);
-  identification_panel_->setMinimumWidth(520);
+  identification_panel_->setMinimumWidth(360);
   addDockWidget(Qt::RightDockWidgetArea, dock);
   // From the rig to a fitted model: a finished live recording opens for review and fitting, and
   // each fitted model's EDC is drawn over the live measurement.
@@ -177,7 +188,14 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
 
   setWindowTitle(tr("Oscilab"));
   statusBar()->showMessage(tr("Open recordings with File \u25b8 Open (Ctrl+O)."));
-  resize(1500, 900);
+  // 1500×900, or less on a smaller screen: the window never starts larger than the screen.
+  QSize size(1500, 900);
+  if (const QScreen* screen = QGuiApplication::primaryScreen()) {
+    size = size.boundedTo(screen->availableGeometry().size());
+  }
+  resize(size);
+  // The panel takes about two fifths of the width, the review the rest.
+  resizeDocks({dock}, {std::max(400, size.width() * 2 / 5)}, Qt::Horizontal);
 }
 
 MainWindow::~MainWindow() = default;
@@ -226,7 +244,7 @@ bool MainWindow::load(const QString& path, QString& error) {
   sync_recordings();
   show_recording(recording);
   last_directory_ = QFileInfo(path).absolutePath();
-  identification_panel_->add_recording(path_utf8);
+  if (joins_fit(*recording)) identification_panel_->add_recording(path_utf8);
   schedule_analysis();
   return true;
 }
@@ -356,6 +374,12 @@ void MainWindow::on_analysis_finished(bool cancelled) {
     statusBar()->showMessage(tr("Analysis: %1").arg(QString::fromStdString(analysis_->errors[0])));
   }
   analysis_label_->setText(text);
+  // The fit panel shows the measurement it would fit at once, before any fit.
+  try {
+    identification_panel_->show_measured(analysis::edc_dataset(analysis_->campaign));
+  } catch (const InputError& error) {  // no usable stepped-sine level
+    identification_panel_->show_measured({}, QString::fromStdString(error.what()));
+  }
 
   // A session's selection, now that its levels exist.
   std::vector<LevelKey> keys;
@@ -448,7 +472,9 @@ bool MainWindow::open_session(const QString& path) {
   sync_recordings();
   identification_panel_->set_recordings({});
   for (const OpenedRecording& opened : opened_) {
-    identification_panel_->add_recording(opened.path.toStdString());
+    if (joins_fit(*opened.recording)) {
+      identification_panel_->add_recording(opened.path.toStdString());
+    }
   }
   const auto is_open = [this](const std::string& p) {
     for (const OpenedRecording& opened : opened_) {

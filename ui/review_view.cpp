@@ -221,6 +221,15 @@ void ReviewView::set_analysis(std::shared_ptr<const ReviewAnalysis> analysis) {
   plot_cycles();
   plot_cycle_cursor();
   slices_.show(analysis_.get(), analysis_running_);
+  // Records without a stepped-sine level (a random test) open on their restoring-force slices
+  // rather than on an empty level table.
+  if (analysis_ && !analysis_->campaign.records.empty() && tabs_->currentIndex() == kLevelsTab) {
+    bool any_level = false;
+    for (const analysis::RecordAnalysis& record : analysis_->campaign.records) {
+      any_level = any_level || !record.levels.empty();
+    }
+    if (!any_level) tabs_->setCurrentIndex(kRestoringForceTab);
+  }
 }
 
 void ReviewView::select_levels(const std::vector<LevelKey>& keys, bool move_view) {

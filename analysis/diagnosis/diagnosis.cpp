@@ -16,6 +16,7 @@
 #include "analysis/diagnosis/joint_refit.h"
 #include "analysis/diagnosis/settled_model.h"
 #include "analysis/identification/edc_dataset.h"
+#include "analysis/identification/fit_setup.h"
 #include "analysis/identification/sigma_budget_report.h"
 
 namespace oscilab::analysis {
@@ -195,6 +196,16 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
                          const CancelToken& outer_cancel) {
   if (options.max_steps < 0) throw InputError("diagnose: max steps must be ≥ 0");
   if (!(options.bic_threshold >= 0.0)) throw InputError("diagnose: the ΔBIC threshold must be ≥ 0");
+  if (options.threads < 0 || options.threads > kMaxThreads) {
+    throw InputError("diagnose: threads: " + std::to_string(options.threads) +
+                     " must be 0 (all cores) to " + std::to_string(kMaxThreads));
+  }
+  for (const long evaluations : {options.baseline_evaluations, options.candidate_evaluations}) {
+    if (evaluations < 1 || evaluations > kMaxFitEvaluations) {
+      throw InputError("diagnose: evaluations: " + std::to_string(evaluations) + " must be 1 to " +
+                       std::to_string(kMaxFitEvaluations));
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   const DeadlineToken deadline(outer_cancel, options.max_seconds);
   const CancelToken& cancel = deadline.token();

@@ -57,6 +57,13 @@ HbmOptions checked(const HbmOptions& options) {
     throw InputError("harmonic balance: subharmonic: " + std::to_string(options.subharmonic) +
                      " must be in 1 … 64");
   }
+  // N = 0 picks the default; a negative N is a mistake, not a request for it. 2^20 samples a
+  // period is 64 times the default of the largest ansatz (νH = 64 × 63): more only costs time.
+  constexpr int kMaxSamples = 1 << 20;
+  if (options.samples < 0 || options.samples > kMaxSamples) {
+    throw InputError("harmonic balance: samples: " + std::to_string(options.samples) +
+                     " must be 0 (the default) or at most " + std::to_string(kMaxSamples));
+  }
   return options;
 }
 

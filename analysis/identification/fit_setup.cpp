@@ -13,8 +13,21 @@ namespace oscilab::analysis {
 EdcCostSettings cost_settings(int harmonics, int max_harmonics, double model_error_rel,
                               const std::string& harmonics_name,
                               const std::string& max_harmonics_name) {
+  // H = 200 is the largest ansatz the hbm command takes; the fit's default is 7 (Fig. 11).
+  constexpr int kMaxHarmonics = 200;
   if (harmonics < 1) throw InputError(harmonics_name + ": must be at least 1");
+  if (harmonics > kMaxHarmonics) {
+    throw InputError(harmonics_name + ": " + std::to_string(harmonics) + " is more than " +
+                     std::to_string(kMaxHarmonics));
+  }
   if (max_harmonics < 1) throw InputError(max_harmonics_name + ": must be at least 1");
+  // With the σ budget (no fixed floor) the defect correction climbs the references 15, 23, 31,
+  // 47, 63 up to max_harmonics: a value outside 15 … 63 would silently mean no correction or
+  // the same as 63. With a fixed floor it is not used.
+  if (model_error_rel < 0.0 && (max_harmonics < 15 || max_harmonics > 63)) {
+    throw InputError(max_harmonics_name + ": " + std::to_string(max_harmonics) +
+                     " must be in 15 … 63 (the σ budget's reference harmonics)");
+  }
   EdcCostSettings cost;
   cost.hbm.harmonics = harmonics;
   cost.max_harmonics = std::max(max_harmonics, harmonics);
@@ -53,6 +66,26 @@ void validate(const FitOptions& options, const std::string& option_prefix) {
     fail("population", "must be at least " + std::to_string(kMinGeneticPopulation));
   }
   if (options.genetic.generations < 0) fail("generations", "must be ≥ 0");
+  if (options.max_evaluations > kMaxFitEvaluations) {
+    fail("evaluations", std::to_string(options.max_evaluations) + " is more than " +
+                            std::to_string(kMaxFitEvaluations));
+  }
+  if (options.method == FitMethod::Genetic &&
+      static_cast<double>(options.genetic.population) *
+              (static_cast<double>(options.genetic.generations) + 1.0) >
+          static_cast<double>(kMaxFitEvaluations)) {
+    fail("population", std::to_string(options.genetic.population) + " over " +
+                           std::to_string(options.genetic.generations) +
+                           " generations is more than " + std::to_string(kMaxFitEvaluations) +
+                           " evaluations");
+  }
+  if (options.uncertainty.bootstrap_replicates > kMaxFitEvaluations) {
+    fail("bootstrap", "more than " + std::to_string(kMaxFitEvaluations) + " replicates");
+  }
+  if (options.threads < 0 || options.threads > kMaxThreads) {
+    fail("threads", std::to_string(options.threads) + " must be 0 (all cores) to " +
+                        std::to_string(kMaxThreads));
+  }
 }
 
 StiffnessSource parse_stiffness_source(const std::string& name, const std::string& option_name) {

@@ -57,11 +57,19 @@ PreparedFit prepare_fit(const CampaignAnalysis& campaign, const FitSetup& setup)
 /// The fewest model evaluations and the smallest GA population a fit accepts (validate).
 inline constexpr long kMinFitEvaluations = 10;
 inline constexpr int kMinGeneticPopulation = 2;
+/// The most model evaluations a fit accepts: an evaluation solves every level's harmonic balance
+/// (about a millisecond), so 10^7 is hours on all cores, where the paper's GA takes 2000 and a
+/// CMA-ES fit converges within a few thousand. The GA's population × (generations + 1) counts.
+inline constexpr long kMaxFitEvaluations = 10'000'000;
+/// The most worker threads a job accepts (0: all hardware threads); each holds its own
+/// harmonic-balance workspace, and more threads than cores only cost memory.
+inline constexpr int kMaxThreads = 1024;
 
 /// Checks a fit's search settings as a user gives them (the CLI's --evaluations, --mutation,
-/// --population, --generations and --bootstrap, the app's form, Python's keywords): at least
-/// kMinFitEvaluations evaluations, a mutation rate in [0, 1], a population of at least
-/// kMinGeneticPopulation, no negative generations or bootstrap replicates. Throws InputError
+/// --population, --generations, --bootstrap and --threads, the app's form, Python's keywords):
+/// kMinFitEvaluations to kMaxFitEvaluations evaluations (the GA's population × (generations + 1)
+/// too), a mutation rate in [0, 1], a population of at least kMinGeneticPopulation, no negative
+/// generations or bootstrap replicates, 0 to kMaxThreads threads. Throws InputError
 /// naming the first bad choice as the front end spells it: `option_prefix` before the name
 /// ("--" on the command line, "" in Python), e.g. "--population: must be at least 2".
 void validate(const FitOptions& options, const std::string& option_prefix);

@@ -1,9 +1,11 @@
 #include "analysis/model/model_json.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 #include "analysis/model/coulomb_friction.h"
 #include "analysis/model/dahl_friction.h"
 #include "analysis/model/polynomial_stiffness.h"
@@ -120,15 +122,19 @@ Model model_from_json(const json& object, const std::string& where) {
 }
 
 Model load_model(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open model file");
-  json object;
-  try {
-    object = json::parse(in);
-  } catch (const json::parse_error& error) {
-    throw InputError(path + ": not valid JSON (" + error.what() + ")");
+  // A model is a few kilobytes: a file over the JSON limit is refused before it is read.
+  std::error_code error;
+  if (const std::uintmax_t size = std::filesystem::file_size(path, error);
+      !error && size > kMaxJsonTextBytes) {
+    throw InputError(path + ": " + std::to_string(size) + " bytes of JSON exceed the limit of " +
+                     std::to_string(kMaxJsonTextBytes));
   }
-  return model_from_json(object, path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": cannot read model file");
+  return model_from_json(parse_json_within_limits(text.str(), path), path);
 }
 
 void save_model(const Model& model, const std::string& path) {

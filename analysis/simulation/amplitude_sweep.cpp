@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <ostream>
 
@@ -24,6 +25,18 @@ void AmplitudeSweepOptions::validate() const {
   }
   if (samples_per_period < 8) {
     throw InputError("amplitude sweep: samples_per_period must be at least 8");
+  }
+  // Checked here, before the time simulation would refuse it, so that a front end that writes
+  // other results first (hbm --sweep) refuses the whole command before writing anything.
+  const double samples = (up_s + down_s) * freq_hz * samples_per_period;
+  if (!(samples < TimeSimulator::kMaxSamples)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "amplitude sweep: %g s up and %g s down at %g samples a period of %g Hz are "
+                  "%.3g samples, more than the %.3g a time simulation holds",
+                  up_s, down_s, samples_per_period * 1.0, freq_hz, samples,
+                  TimeSimulator::kMaxSamples);
+    throw InputError(text);
   }
 }
 

@@ -52,6 +52,15 @@ void BifurcationMapOptions::validate() const {
   if (!(cluster_tolerance_m > 0.0)) {
     throw InputError("bifurcation map: cluster_tolerance_m must be positive");
   }
+  // One sample a period for every level of a well's run: bounded like any time simulation, and
+  // checked here so that hbm --map refuses before it writes anything.
+  const double level_count = levels_n.empty() ? std::floor((end_n - start_n) / step_n) + 1.0
+                                              : static_cast<double>(levels_n.size());
+  if (!(level_count * hold_periods < TimeSimulator::kMaxSamples)) {
+    throw InputError("bifurcation map: " + std::to_string(static_cast<long>(level_count)) +
+                     " levels of " + std::to_string(hold_periods) +
+                     " periods are more samples than a time simulation holds");
+  }
 }
 
 std::vector<BifurcationMapLevel> BifurcationMap::levels_of(bool positive_well) const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <string>
@@ -51,6 +52,19 @@ RandomMotion::RandomMotion(const RandomMotionSpec& spec, double mass_kg) : spec_
   if (!(mass_kg > 0)) throw InputError("random excitation: mass_kg must be positive");
 
   const double grid_rate_hz = std::max(4096.0, 64.0 * spec.high_hz);
+  // The excitation is synthesised on one grid by inverse DFTs: about 100 B a grid point (four
+  // spectra, four transforms, four interpolation tables), so 2^25 points (2.3 h at 4096 Hz) stay
+  // near 3 GB. A longer or wider-band excitation is refused before anything is allocated.
+  constexpr double kMaxGridPoints = 33554432.0;  // 2^25
+  if (!(spec.duration_s * grid_rate_hz < kMaxGridPoints)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "random excitation: duration %g s needs %.3g grid points at %g Hz, more than "
+                  "the %.3g (%g s) it may hold",
+                  spec.duration_s, spec.duration_s * grid_rate_hz, grid_rate_hz, kMaxGridPoints,
+                  kMaxGridPoints / grid_rate_hz);
+    throw InputError(text);
+  }
   const auto n = static_cast<std::size_t>(std::ceil(spec.duration_s * grid_rate_hz)) + 1;
   grid_dt_s_ = 1.0 / grid_rate_hz;
   const double df = grid_rate_hz / static_cast<double>(n);

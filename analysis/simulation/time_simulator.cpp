@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "analysis/common/input_error.h"
@@ -37,6 +38,14 @@ TimeSimulator::Result TimeSimulator::simulate(const TableMotion& motion, const R
       (!run.probe_times_s.empty() &&
        (run.probe_times_s.front() < 0 || run.probe_times_s.back() > duration_s))) {
     throw InputError("time simulation: probe times must be increasing and within the run");
+  }
+  if (!(duration_s * sample_rate_hz < kMaxSamples)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "time simulation: %g s at %g Hz is %.3g samples, more than the %.3g one run "
+                  "holds (a day at 512 Hz is 4.4e+07)",
+                  duration_s, sample_rate_hz, duration_s * sample_rate_hz, kMaxSamples);
+    throw InputError(text);
   }
   const auto samples = static_cast<Eigen::Index>(std::floor(duration_s * sample_rate_hz)) + 1;
   const double dt_out = 1.0 / sample_rate_hz;

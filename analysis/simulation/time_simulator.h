@@ -39,6 +39,10 @@ class TimeSimulator {
     double max_step_s = 0.0;
   };
   enum class Status { Ok, Cancelled, NumericalIssue };
+  /// The most samples one run holds: a day at 512 Hz is 44 M, and a run keeps 9 doubles a sample
+  /// (72 B; the virtual rig adds 3 more), so 50 M samples stay under 5 GB. A longer or faster run
+  /// is refused before anything is allocated.
+  static constexpr double kMaxSamples = 50e6;
   /// What to integrate: initial conditions, length, output rate, and probe times at which the
   /// energy integrals are read (e.g. forcing-cycle boundaries); steps land on them exactly.
   struct Run {

@@ -1,6 +1,8 @@
 // oscilab-cli analyze REC... --edc EDC.csv [--rfs RFS.csv] [--summary S.json] (contract §2)
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -14,6 +16,7 @@
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/option_parsing.h"
+#include "app/cli/output_files.h"
 #include "daq/recording/measurement_mapping.h"
 
 namespace oscilab::cli {
@@ -35,19 +38,23 @@ struct AnalyzeOptions {
   analysis::PipelineSettings settings;
 };
 
-std::FILE* open_output(const std::string& path) {
+// Each table is written to `path` (a temporary, OutputFiles) and named by its `target`.
+std::FILE* open_output(const std::string& path, const std::string& target) {
   std::FILE* file = std::fopen(path.c_str(), "w");
-  if (!file) throw InputError(path + ": cannot write");
+  if (!file) throw InputError(target + ": cannot write: " + std::strerror(errno));
   return file;
 }
 
-void close_output(std::FILE* file, const std::string& path) {
+void close_output(std::FILE* file, const std::string& target) {
   const bool failed = std::ferror(file) != 0;
-  if (std::fclose(file) != 0 || failed) throw InputError(path + ": write failed");
+  if (std::fclose(file) != 0 || failed) {
+    throw InputError(target + ": write failed: " + std::strerror(errno));
+  }
 }
 
-void write_edc(const analysis::CampaignAnalysis& campaign, const std::string& path) {
-  std::FILE* out = open_output(path);
+void write_edc(const analysis::CampaignAnalysis& campaign, const std::string& path,
+               const std::string& target) {
+  std::FILE* out = open_output(path, target);
   std::fprintf(out,
                "well,f0_n,edc_mean_j,edc_std_j,cycles,record,edc_noise_floor_j,edc_eq13_mean_j,"
                "edc_trapz_mean_j,z1_abs_m,lag_rad,z_mean_m,start_s,end_s,transient_cycles,"
@@ -62,11 +69,12 @@ void write_edc(const analysis::CampaignAnalysis& campaign, const std::string& pa
           l.period1_change, l.usable() ? 1 : 0, analysis::level_flags(record, l).c_str());
     }
   }
-  close_output(out, path);
+  close_output(out, target);
 }
 
-void write_cycles(const analysis::CampaignAnalysis& campaign, const std::string& path) {
-  std::FILE* out = open_output(path);
+void write_cycles(const analysis::CampaignAnalysis& campaign, const std::string& path,
+                  const std::string& target) {
+  std::FILE* out = open_output(path, target);
   std::fprintf(out,
                "record,start_s,end_s,f0_n,edc_j,edc_eq13_j,edc_trapz_j,z1_abs_m,lag_rad,"
                "z_mean_m,z_min_m,z_max_m\n");
@@ -78,28 +86,30 @@ void write_cycles(const analysis::CampaignAnalysis& campaign, const std::string&
                    c.z_max_m);
     }
   }
-  close_output(out, path);
+  close_output(out, target);
 }
 
-void write_rfs(const analysis::CampaignAnalysis& campaign, const std::string& path) {
+void write_rfs(const analysis::CampaignAnalysis& campaign, const std::string& path,
+               const std::string& target) {
   if (!campaign.stiffness) throw InputError("--rfs: no stiffness slice: " + campaign.rfs_message);
-  std::FILE* out = open_output(path);
+  std::FILE* out = open_output(path, target);
   std::fprintf(out, "z_m,restoring_force_n,samples\n");
   for (const auto& bin : campaign.stiffness->bins) {
     std::fprintf(out, "%.9g,%.9g,%d\n", bin.x, bin.force_n, bin.samples);
   }
-  close_output(out, path);
+  close_output(out, target);
 }
 
-void write_damping(const analysis::CampaignAnalysis& campaign, const std::string& path) {
-  std::FILE* out = open_output(path);
+void write_damping(const analysis::CampaignAnalysis& campaign, const std::string& path,
+                   const std::string& target) {
+  std::FILE* out = open_output(path, target);
   std::fprintf(out, "z_center_m,z_dot_m_s,damping_force_n,samples\n");
   for (const auto& slice : campaign.damping) {
     for (const auto& bin : slice.bins) {
       std::fprintf(out, "%.9g,%.9g,%.9g,%d\n", slice.z_center_m, bin.x, bin.force_n, bin.samples);
     }
   }
-  close_output(out, path);
+  close_output(out, target);
 }
 
 void print_report(const analysis::CampaignAnalysis& campaign) {
@@ -157,6 +167,13 @@ void print_report(const analysis::CampaignAnalysis& campaign) {
 }
 
 void run(const AnalyzeOptions& options) {
+  const std::vector<std::string> inputs = recordings_and_sidecars(options.recordings);
+  refuse_output_over_inputs(options.edc_path, "--edc", inputs);
+  refuse_output_over_inputs(options.cycles_path, "--cycles", inputs);
+  refuse_output_over_inputs(options.rfs_path, "--rfs", inputs);
+  refuse_output_over_inputs(options.damping_path, "--damping", inputs);
+  refuse_output_over_inputs(options.summary_path, "--summary", inputs);
+  refuse_output_over_inputs(options.model_out_path, "--model-out", inputs);
   daq::MappingOverrides overrides;
   if (options.freq_hz > 0) overrides.excitation_freq_hz = options.freq_hz;
   if (!options.well.empty()) {
@@ -171,14 +188,26 @@ void run(const AnalyzeOptions& options) {
       analyze_recordings(options.recordings, overrides, options.settings, &times);
   const auto output_start = std::chrono::steady_clock::now();
   print_report(campaign);
-  if (!options.edc_path.empty()) write_edc(campaign, options.edc_path);
-  if (!options.cycles_path.empty()) write_cycles(campaign, options.cycles_path);
-  if (!options.rfs_path.empty()) write_rfs(campaign, options.rfs_path);
-  if (!options.damping_path.empty()) write_damping(campaign, options.damping_path);
+  // Every output complete before any is in place: a failure leaves none of them.
+  OutputFiles outputs;
+  if (!options.edc_path.empty()) {
+    write_edc(campaign, outputs.add(options.edc_path), options.edc_path);
+  }
+  if (!options.cycles_path.empty()) {
+    write_cycles(campaign, outputs.add(options.cycles_path), options.cycles_path);
+  }
+  if (!options.rfs_path.empty()) {
+    if (!campaign.stiffness) throw InputError("--rfs: no stiffness slice: " + campaign.rfs_message);
+    write_rfs(campaign, outputs.add(options.rfs_path), options.rfs_path);
+  }
+  if (!options.damping_path.empty()) {
+    write_damping(campaign, outputs.add(options.damping_path), options.damping_path);
+  }
   if (!options.summary_path.empty()) {
-    std::ofstream out(options.summary_path);
+    std::ofstream out(outputs.add(options.summary_path));
     out << analysis::campaign_summary(campaign).dump(2) << '\n';
-    if (!out) throw InputError(options.summary_path + ": write failed");
+    out.flush();
+    if (!out) throw InputError(options.summary_path + ": write failed: " + std::strerror(errno));
   }
   if (!options.model_out_path.empty()) {
     // The lab's model: the recordings' mass and the stiffness slice's K(z), the friction and
@@ -190,10 +219,11 @@ void run(const AnalyzeOptions& options) {
     std::vector<std::string> notes;
     const analysis::Model model =
         analysis::campaign_model(*start_model, campaign, analysis::StiffnessSource::Rfs, notes);
-    analysis::save_model(model, options.model_out_path);
+    analysis::save_model(model, outputs.add(options.model_out_path));
     for (const std::string& note : notes) std::printf("model: %s\n", note.c_str());
     std::printf("model written to %s\n", options.model_out_path.c_str());
   }
+  outputs.commit();
   if (options.timing) {
     const double output_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - output_start).count();

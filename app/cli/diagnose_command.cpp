@@ -131,6 +131,15 @@ void run(const DiagnoseOptions& o) {
   if (o.baseline_evaluations < 10 || o.candidate_evaluations < 10) {
     throw InputError("--baseline-evaluations, --candidate-evaluations: must be at least 10");
   }
+  if (o.baseline_evaluations > analysis::kMaxFitEvaluations ||
+      o.candidate_evaluations > analysis::kMaxFitEvaluations) {
+    throw InputError("--baseline-evaluations, --candidate-evaluations: at most " +
+                     std::to_string(analysis::kMaxFitEvaluations));
+  }
+  if (o.threads < 0 || o.threads > analysis::kMaxThreads) {
+    throw InputError("--threads: " + std::to_string(o.threads) + " must be 0 (all cores) to " +
+                     std::to_string(analysis::kMaxThreads));
+  }
   std::error_code error;
   std::filesystem::create_directories(o.out_dir, error);
   if (error) throw InputError(o.out_dir + ": cannot create: " + error.message());

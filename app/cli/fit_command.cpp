@@ -20,6 +20,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/cost_options.h"
 #include "app/cli/option_parsing.h"
+#include "app/cli/output_files.h"
 #include "app/cli/progress_bar.h"
 #include "daq/recording/fit_json.h"
 
@@ -89,6 +90,7 @@ void run(const FitCommandOptions& o) {
     throw InputError("--model-form: unknown form \"" + o.model_form + "\" (paper)");
   }
   analysis::validate(o.search, "--");
+  refuse_output_over_inputs(o.out_path, "--out", recordings_and_sidecars(o.recordings));
   analysis::FitOptions options = o.search;
   options.method = analysis::parse_fit_method(o.method);
   options.genetic.elite = analysis::default_elite(options.genetic.population);

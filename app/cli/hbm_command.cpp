@@ -115,6 +115,24 @@ void run(const HbmCommandOptions& o) {
   std::vector<Well> wells;
   if (only_well != Well::Negative) wells.push_back(Well::Positive);
   if (only_well != Well::Positive) wells.push_back(Well::Negative);
+  // Every option is checked before the branch is computed and written: a refused --sweep or
+  // --map leaves no branch CSV behind.
+  analysis::AmplitudeSweepOptions sweep_options;
+  sweep_options.freq_hz = o.freq_hz;
+  sweep_options.f0_max_n = options.end;
+  sweep_options.up_s = sweep_options.down_s = o.sweep_time;
+  sweep_options.positive_well = wells[0] == Well::Positive;
+  if (!o.sweep.empty()) sweep_options.validate();
+  analysis::BifurcationMapOptions map_options;
+  map_options.freq_hz = o.freq_hz;
+  map_options.start_n = options.start;
+  map_options.end_n = options.end;
+  map_options.step_n = o.map_step;
+  map_options.hold_periods = o.map_hold;
+  map_options.sampled_periods = o.map_sampled;
+  map_options.positive_well = only_well != Well::Negative;
+  map_options.negative_well = only_well != Well::Positive;
+  if (!o.map.empty()) map_options.validate();
   std::vector<analysis::Branch> branches;
   for (const Well well : wells) {
     options.positive_well = well == Well::Positive;
@@ -174,11 +192,6 @@ void run(const HbmCommandOptions& o) {
   }
 
   if (!o.sweep.empty()) {
-    analysis::AmplitudeSweepOptions sweep_options;
-    sweep_options.freq_hz = o.freq_hz;
-    sweep_options.f0_max_n = options.end;
-    sweep_options.up_s = sweep_options.down_s = o.sweep_time;
-    sweep_options.positive_well = wells[0] == Well::Positive;
     analysis::AmplitudeSweep sweep;
     {
       ProgressBar bar("sweep");
@@ -205,15 +218,6 @@ void run(const HbmCommandOptions& o) {
   }
 
   if (!o.map.empty()) {
-    analysis::BifurcationMapOptions map_options;
-    map_options.freq_hz = o.freq_hz;
-    map_options.start_n = options.start;
-    map_options.end_n = options.end;
-    map_options.step_n = o.map_step;
-    map_options.hold_periods = o.map_hold;
-    map_options.sampled_periods = o.map_sampled;
-    map_options.positive_well = only_well != Well::Negative;
-    map_options.negative_well = only_well != Well::Positive;
     analysis::BifurcationMap map;
     {
       ProgressBar bar("map");

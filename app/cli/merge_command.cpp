@@ -1,14 +1,19 @@
 // oscilab-cli merge FIT.json... --out TABLE.csv: many independent fits (a campaign run
 // by Slurm or GNU parallel, scripts/) joined into one table, one row per fit.
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <set>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 #include "analysis/identification/fit_report.h"
 #include "app/cli/commands.h"
+#include "app/cli/output_files.h"
+#include "daq/recording/json_file.h"
 
 namespace oscilab::cli {
 namespace {
@@ -33,25 +38,21 @@ std::string value_or_empty(double value) {
 }
 
 void run(const MergeOptions& o) {
+  refuse_output_over_inputs(o.out_path, "--out", o.fits);
   std::vector<analysis::FitSummary> rows;
   std::vector<std::string> parameters;  // union, in first-seen order
   std::set<std::string> seen;
   for (const auto& path : o.fits) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open");
-    nlohmann::json json;
-    try {
-      in >> json;
-    } catch (const nlohmann::json::exception& error) {
-      throw InputError(path + ": not valid JSON: " + error.what());
-    }
+    const nlohmann::json json = daq::read_json_file(path, kMaxJsonTextBytes);
     rows.push_back(analysis::read_fit_summary(json, path));
     for (const auto& [name, value] : rows.back().parameters) {
       if (seen.insert(name).second) parameters.push_back(name);
     }
   }
-  std::ofstream out(o.out_path);
-  if (!out) throw InputError(o.out_path + ": cannot write");
+  // The table is complete before it is in place: a failed write leaves no file.
+  OutputFiles outputs;
+  std::ofstream out(outputs.add(o.out_path));
+  if (!out) throw InputError(o.out_path + ": cannot write: " + std::strerror(errno));
   out << "fit,records,method,cost_j,mean_deviation_pct_positive,mean_deviation_pct_negative,"
          "evaluations,seconds";
   for (const auto& p : parameters) out << ',' << p << ',' << p << "_std";
@@ -73,7 +74,9 @@ void run(const MergeOptions& o) {
     }
     out << '\n';
   }
-  if (!out) throw InputError(o.out_path + ": write failed");
+  out.close();
+  if (!out) throw InputError(o.out_path + ": write failed: " + std::strerror(errno));
+  outputs.commit();
   std::printf("merged %zu fits into %s\n", rows.size(), o.out_path.c_str());
 }
 

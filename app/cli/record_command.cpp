@@ -3,6 +3,7 @@
 // records a live source as it arrives, with its sidecar and event log, and prints the live EDC.
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <memory>
@@ -65,6 +66,12 @@ void run(const RecordOptions& o) {
   std::signal(SIGTERM, on_signal);
   daq::AcquisitionOptions acquisition_options;
   if (o.sync_ms < 0) throw InputError("--sync-ms " + std::to_string(o.sync_ms) + ": must be >= 0");
+  // 0 waits for a sender as long as it takes; a negative or non-finite wait is a mistake.
+  if (!(o.wait_s >= 0.0) || !std::isfinite(o.wait_s)) {
+    char text[120];
+    std::snprintf(text, sizeof text, "--wait: %g s must be >= 0 (0: no limit)", o.wait_s);
+    throw InputError(text);
+  }
   acquisition_options.recorder_sync_interval = std::chrono::milliseconds(o.sync_ms);
   auto acquisition = std::make_unique<daq::Acquisition>(make_live_source(o.source, o.live, true),
                                                         acquisition_options);
@@ -96,8 +103,9 @@ void run(const RecordOptions& o) {
   acquisition->stop();
   const daq::AcquisitionStatus status = acquisition->status();
   if (terminal) std::fputc('\n', stderr);
-  print_status(status, true);
+  // A failed recording (a full disk) is the one line on stderr; what it holds opens as it is.
   if (!status.recorder_error.empty()) throw InputError(status.recorder_error);
+  print_status(status, true);
   const auto levels = acquisition->levels();
   std::printf("recorded %s: %llu samples (%.1f s)%s\n", o.out.c_str(),
               static_cast<unsigned long long>(status.recorded_samples),

@@ -1,5 +1,6 @@
 // oscilab: the desktop app. `oscilab [REC...]` opens a window on recordings (the first is shown,
-// all are analysed for the review and join the fit and diagnosis panel); `oscilab --session FILE`
+// all are analysed for the review, and those not of a random or other non-stepped test join the fit
+// and diagnosis panel); `oscilab --session FILE`
 // opens a saved session. The view options (--cursor T, --window T0:T1, --level R:L,...,
 // --tab levels|cycles|rfs|annotations, --mark T:NOTE, --hide-panel) set up what the window shows;
 // `--screenshot OUT.png ...` runs the app as a script for a picture of it (window_script.h).

@@ -70,6 +70,7 @@ struct Acquisition::Impl {
   void log(StreamEvent event);  // queued; published with the block (publish_events)
   void on_block(const RawBlock& block, std::uint64_t first_sample);
   void on_gap(std::uint64_t first_sample, std::uint64_t samples);
+  void recording_failed();  // under `mutex`
   void on_anomaly(EventKind kind, std::uint64_t sequence, std::uint64_t first_sample);
   void log_closed_runs();  // mutex held
   void exclude_samples(std::uint64_t from, std::uint64_t to);
@@ -333,6 +334,14 @@ void Acquisition::Impl::publish_events() {
 
 void Acquisition::Impl::handle_event(StreamEvent event) {
   const std::lock_guard lock(mutex);  // events are rare: each is published as it comes
+  // Whatever the source: an event the analysis cannot trust (a level beyond Nyquist, a time
+  // beyond any clock) is logged with why, and neither analysed nor written to the sidecar.
+  if (const std::string problem = rate_hz > 0.0 ? stream_event_problem(event, rate_hz) : "";
+      !problem.empty()) {
+    log({event.t_s, EventKind::Warning, "ignored: " + problem, event.data});
+    publish_events();
+    return;
+  }
   if (event.kind == EventKind::Level && edc.running()) {
     const double f0 = event.data.value("f0_n", 0.0);
     const double freq = event.data.value("frequency_hz", edc.freq_hz());
@@ -432,7 +441,7 @@ void Acquisition::Impl::on_gap(std::uint64_t first_sample, std::uint64_t samples
   history_ring->write_gap(first_sample, samples);
   next_sample = first_sample + samples;
   const std::lock_guard lock(mutex);
-  if (recorder && !recorder->write_gap(samples)) status.recorder_error = recorder->error();
+  if (recorder && !recorder->write_gap(samples)) recording_failed();
   published_end = next_sample;
   log({time_of(first_sample),
        EventKind::Gap,
@@ -476,7 +485,7 @@ void Acquisition::Impl::on_block(const RawBlock& block, std::uint64_t first_samp
     const std::lock_guard lock(mutex);
     status.non_finite_samples += bad.non_finite;
     status.saturated_samples += bad.saturated;
-    if (recorder && !recorder->write(block)) status.recorder_error = recorder->error();
+    if (recorder && !recorder->write(block)) recording_failed();
     log_closed_runs();
     log_alarms();
     status.samples += static_cast<std::uint64_t>(rows);
@@ -557,6 +566,16 @@ void Acquisition::Impl::open_pending_recording() {
     failed.wall = utc_now_iso8601();
     events.push_back(failed);
   }
+}
+
+void Acquisition::Impl::recording_failed() {
+  // The recording stops there (a full disk, a failing write); the stream goes on. Said once, as
+  // an error event, and the recording closed at once with what was written whole.
+  if (!status.recorder_error.empty()) return;
+  status.recorder_error = recorder->error();
+  log({time_of(next_sample), EventKind::Error, "recording stopped: " + recorder->error()});
+  publish_events();  // into the event log too, while it is open (a few hundred bytes may fit)
+  pending_stop_recording = true;
 }
 
 void Acquisition::Impl::publish_recorder_state() {

@@ -72,8 +72,10 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
   last_sync_ = std::chrono::steady_clock::now();
   sf_command(file_, SFC_SET_UPDATE_HEADER_AUTO, nullptr, SF_TRUE);
   // No destructor runs when a constructor throws: what is open is closed before rethrowing.
+  bool sidecar_written = false;
   try {
-    write_sidecar_now();  // validates it too (InputError on a bad layout)
+    write_sidecar_now(true);  // validates it too (InputError on a bad layout)
+    sidecar_written = true;
     events_fd_ =
         ::open(events_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
     if (events_fd_ < 0) throw InputError(events_path_ + ": cannot write: " + std::strerror(errno));
@@ -86,9 +88,15 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
       if (sidecar_dirty_) write_sidecar_now();
     }
   } catch (...) {
-    if (events_fd_ >= 0) ::close(events_fd_);
+    // A refused recording leaves none of its files behind.
+    if (events_fd_ >= 0) {
+      ::close(events_fd_);
+      ::unlink(events_path_.c_str());
+    }
     sf_close(file_);
     file_ = nullptr;
+    ::unlink(path_.c_str());
+    if (sidecar_written) ::unlink(sidecar_path_.c_str());
     throw;
   }
   nan_rows_.assign(kGapChunkRows * static_cast<std::size_t>(channels_),
@@ -109,10 +117,11 @@ double LiveRecorder::recording_time_s(std::uint64_t stream_sample) const {
 }
 
 bool LiveRecorder::write(const RawBlock& block) {
-  if (file_ == nullptr) return false;
+  // After a failed write nothing more is appended: the file ends at the last whole sample.
+  if (file_ == nullptr || write_failed_) return false;
   const auto rows = static_cast<sf_count_t>(block.rows);
   if (sf_writef_double(file_, block.values.data(), rows) != rows) {
-    error_ = path_ + ": write failed: " + sf_strerror(file_);
+    fail_write();
     return false;
   }
   samples_written_ += static_cast<std::uint64_t>(block.rows);
@@ -134,14 +143,15 @@ void LiveRecorder::maybe_sync(bool force) {
 }
 
 bool LiveRecorder::write_gap(std::uint64_t samples) {
-  if (file_ == nullptr || samples == 0) return file_ != nullptr;
+  if (file_ == nullptr || write_failed_) return false;
+  if (samples == 0) return true;
   const std::uint64_t from = first_sample_ + samples_written_;
   mark_invalid(from, from + samples - 1, "gap");
   std::uint64_t left = samples;
   while (left > 0) {
     const auto rows = static_cast<sf_count_t>(std::min<std::uint64_t>(left, kGapChunkRows));
     if (sf_writef_double(file_, nan_rows_.data(), rows) != rows) {
-      error_ = path_ + ": write failed: " + sf_strerror(file_);
+      fail_write();
       return false;
     }
     left -= static_cast<std::uint64_t>(rows);
@@ -216,7 +226,7 @@ void LiveRecorder::maybe_write_sidecar() {
   write_sidecar_now();
 }
 
-void LiveRecorder::write_sidecar_now() {
+void LiveRecorder::write_sidecar_now(bool throw_errors) {
   Sidecar out = sidecar_;
   const double recorded_s = static_cast<double>(samples_written_) / rate_hz_;
   if (out.excitation) {
@@ -227,9 +237,33 @@ void LiveRecorder::write_sidecar_now() {
       if (!(levels.back().end_s > levels.back().start_s)) levels.pop_back();
     }
   }
-  write_sidecar(out, sidecar_path_);
+  // A full disk refuses the sidecar too: the previous one stays (it is replaced atomically), the
+  // error is kept, and nothing is thrown on the acquisition's thread.
+  try {
+    write_sidecar(out, sidecar_path_);
+  } catch (const InputError& error) {
+    if (throw_errors) throw;
+    if (error_.empty()) error_ = error.what();
+  }
   sidecar_dirty_ = false;
   last_sidecar_write_ = std::chrono::steady_clock::now();
+}
+
+void LiveRecorder::fail_write() {
+  if (error_.empty()) error_ = path_ + ": write failed: " + sf_strerror(file_);
+  write_failed_ = true;
+}
+
+void LiveRecorder::truncate_to_written() {
+  // libsndfile may have put part of the failed block on the disk and updated the header for it:
+  // the file is cut in place to the samples written whole and its header rewritten to match
+  // (SFC_FILE_TRUNCATE needs no free space), so that it opens with exactly those.
+  SF_INFO info{};
+  SNDFILE* file = sf_open(path_.c_str(), SFM_RDWR, &info);
+  if (file == nullptr) return;  // the error already says the recording failed
+  sf_count_t frames = static_cast<sf_count_t>(samples_written_);
+  sf_command(file, SFC_FILE_TRUNCATE, &frames, sizeof frames);
+  sf_close(file);
 }
 
 void LiveRecorder::close() {
@@ -239,6 +273,7 @@ void LiveRecorder::close() {
   file_fd_ = -1;
   file_ = nullptr;
   if (closed != 0 && error_.empty()) error_ = path_ + ": close failed: " + sf_error_number(closed);
+  if (write_failed_ || closed != 0) truncate_to_written();
   if (events_fd_ >= 0) ::close(events_fd_);
   events_fd_ = -1;
   write_sidecar_now();

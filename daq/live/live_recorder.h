@@ -48,7 +48,9 @@ class LiveRecorder {
   LiveRecorder(const LiveRecorder&) = delete;
   LiveRecorder& operator=(const LiveRecorder&) = delete;
 
-  /// Appends a block's rows (stored values). False when the disk refused (the error is kept).
+  /// Appends a block's rows (stored values). False when the disk refused (the error is kept);
+  /// from then on nothing is appended, and close() cuts the file to the samples written whole,
+  /// so that it opens with them.
   bool write(const RawBlock& block);
   /// Appends `samples` NaN rows for samples that never arrived, declared invalid ("gap").
   bool write_gap(std::uint64_t samples);
@@ -77,7 +79,13 @@ class LiveRecorder {
   void maybe_sync(bool force);
   double recording_time_s(std::uint64_t stream_sample) const;
   double first_time_s() const { return static_cast<double>(first_sample_) / rate_hz_; }
-  void write_sidecar_now();
+  /// Rewrites the sidecar; a failure is kept in error() (thrown only when `throw_errors`: the
+  /// constructor's first write, which validates the layout).
+  void write_sidecar_now(bool throw_errors = false);
+  /// Keeps the first write error and stops appending.
+  void fail_write();
+  /// Cuts the file to the samples written whole, its header to match (after a failed write).
+  void truncate_to_written();
 
   std::string path_, sidecar_path_, events_path_;
   Sidecar sidecar_;
@@ -96,6 +104,7 @@ class LiveRecorder {
   std::chrono::steady_clock::time_point last_sidecar_write_;
   bool level_open_ = false;  // the last level in sidecar_ has no end yet
   std::string error_;
+  bool write_failed_ = false;  // a write was refused (a full disk): nothing more is appended
 };
 
 /// Repairs a live recording cut anywhere (a power cut before the header was rewritten, a disk

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -13,6 +14,11 @@ namespace {
 constexpr int kPollMs = 50;  // how often a waiting thread looks at its stop flag
 constexpr std::chrono::milliseconds kBackpressure{2000};
 constexpr double kNoTime = std::numeric_limits<double>::quiet_NaN();
+// The longest gap a DATA frame may open in its stream, s. The reference sender resumes after a
+// break within --retry (10 s by default); a sender away longer starts a new stream (another
+// stream_id), placed after the last sample. A larger jump is refused: its samples would move the
+// stream clock (a first_sample of 2^63 is 1.8e16 s at 512 Hz) and its gap be written as NaN.
+constexpr double kMaxGapS = 600.0;
 
 }  // namespace
 
@@ -94,6 +100,11 @@ bool NetSource::serve(TcpSocket& peer) {
     stream_protocol::Frame frame;
     while (decoder.next(frame)) {
       using stream_protocol::FrameType;
+      if (!frame.refused.empty()) {  // one frame left out, the stream goes on
+        malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+        post_event({kNoTime, EventKind::MalformedFrame, frame.refused});
+        continue;
+      }
       if (!greeted && frame.type != FrameType::Hello) {
         malformed_frames_.fetch_add(1, std::memory_order_relaxed);
         post_event({kNoTime, EventKind::MalformedFrame, "the sender did not open with HELLO"});
@@ -131,6 +142,21 @@ bool NetSource::serve(TcpSocket& peer) {
           break;
         }
         case FrameType::Data: {
+          // The sender's own numbering: the next sample it should send is where it left off.
+          const std::uint64_t expected = next_sample_ - static_cast<std::uint64_t>(sample_offset_);
+          const double ahead_s =
+              (static_cast<double>(frame.first_sample) - static_cast<double>(expected)) / rate_hz;
+          if (ahead_s > kMaxGapS) {
+            malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+            char text[200];
+            std::snprintf(text, sizeof text,
+                          "DATA frame refused: first_sample %llu is %.3g s past the next "
+                          "expected sample %llu (at most %g s)",
+                          static_cast<unsigned long long>(frame.first_sample), ahead_s,
+                          static_cast<unsigned long long>(expected), kMaxGapS);
+            post_event({kNoTime, EventKind::MalformedFrame, text});
+            break;
+          }
           const std::uint64_t first =
               frame.first_sample + static_cast<std::uint64_t>(sample_offset_);
           const std::uint64_t sequence =
@@ -158,6 +184,11 @@ bool NetSource::serve(TcpSocket& peer) {
         }
         case FrameType::Event: {
           StreamEvent event = *frame.event;
+          if (const std::string problem = stream_event_problem(event, rate_hz); !problem.empty()) {
+            malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+            post_event({kNoTime, EventKind::MalformedFrame, "EVENT frame refused: " + problem});
+            break;
+          }
           // The sender's stream times, moved onto this receiver's clock.
           const double shift_s = static_cast<double>(sample_offset_) / rate_hz;
           if (std::isfinite(event.t_s)) event.t_s += shift_s;

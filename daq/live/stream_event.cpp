@@ -86,4 +86,43 @@ std::string utc_now_iso8601() {
   return text;
 }
 
+std::string stream_event_problem(const StreamEvent& event, double sample_rate_hz) {
+  const bool acted_on = event.kind == EventKind::Level || event.kind == EventKind::Invalid ||
+                        event.kind == EventKind::Clipped || event.kind == EventKind::Discontinuity;
+  if (!acted_on) return "";
+  const std::string kind = to_string(event.kind);
+  char text[200];
+  const auto problem = [&](const char* key, const char* rule, double value) {
+    std::snprintf(text, sizeof text, "%s event: %s %g %s", kind.c_str(), key, value, rule);
+    return std::string(text);
+  };
+  if (!std::isnan(event.t_s) && !(event.t_s >= 0.0 && event.t_s <= kMaxStreamTimeS)) {
+    return problem("t_s", "is not a stream time in [0, 1e9] s", event.t_s);
+  }
+  for (const char* key :
+       {"steady_from_s", "steady_to_s", "from_s", "to_s", "f0_n", "frequency_hz"}) {
+    const auto it = event.data.find(key);
+    if (it == event.data.end()) continue;
+    if (!it->is_number()) return kind + " event: " + key + " is not a number: " + it->dump();
+    const double value = it->get<double>();
+    const std::string name = key;
+    if (name == "f0_n") {
+      if (!(value >= 0.0) || !std::isfinite(value)) {
+        return problem(key, "N is not a finite amplitude >= 0", value);
+      }
+    } else if (name == "frequency_hz") {
+      if (!(value > 0.0 && value < 0.5 * sample_rate_hz)) {
+        std::snprintf(text, sizeof text,
+                      "%s event: frequency_hz %g is not in (0, %g) Hz (the Nyquist "
+                      "frequency of the %g Hz stream)",
+                      kind.c_str(), value, 0.5 * sample_rate_hz, sample_rate_hz);
+        return text;
+      }
+    } else if (!(value >= 0.0 && value <= kMaxStreamTimeS)) {
+      return problem(key, "is not a stream time in [0, 1e9] s", value);
+    }
+  }
+  return "";
+}
+
 }  // namespace oscilab::daq

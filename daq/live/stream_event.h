@@ -91,4 +91,16 @@ struct StreamEvent {
 /// The current UTC time as ISO 8601 with milliseconds, e.g. "2026-11-24T09:12:03.123Z".
 std::string utc_now_iso8601();
 
+/// The longest stream time an event may name, s: 10^9 s is 31 years, so that a time times any
+/// sample rate stays an exact sample index; a larger one is a sender's mistake, not a clock.
+inline constexpr double kMaxStreamTimeS = 1e9;
+
+/// Why an event the acquisition acts on cannot be trusted at a stream of `sample_rate_hz` (empty
+/// when it can): a `level` whose f0_n is not a finite number >= 0 or whose frequency_hz is not a
+/// finite number in (0, sample_rate_hz / 2) (beyond Nyquist no cycle can be resolved); a `level`,
+/// `invalid`, `clipped` or `discontinuity` whose t_s, steady_from_s, steady_to_s, from_s or to_s
+/// is not a number in [0, kMaxStreamTimeS] (t_s may be NaN: no time). Other kinds are only
+/// logged and always pass.
+std::string stream_event_problem(const StreamEvent& event, double sample_rate_hz);
+
 }  // namespace oscilab::daq

@@ -2,8 +2,10 @@
 
 #include <bit>
 #include <cstring>
+#include <string_view>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 
 namespace oscilab::daq::stream_protocol {
 namespace {
@@ -122,7 +124,16 @@ bool FrameDecoder::next(Frame& frame) {
   frame.type = frame_type;
 
   if (frame_type == FrameType::Hello || frame_type == FrameType::Event) {
-    nlohmann::json value = nlohmann::json::parse(payload, payload + length, nullptr, false);
+    const std::string_view text(reinterpret_cast<const char*>(payload), length);
+    const char* name = frame_type == FrameType::Hello ? "HELLO" : "EVENT";
+    // A value nested too deep would overflow the stack when copied: the frame is whole, so it
+    // is refused alone and the stream goes on.
+    if (const std::string violation = json_limit_violation(text); !violation.empty()) {
+      consumed_ += kHeaderBytes + length;
+      frame.refused = std::string(name) + " frame refused: " + violation;
+      return true;
+    }
+    nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
     if (value.is_discarded() || !value.is_object()) return fail("malformed JSON payload");
     if (frame_type == FrameType::Hello) {
       if (value.value("protocol", std::string()) != kProtocolName) {

@@ -54,13 +54,18 @@ struct Frame {
   std::uint64_t sequence = 0, first_sample = 0;
   int rows = 0, channels = 0;
   const std::uint8_t* data = nullptr;  // rows × channels little-endian f64
+  // Non-empty: a whole frame whose content was refused (why, in one line); nothing else is set
+  // and the stream goes on with the next frame.
+  std::string refused;
 };
 
 /// Incremental, defensive decoder: bytes in (any split), frames out. Every violation (bad magic
 /// or version, unknown type, a length over the limits, a DATA frame whose sizes disagree or whose
 /// channel count differs from the HELLO, malformed JSON or sidecar, DATA before HELLO) is a
 /// protocol error: next() returns false with error() set, and the connection must be closed (the
-/// byte stream cannot be resynchronised). Memory is bounded by kMaxPayloadBytes.
+/// byte stream cannot be resynchronised). A whole frame whose content is refused (JSON nested
+/// beyond kMaxJsonDepth) is returned with `refused` set: the stream goes on. Memory is bounded by
+/// kMaxPayloadBytes.
 class FrameDecoder {
  public:
   /// Appends received bytes.

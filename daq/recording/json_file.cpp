@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 #include "daq/recording/temporary_file.h"
 
 namespace oscilab::daq {
@@ -26,17 +27,7 @@ nlohmann::json read_json_file(const std::string& path, std::uintmax_t max_bytes)
   if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(path + ": cannot read: " + std::strerror(errno));
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& parse_error) {
-    std::string reason = parse_error.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep its line and column.
-    if (const auto end = reason.find("] ");
-        reason.rfind("[json.exception", 0) == 0 && end != std::string::npos) {
-      reason = reason.substr(end + 2);
-    }
-    throw InputError(path + ": malformed JSON: " + reason);
-  }
+  return parse_json_within_limits(text, path);
 }
 
 void write_text_file_atomically(const std::string& text, const std::string& path) {

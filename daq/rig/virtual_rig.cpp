@@ -21,6 +21,19 @@ void check(const RigSpec& spec) {
   }
 }
 
+// An excitation the recording cannot resolve is refused before it is simulated: a forcing at or
+// beyond the Nyquist frequency would alias, and one at 1e9 Hz would keep the integrator's error
+// control stepping for ever.
+void check_below_nyquist(double freq_hz, const RigSpec& spec, const char* what) {
+  if (!(freq_hz < 0.5 * spec.sample_rate_hz)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "virtual rig: %s %g Hz is not below the Nyquist frequency, %g Hz at %g Hz", what,
+                  freq_hz, 0.5 * spec.sample_rate_hz, spec.sample_rate_hz);
+    throw InputError(text);
+  }
+}
+
 }  // namespace
 
 Sidecar rig_sidecar(const analysis::Model& model, const RigSpec& spec) {
@@ -84,6 +97,7 @@ RigRecording record_stepped_sine(const analysis::Model& model,
                                  const analysis::SteppedSineSchedule& schedule, const RigSpec& spec,
                                  const ProgressFn& progress, const CancelToken& cancel) {
   check(spec);
+  check_below_nyquist(schedule.frequency_hz, spec, "excitation frequency");
   const analysis::SteppedSineMotion motion(schedule, model.mass_kg());
   const TimeSimulator simulator(model, spec.integration);
   const double z0 = model.well(spec.positive_well).z_m;
@@ -119,6 +133,7 @@ RigRecording record_random(const analysis::Model& model,
                            const analysis::RandomMotionSpec& motion_spec, const RigSpec& spec,
                            const ProgressFn& progress, const CancelToken& cancel) {
   check(spec);
+  check_below_nyquist(motion_spec.high_hz, spec, "band's upper edge");
   analysis::RandomMotionSpec seeded = motion_spec;
   seeded.seed = spec.seed;
   const analysis::RandomMotion motion(seeded, model.mass_kg());

@@ -8,6 +8,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "bindings.h"
+#include "daq/export/mat_export.h"
 #include "daq/recording/campaign_reader.h"
 #include "daq/recording/measurement_mapping.h"
 #include "python_types.h"
@@ -106,14 +107,15 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
                                                                const py::object& progress) {
   daq::MappingOverrides overrides;
   if (!a.freq_hz.is_none()) {
-    const double freq = a.freq_hz.cast<double>();
+    const double freq = number_argument(a.freq_hz, "freq_hz");
     if (!(std::isfinite(freq) && freq > 0.0)) {
       throw InputError("freq_hz: " + std::to_string(freq) + " is not a positive number");
     }
     overrides.excitation_freq_hz = freq;
   }
   if (!a.well.is_none()) {
-    overrides.well_positive = well_argument(a.well.cast<std::string>()) == analysis::Well::Positive;
+    overrides.well_positive =
+        well_argument(text_argument(a.well, "well")) == analysis::Well::Positive;
   }
   overrides.ignore_sidecar_levels = a.detect_levels;
   analysis::PipelineSettings settings;
@@ -125,8 +127,11 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
   // Recordings in memory go through the same mapping and campaign analysis as files.
   std::vector<analysis::MeasurementChannels> in_memory;
   std::vector<std::string> paths;
-  const bool single = py::isinstance<daq::Recording>(recordings) ||
-                      py::isinstance<py::str>(recordings) || py::hasattr(recordings, "__fspath__");
+  const bool single = py::isinstance<daq::Recording>(recordings) || is_path(recordings);
+  if (!single && !py::isinstance<py::iterable>(recordings)) {
+    throw py::type_error("recordings: expected a path, a Recording or a sequence of them, not " +
+                         py::str(py::type::of(recordings).attr("__name__")).cast<std::string>());
+  }
   const py::list items =
       single ? py::list(py::make_tuple(recordings)) : py::list(py::iterable(recordings));
   bool any_recording = false;
@@ -335,6 +340,17 @@ summary is the CLI's --summary JSON as a dict. Pass it to ``fit`` or ``diagnose`
           "The time signals of the restoring surface of one record (§3): t_s [s], z_m [m], "
           "z_dot_m_s [m/s], restoring_force_n [N] R = f − m z̈, and z_absolute (False: z's mean "
           "unknown).")
+      .def(
+          "export_edc_mat",
+          [](const AnalysisHandle& h, const py::object& path) {
+            const std::string p = path_string(path);
+            py::gil_scoped_release release;
+            daq::write_edc_mat(daq::edc_table_rows(*h.campaign), p);
+          },
+          py::arg("path"),
+          "Writes the EDC table as a MATLAB v5 .mat file (`oscilab-cli export --edc-mat`): one "
+          "column vector per contract column (well, f0_n, edc_mean_j, edc_std_j, cycles, record, "
+          "flags, ... usable).")
       .def("__repr__", [](const AnalysisHandle& h) {
         std::size_t levels = 0;
         for (const auto& r : h.campaign->records) levels += r.levels.size();

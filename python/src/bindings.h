@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <pybind11/numpy.h>
@@ -48,7 +49,16 @@ Eigen::VectorXd to_vector(const py::handle& object, const std::string& where);
 
 /// One path or a sequence of paths (str or os.PathLike) → strings.
 std::vector<std::string> path_list(const py::handle& object, const std::string& where);
+/// Whether `object` is a path: str, bytes or os.PathLike (as open() takes).
+bool is_path(const py::handle& object);
+/// A path (str, bytes decoded with the file-system encoding, os.PathLike) as a string.
 std::string path_string(const py::handle& object);
+
+/// A number given as a Python object (an optional argument): a float of it, or TypeError naming
+/// the argument (`name: expected a number, not str`).
+double number_argument(const py::handle& object, const std::string& name);
+/// A str given as a Python object: the string, or TypeError naming the argument.
+std::string text_argument(const py::handle& object, const std::string& name);
 
 /// A `well` argument: "positive" or "negative"; throws InputError naming the value otherwise.
 analysis::Well well_argument(const std::string& well);
@@ -60,6 +70,10 @@ analysis::Well well_argument(const std::string& well);
 struct ProgressReport {
   double fraction = 0.0;
   nlohmann::json extra = nlohmann::json::object();
+  /// Named values in their own order (a JSON object would sort them), handed on as the dict
+  /// `named_key`: a fit's best θ by parameter name, in θ's order.
+  std::string named_key;
+  std::vector<std::pair<std::string, double>> named;
 };
 using ReportFn = std::function<void(const ProgressReport&)>;
 

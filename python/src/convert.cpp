@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 #include "bindings.h"
 
 namespace oscilab::python {
@@ -38,18 +39,27 @@ py::object to_python(const nlohmann::json& json) {
   }
 }
 
-nlohmann::json to_json(const py::handle& object, const std::string& where) {
+namespace {
+
+// A Python value nested like any JSON Oscilab parses, at most kMaxJsonDepth deep: a deeper one
+// (or a list holding itself) would overflow the stack here and in the core.
+nlohmann::json to_json_at(const py::handle& object, const std::string& where, std::size_t depth) {
   if (object.is_none()) return nullptr;
   if (py::isinstance<py::bool_>(object)) return object.cast<bool>();
   if (py::isinstance<py::int_>(object)) return object.cast<std::int64_t>();
   if (py::isinstance<py::float_>(object)) return object.cast<double>();
   if (py::isinstance<py::str>(object)) return object.cast<std::string>();
+  const bool nested = py::isinstance<py::dict>(object) || py::isinstance<py::list>(object) ||
+                      py::isinstance<py::tuple>(object) || py::isinstance<py::array>(object);
+  if (nested && depth >= kMaxJsonDepth) {
+    throw InputError(where + ": nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+  }
   if (py::isinstance<py::dict>(object)) {
     nlohmann::json out = nlohmann::json::object();
     for (const auto& [key, value] : object.cast<py::dict>()) {
       if (!py::isinstance<py::str>(key)) throw InputError(where + ": dict keys must be str");
       const std::string name = key.cast<std::string>();
-      out[name] = to_json(value, where + "." + name);
+      out[name] = to_json_at(value, where + "." + name, depth + 1);
     }
     return out;
   }
@@ -58,25 +68,27 @@ nlohmann::json to_json(const py::handle& object, const std::string& where) {
     nlohmann::json out = nlohmann::json::array();
     std::size_t i = 0;
     for (const auto& item : object) {
-      out.push_back(to_json(item, where + "[" + std::to_string(i++) + "]"));
+      out.push_back(to_json_at(item, where + "[" + std::to_string(i++) + "]", depth + 1));
     }
     return out;
   }
   // NumPy scalars and other numbers: through their Python value.
   if (py::hasattr(object, "item") && py::hasattr(object, "dtype")) {
-    return to_json(object.attr("item")(), where);
+    return to_json_at(object.attr("item")(), where, depth);
   }
   throw InputError(where + ": cannot be written as JSON (" +
                    py::str(py::type::of(object).attr("__name__")).cast<std::string>() + ")");
 }
 
+}  // namespace
+
+nlohmann::json to_json(const py::handle& object, const std::string& where) {
+  return to_json_at(object, where, 0);
+}
+
 nlohmann::json json_argument(const py::handle& object, const std::string& where) {
   if (py::isinstance<py::str>(object)) {
-    try {
-      return nlohmann::json::parse(object.cast<std::string>());
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(where + ": not JSON: " + e.what());
-    }
+    return parse_json_within_limits(object.cast<std::string>(), where);
   }
   return to_json(object, where);
 }
@@ -121,8 +133,38 @@ Eigen::VectorXd to_vector(const py::handle& object, const std::string& where) {
   return out;
 }
 
+bool is_path(const py::handle& object) {
+  return py::isinstance<py::str>(object) || py::isinstance<py::bytes>(object) ||
+         py::hasattr(object, "__fspath__");
+}
+
 std::string path_string(const py::handle& object) {
-  return py::str(py::module_::import("os").attr("fspath")(object)).cast<std::string>();
+  // os.fsdecode(os.fspath(p)): str, bytes (file-system encoding) and os.PathLike, as open() takes.
+  const py::module_ os = py::module_::import("os");
+  return os.attr("fsdecode")(os.attr("fspath")(object)).cast<std::string>();
+}
+
+namespace {
+
+std::string type_name(const py::handle& object) {
+  return py::str(py::type::of(object).attr("__name__")).cast<std::string>();
+}
+
+}  // namespace
+
+double number_argument(const py::handle& object, const std::string& name) {
+  const bool number = (py::isinstance<py::int_>(object) || py::isinstance<py::float_>(object) ||
+                       py::hasattr(object, "__float__")) &&
+                      !py::isinstance<py::str>(object) && !py::isinstance<py::bytes>(object);
+  if (!number) throw py::type_error(name + ": expected a number, not " + type_name(object));
+  return py::float_(py::reinterpret_borrow<py::object>(object)).cast<double>();
+}
+
+std::string text_argument(const py::handle& object, const std::string& name) {
+  if (!py::isinstance<py::str>(object)) {
+    throw py::type_error(name + ": expected a str, not " + type_name(object));
+  }
+  return object.cast<std::string>();
 }
 
 analysis::Well well_argument(const std::string& well) {
@@ -134,9 +176,7 @@ analysis::Well well_argument(const std::string& well) {
 }
 
 std::vector<std::string> path_list(const py::handle& object, const std::string& where) {
-  if (py::isinstance<py::str>(object) || py::hasattr(object, "__fspath__")) {
-    return {path_string(object)};
-  }
+  if (is_path(object)) return {path_string(object)};
   std::vector<std::string> out;
   try {
     for (const auto& item : object) out.push_back(path_string(item));

@@ -34,7 +34,13 @@ std::shared_ptr<const analysis::CampaignAnalysis> campaign_of(const py::object& 
   }
   AnalysisArguments arguments;
   arguments.freq_hz = freq_hz;
-  const bool single = py::isinstance<py::str>(recordings) || py::hasattr(recordings, "__fspath__");
+  const bool single = is_path(recordings);
+  if (!single && !py::isinstance<daq::Recording>(recordings) &&
+      !py::isinstance<py::iterable>(recordings)) {
+    throw py::type_error(
+        "recordings: expected a path, a Recording, an Analysis or a sequence of them, not " +
+        py::str(py::type::of(recordings).attr("__name__")).cast<std::string>());
+  }
   // A sequence is read once (it may be a generator).
   const py::object items = single || py::isinstance<daq::Recording>(recordings)
                                ? recordings
@@ -43,7 +49,7 @@ std::shared_ptr<const analysis::CampaignAnalysis> campaign_of(const py::object& 
   bool all_paths = !py::isinstance<daq::Recording>(items);
   if (!single && all_paths) {
     for (const auto& item : items) {
-      all_paths &= py::isinstance<py::str>(item) || py::hasattr(item, "__fspath__");
+      all_paths &= is_path(item);
     }
   }
   if (all_paths) {
@@ -76,6 +82,24 @@ FitProblem make_problem(const py::object& recordings, const py::object& model,
   return problem;
 }
 
+// The FIT JSON's dicts keyed by parameter (parameters, standard_errors, intervals_95) in θ's
+// order, FitProblem.names, as the progress's best_parameters: a JSON object would sort them.
+py::dict in_theta_order(py::dict result, const std::vector<std::string>& names) {
+  for (const char* key : {"parameters", "standard_errors", "intervals_95"}) {
+    if (!result.contains(key) || !py::isinstance<py::dict>(result[key])) continue;
+    const py::dict given = result[key];
+    py::dict ordered;
+    for (const std::string& name : names) {
+      if (given.contains(name)) ordered[py::str(name)] = given[py::str(name)];
+    }
+    for (const auto& [name, value] : given) {
+      if (!ordered.contains(name)) ordered[name] = value;
+    }
+    result[key] = ordered;
+  }
+  return result;
+}
+
 py::dict run_fit(const FitProblem& problem, const std::string& method, int population,
                  int generations, double mutation, long evaluations, bool polish,
                  std::uint64_t seed, int threads, int bootstrap, const py::object& progress) {
@@ -93,6 +117,7 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
   options.genetic.elite = analysis::default_elite(population);
   std::shared_ptr<const analysis::EdcObjective> objective = problem.prepared.objective;
   const long budget = analysis::evaluation_budget(options);
+  const std::vector<std::string> names = objective->form().names();
   analysis::FitResult fit;
   run_job(
       [&](const ReportFn& report, const CancelToken& cancel) {
@@ -109,6 +134,11 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
               r.extra["best_weighted_cost"] = p.best_weighted_cost;
               r.extra["best_theta"] = std::vector<double>(
                   p.best_theta.data(), p.best_theta.data() + p.best_theta.size());
+              r.named_key = "best_parameters";
+              for (std::size_t i = 0; i < names.size() && i < std::size_t(p.best_theta.size());
+                   ++i) {
+                r.named.emplace_back(names[i], p.best_theta[static_cast<Eigen::Index>(i)]);
+              }
               report(r);
             },
             cancel);
@@ -116,7 +146,9 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
         objective = std::move(result.objective);
       },
       progress);
-  return to_python(daq::fit_json(fit, *objective, problem.records, problem.prepared.notes));
+  return in_theta_order(
+      to_python(daq::fit_json(fit, *objective, problem.records, problem.prepared.notes)),
+      objective->form().names());
 }
 
 }  // namespace
@@ -131,7 +163,8 @@ levels of both wells, and the objective: eq. (8) and the σ-weighted cost. Made 
 )doc")
       .def_property_readonly(
           "names", [](const FitProblem& p) { return p.prepared.objective->form().names(); },
-          "Parameter names of θ, e.g. fd_zminus_n, fd_zero_n, fd_zplus_n, ks, c_ns_m, vt_m_s.")
+          "Parameter names of θ in its order, the order of every dict keyed by parameter (the "
+          "result's parameters, standard_errors, intervals_95, the progress's best_parameters).")
       .def_property_readonly(
           "initial_theta",
           [](const FitProblem& p) { return to_array(p.prepared.objective->form().initial()); },

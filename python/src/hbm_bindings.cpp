@@ -12,6 +12,8 @@
 #include "analysis/hbm/branch_switching.h"
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model.h"
+#include "analysis/simulation/amplitude_sweep.h"
+#include "analysis/simulation/bifurcation_map.h"
 #include "bindings.h"
 #include "python_types.h"
 
@@ -128,12 +130,17 @@ void bind_hbm(py::module_& m) {
          bool stability, double max_step, const std::vector<double>& landing,
          bool follow_period_doubling, const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
-        const analysis::Well start_well = well_argument(well);
+        // 'both': one branch per well, as `hbm --well both`, in one job.
+        std::vector<analysis::Well> wells;
+        if (well == "both") {
+          wells = {analysis::Well::Positive, analysis::Well::Negative};
+        } else {
+          wells = {well_argument(well)};
+        }
         analysis::ContinuationOptions options;
         options.start = f0_n.first;
         options.end = f0_n.second;
         options.freq_hz = freq_hz;
-        options.positive_well = start_well == analysis::Well::Positive;
         options.hbm.harmonics = harmonics;
         options.hbm.subharmonic = subharmonic;
         options.hbm.samples = samples;
@@ -147,33 +154,48 @@ void bind_hbm(py::module_& m) {
               "follow_period_doubling: period doublings are found from the Floquet multipliers; "
               "drop stability=False");
         }
-        analysis::Branch branch;
-        std::vector<analysis::PeriodDoublingSwitch> doubled;
+        std::vector<analysis::Branch> branches(wells.size());
+        std::vector<std::vector<analysis::PeriodDoublingSwitch>> doubled(wells.size());
         run_job(
             [&](const ReportFn& report, const CancelToken& cancel) {
-              branch = analysis::continue_branch(model, options, fraction_reporter(report), cancel);
-              if (follow_period_doubling) {
-                doubled = analysis::follow_period_doublings(model, branch, options,
-                                                            fraction_reporter(report), cancel);
+              const double n = static_cast<double>(wells.size());
+              for (std::size_t i = 0; i < wells.size() && !cancel.cancelled(); ++i) {
+                const ProgressFn part = [&report, i, n](double fraction) {
+                  ProgressReport r;
+                  r.fraction = (static_cast<double>(i) + fraction) / n;
+                  report(r);
+                };
+                analysis::ContinuationOptions o = options;
+                o.positive_well = wells[i] == analysis::Well::Positive;
+                branches[i] = analysis::continue_branch(model, o, part, cancel);
+                if (follow_period_doubling) {
+                  doubled[i] =
+                      analysis::follow_period_doublings(model, branches[i], o, part, cancel);
+                }
               }
             },
             progress);
-        py::dict d = branch_dict(branch);
-        d["period"] = subharmonic;
-        if (follow_period_doubling) {
-          py::list list;
-          for (const analysis::PeriodDoublingSwitch& s : doubled) {
-            py::dict b = branch_dict(s.branch);
-            b["period"] = s.subharmonic;
-            b["status"] = job_status_name(s.status);
-            b["message"] = s.message;
-            b["f0_flip_n"] = s.f0_flip_n;
-            b["f0_pitchfork_n"] = s.f0_pitchfork_n;
-            list.append(b);
+        py::dict by_well;
+        for (std::size_t i = 0; i < wells.size(); ++i) {
+          py::dict d = branch_dict(branches[i]);
+          d["period"] = subharmonic;
+          if (follow_period_doubling) {
+            py::list list;
+            for (const analysis::PeriodDoublingSwitch& s : doubled[i]) {
+              py::dict b = branch_dict(s.branch);
+              b["period"] = s.subharmonic;
+              b["status"] = job_status_name(s.status);
+              b["message"] = s.message;
+              b["f0_flip_n"] = s.f0_flip_n;
+              b["f0_pitchfork_n"] = s.f0_pitchfork_n;
+              list.append(b);
+            }
+            d["period_doubled"] = list;
           }
-          d["period_doubled"] = list;
+          if (wells.size() == 1) return d;
+          by_well[py::str(wells[i] == analysis::Well::Positive ? "positive" : "negative")] = d;
         }
-        return d;
+        return by_well;
       },
       py::arg("model") = "paper", py::kw_only(), py::arg("freq_hz") = 9.0,
       py::arg("f0_n") = std::pair<double, double>(0.1, 3.7), py::arg("well") = "positive",
@@ -197,7 +219,153 @@ steps_rejected, period (1 for ν = 1). A continuation that stops early is status
 points so far. follow_period_doubling: at the first period doubling switch onto the period-2
 branch and continue it over the f0 range (and once more at its first period doubling: period 4),
 as `hbm --follow-period-doubling`; the result then has period_doubled, a list of such dicts with
-period (in forcing periods), f0_flip_n and f0_pitchfork_n [N].)doc");
+period (in forcing periods), f0_flip_n and f0_pitchfork_n [N]. well='both' (as `hbm --well
+both`): {'positive': branch, 'negative': branch}, both computed in one call.)doc");
+
+  m.def(
+      "amplitude_sweep",
+      [](const py::object& model_arg, double freq_hz, double f0_max_n, double up_s,
+         const py::object& down_s, const std::string& well, int samples_per_period,
+         const py::object& progress) {
+        const analysis::Model model = model_argument(model_arg);
+        analysis::AmplitudeSweepOptions options;
+        options.freq_hz = freq_hz;
+        options.f0_max_n = f0_max_n;
+        options.up_s = up_s;
+        options.down_s = down_s.is_none() ? up_s : number_argument(down_s, "down_s");
+        options.positive_well = well_argument(well) == analysis::Well::Positive;
+        options.samples_per_period = samples_per_period;
+        options.validate();
+        analysis::AmplitudeSweep sweep;
+        run_job(
+            [&](const ReportFn& report, const CancelToken& cancel) {
+              sweep = analysis::amplitude_sweep(model, options, fraction_reporter(report), cancel);
+            },
+            progress);
+        std::vector<double> f0, amp, t;
+        py::list direction;
+        for (const analysis::AmplitudeSweepPeriod& p : sweep.periods) {
+          f0.push_back(p.f0_n);
+          amp.push_back(p.amp_m);
+          t.push_back(p.t_s);
+          direction.append(p.up ? "up" : "down");
+        }
+        py::dict d;
+        d["f0_n"] = to_array(f0);
+        d["direction"] = direction;
+        d["amp_m"] = to_array(amp);
+        d["t_s"] = to_array(t);
+        const auto jump = [](const analysis::AmplitudeSweepJump& j) {
+          py::dict out;
+          out["f0_n"] = j.f0_n;
+          out["amp_before_m"] = j.amp_before_m;
+          out["amp_after_m"] = j.amp_after_m;
+          return out;
+        };
+        d["jump_up"] = jump(sweep.jump_up);
+        d["jump_down"] = jump(sweep.jump_down);
+        d["status"] = job_status_name(sweep.status);
+        d["message"] = sweep.message;
+        return d;
+      },
+      py::arg("model") = "paper", py::kw_only(), py::arg("freq_hz") = 9.0,
+      py::arg("f0_max_n") = 3.7, py::arg("up_s") = 400.0, py::arg("down_s") = py::none(),
+      py::arg("well") = "positive", py::arg("samples_per_period") = 64,
+      py::arg("progress") = py::none(),
+      R"doc(The amplitude sweep of §4.2 (Fig. 12) by time integration (`oscilab-cli hbm --sweep`): f0
+ramps slowly from 0 up to f0_max_n [N] in up_s [s] and back down in down_s [s] (default: up_s) at
+freq_hz [Hz], from rest at the equilibrium of `well`; where the harmonic-balance branch folds the
+response jumps (hysteresis).
+
+Returns a dict: one entry per forcing period, named like the sweep CSV: f0_n [N] (mid-period),
+direction ('up'/'down'), amp_m [m] ((max z − min z) / 2 over the period, from
+samples_per_period samples), t_s [s] (its start); jump_up and jump_down ({f0_n, amp_before_m,
+amp_after_m}: the largest period-to-period change each way), status, message.)doc");
+
+  m.def(
+      "bifurcation_map",
+      [](const py::object& model_arg, double freq_hz, std::pair<double, double> f0_n, double step_n,
+         const py::object& levels_n, const std::string& well, int hold_periods, int ramp_periods,
+         int sampled_periods, double cluster_tolerance_m, const py::object& progress) {
+        const analysis::Model model = model_argument(model_arg);
+        analysis::BifurcationMapOptions options;
+        options.freq_hz = freq_hz;
+        options.start_n = f0_n.first;
+        options.end_n = f0_n.second;
+        options.step_n = step_n;
+        if (!levels_n.is_none()) options.levels_n = levels_argument(levels_n);
+        if (well == "both") {
+          options.positive_well = options.negative_well = true;
+        } else {
+          const bool positive = well_argument(well) == analysis::Well::Positive;
+          options.positive_well = positive;
+          options.negative_well = !positive;
+        }
+        options.hold_periods = hold_periods;
+        options.ramp_periods = ramp_periods;
+        options.sampled_periods = sampled_periods;
+        options.cluster_tolerance_m = cluster_tolerance_m;
+        options.validate();
+        analysis::BifurcationMap map;
+        run_job(
+            [&](const ReportFn& report, const CancelToken& cancel) {
+              map = analysis::bifurcation_map(model, options, fraction_reporter(report), cancel);
+            },
+            progress);
+        std::vector<double> row_f0, row_z;
+        std::vector<int> row_period;
+        py::list row_well;
+        for (const analysis::BifurcationMapRow& r : map.rows) {
+          row_f0.push_back(r.f0_n);
+          row_z.push_back(r.z_m);
+          row_period.push_back(r.period);
+          row_well.append(r.positive_well ? "positive" : "negative");
+        }
+        py::dict rows;
+        rows["f0_n"] = to_array(row_f0);
+        rows["well"] = row_well;
+        rows["z_m"] = to_array(row_z);
+        rows["period"] = to_int_array(row_period);
+        std::vector<double> f0, spread, z_min, z_max;
+        std::vector<int> points;
+        py::list level_well;
+        for (const analysis::BifurcationMapLevel& l : map.levels) {
+          f0.push_back(l.f0_n);
+          points.push_back(l.distinct_points);
+          spread.push_back(l.spread_m);
+          z_min.push_back(l.z_min_m);
+          z_max.push_back(l.z_max_m);
+          level_well.append(l.positive_well ? "positive" : "negative");
+        }
+        py::dict levels;
+        levels["f0_n"] = to_array(f0);
+        levels["well"] = level_well;
+        levels["distinct_points"] = to_int_array(points);
+        levels["spread_m"] = to_array(spread);
+        levels["z_min_m"] = to_array(z_min);
+        levels["z_max_m"] = to_array(z_max);
+        py::dict d;
+        d["rows"] = rows;
+        d["levels"] = levels;
+        d["status"] = job_status_name(map.status);
+        d["message"] = map.message;
+        return d;
+      },
+      py::arg("model") = "paper", py::kw_only(), py::arg("freq_hz") = 9.0,
+      py::arg("f0_n") = std::pair<double, double>(0.1, 3.7), py::arg("step_n") = 0.05,
+      py::arg("levels_n") = py::none(), py::arg("well") = "both", py::arg("hold_periods") = 200,
+      py::arg("ramp_periods") = 5, py::arg("sampled_periods") = 32,
+      py::arg("cluster_tolerance_m") = 1e-5, py::arg("progress") = py::none(),
+      R"doc(Bifurcation map by time simulation (§5.2, Fig. 17; `oscilab-cli hbm --map`): a stepped sine
+at freq_hz [Hz] whose level steps from f0_n[0] to f0_n[1] by step_n [N] (or through levels_n, a
+sequence or 'A:STEP:B'), simulated from rest at the equilibrium of `well` ('positive',
+'negative' or 'both'), the state carried from level to level as on the rig; z sampled once per
+forcing period at the same phase (a Poincaré section) over the last sampled_periods of each hold
+of hold_periods (ramp_periods of ramp). One point per level: period 1; two: period 2.
+
+Returns a dict: rows (columns f0_n [N], well, z_m [m], period: the map CSV), levels (columns
+f0_n, well, distinct_points (sections closer than cluster_tolerance_m [m] are one), spread_m,
+z_min_m, z_max_m), status ('ok', 'cancelled' with the levels done), message.)doc");
 }
 
 }  // namespace oscilab::python

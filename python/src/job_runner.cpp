@@ -102,7 +102,11 @@ WorkerPool& pool() {
 }  // namespace
 
 ProgressFn fraction_reporter(const ReportFn& report) {
-  return [report](double fraction) { report(ProgressReport{fraction, nlohmann::json::object()}); };
+  return [report](double fraction) {
+    ProgressReport r;
+    r.fraction = fraction;
+    report(r);
+  };
 }
 
 void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& work,
@@ -164,6 +168,11 @@ void run_job(const std::function<void(const ReportFn&, const CancelToken&)>& wor
       try {
         py::dict info = to_python(latest.extra);
         info["fraction"] = latest.fraction;
+        if (!latest.named_key.empty()) {
+          py::dict named;
+          for (const auto& [name, value] : latest.named) named[py::str(name)] = value;
+          info[py::str(latest.named_key)] = named;
+        }
         const py::object answer = progress(info);
         if (py::isinstance<py::bool_>(answer) && !answer.cast<bool>()) cancel.cancel();
       } catch (py::error_already_set& e) {

@@ -251,7 +251,7 @@ it on leaving. Made by oscilab.live().
          bool blocks, const py::object& excitation_freq_hz, const py::object& calibration,
          const std::string& jack_server) {
         auto session = std::make_unique<LiveSession>();
-        if (!duration_s.is_none()) session->duration_s = duration_s.cast<double>();
+        if (!duration_s.is_none()) session->duration_s = number_argument(duration_s, "duration_s");
         if (!(poll_s > 0.0)) throw InputError("poll_s: must be positive");
         session->poll_s = poll_s;
         session->blocks = blocks;
@@ -297,7 +297,8 @@ it on leaving. Made by oscilab.live().
         session->net = dynamic_cast<daq::NetSource*>(src.get());
         daq::AcquisitionOptions acquisition;
         if (!excitation_freq_hz.is_none()) {
-          acquisition.excitation_freq_hz = excitation_freq_hz.cast<double>();
+          acquisition.excitation_freq_hz =
+              number_argument(excitation_freq_hz, "excitation_freq_hz");
         }
         session->acquisition = std::make_unique<daq::Acquisition>(std::move(src), acquisition);
         return session;

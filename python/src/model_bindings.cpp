@@ -1,11 +1,13 @@
 // Models of eq. (1): the paper's (eq. (7), Tables 1 and 3), the illustrative (eq. (14), Table 2),
 // from and to the project's model JSON, built from terms; equilibria and eq. (4) frequencies.
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 #include "analysis/model/model.h"
 #include "analysis/model/model_json.h"
 #include "analysis/model/reference_models.h"
@@ -15,6 +17,22 @@ namespace oscilab::python {
 namespace {
 
 using analysis::Model;
+
+// A model file that does not exist is a missing file (MissingFileError, a FileNotFoundError),
+// before the core's "cannot open": `what` says which argument named it and what it could be.
+std::string existing_model_file(const py::handle& path, const std::string& what) {
+  const std::string text = path_string(path);
+  if (!std::filesystem::exists(text)) throw InputError(text + ": file not found (" + what + ")");
+  return text;
+}
+
+// 'paper', 'illustrative' or a model JSON path, as the CLI's --model.
+Model model_from_spec_argument(const py::handle& spec, const std::string& where) {
+  const std::string text = path_string(spec);
+  if (text == "paper" || text == "illustrative") return analysis::model_from_spec(text);
+  return analysis::load_model(
+      existing_model_file(spec, where + ": not 'paper', 'illustrative' or a model JSON file"));
+}
 
 // Evaluates f at every element of a number or an array of numbers (broadcasting a single value
 // against an array); a number in gives a float out.
@@ -63,9 +81,7 @@ Model model_argument(const py::handle& object) {
   if (py::isinstance<py::dict>(object)) {
     return analysis::model_from_json(json_argument(object, "model"), "model");
   }
-  if (py::isinstance<py::str>(object) || py::hasattr(object, "__fspath__")) {
-    return analysis::model_from_spec(path_string(object));
-  }
+  if (is_path(object)) return model_from_spec_argument(object, "model");
   throw InputError("model: expected a Model, a model dict, 'paper', 'illustrative' or a path");
 }
 
@@ -77,7 +93,8 @@ list of named terms (polynomial stiffness, position-dependent friction, viscous 
 ``Model(mass_kg, terms, name='')`` builds one from term dicts in the model JSON's form, e.g.
 ``{"type": "viscous-damping", "c_ns_m": 2.0}``; ``Model.paper()``, ``Model.illustrative()``,
 ``Model.from_json(...)``, ``Model.load(path)`` and ``Model.from_spec('paper'|'illustrative'|path)``
-make the others. Raises ValueError naming the term and field for bad input.
+make the others. Raises InputError (a ValueError) naming the term and field for bad input.
+Models pickle, and compare equal when their model JSON is.
 )doc")
       .def(py::init([](double mass_kg, const py::list& terms, const std::string& name) {
              return model_from_terms(mass_kg, terms, name);
@@ -95,8 +112,10 @@ make the others. Raises ValueError naming the term and field for bad input.
             analysis::PaperFriction f;
             double* fields[] = {&f.fd_zminus_n, &f.fd_zero_n, &f.fd_zplus_n,
                                 &f.ks,          &f.c_ns_m,    &f.vt_m_s};
+            const char* names[] = {"fd_zminus_n", "fd_zero_n", "fd_zplus_n",
+                                   "ks",          "c_ns_m",    "vt_m_s"};
             for (int i = 0; i < 6; ++i) {
-              if (!given[i].is_none()) *fields[i] = given[i].cast<double>();
+              if (!given[i].is_none()) *fields[i] = number_argument(given[i], names[i]);
             }
             return analysis::paper_model(f);
           },
@@ -116,11 +135,16 @@ make the others. Raises ValueError naming the term and field for bad input.
           },
           py::arg("json"), "A model from its JSON (a dict or JSON text, format oscilab-model/1).")
       .def_static(
-          "load", [](const py::object& path) { return analysis::load_model(path_string(path)); },
-          py::arg("path"), "Reads a model JSON file (OSError when it cannot be opened).")
+          "load",
+          [](const py::object& path) {
+            return analysis::load_model(existing_model_file(path, "path: a model JSON file"));
+          },
+          py::arg("path"),
+          "Reads a model JSON file (MissingFileError, a FileNotFoundError, when it does not "
+          "exist; FileError, an OSError, when it cannot be opened).")
       .def_static(
           "from_spec",
-          [](const py::object& spec) { return analysis::model_from_spec(path_string(spec)); },
+          [](const py::object& spec) { return model_from_spec_argument(spec, "spec"); },
           py::arg("spec"),
           "A model as the CLI's --model names it: 'paper', 'illustrative' or a model JSON path.")
       .def(
@@ -204,6 +228,21 @@ make the others. Raises ValueError naming the term and field for bad input.
                                [&model](double zz, double) { return model.potential_j(zz); });
           },
           py::arg("z_m"), "U(z) [J] of eq. (3), element-wise.")
+      .def(
+          "__eq__",
+          [](const Model& a, const py::object& other) -> py::object {
+            if (!py::isinstance<Model>(other))
+              return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+            return py::bool_(a.to_json() == other.cast<const Model&>().to_json());
+          },
+          py::arg("other"), "Equal models: the same model JSON (mass, terms, coefficients, name).")
+      .def(py::pickle([](const Model& model) { return py::make_tuple(model.to_json().dump()); },
+                      [](const py::tuple& state) {
+                        if (state.size() != 1) throw InputError("Model state: expected 1 item");
+                        return analysis::model_from_json(
+                            parse_json_within_limits(state[0].cast<std::string>(), "Model state"),
+                            "model");
+                      }))
       .def("__repr__", [](const Model& model) {
         return "<oscilab.Model " + model.name() + ", m = " + std::to_string(model.mass_kg()) +
                " kg, " + std::to_string(model.terms().size()) + " terms>";

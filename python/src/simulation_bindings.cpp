@@ -140,7 +140,7 @@ void bind_simulation(py::module_& m) {
          const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
         const bool positive = well_argument(well) == analysis::Well::Positive;
-        const double z0 = z0_m.is_none() ? model.well(positive).z_m : z0_m.cast<double>();
+        const double z0 = z0_m.is_none() ? model.well(positive).z_m : number_argument(z0_m, "z0_m");
         analysis::TimeSimulator::Options options;
         options.relative_tolerance = relative_tolerance;
         options.absolute_tolerance = absolute_tolerance;
@@ -202,12 +202,22 @@ cycles, start_s, end_s). progress: callable(info) with info['fraction']; Ctrl-C 
       "virtual_rig",
       [](const py::object& model_arg, const std::string& test, const std::string& well,
          double freq_hz, const py::object& levels_n, double hold_s, double ramp_s, double lead_in_s,
-         double rms_n, std::pair<double, double> band_hz, double duration_s, double rate_hz,
-         std::uint64_t seed, bool ideal_sensors, const py::object& progress) {
+         double rms_n, std::pair<double, double> band_hz, double duration_s, double sample_rate_hz,
+         std::uint64_t seed, bool ideal_sensors, const py::object& progress,
+         const py::object& rate_hz) {
+        // rate_hz: the former name of sample_rate_hz (simulate's), still taken, with a warning.
+        if (!rate_hz.is_none()) {
+          if (PyErr_WarnEx(PyExc_DeprecationWarning,
+                           "virtual_rig(rate_hz=...) is now sample_rate_hz=..., as in simulate()",
+                           1) != 0) {
+            throw py::error_already_set();
+          }
+          sample_rate_hz = number_argument(rate_hz, "rate_hz");
+        }
         const analysis::Model model = model_argument(model_arg);
         daq::RigSpec spec;
         spec.positive_well = well_argument(well) == analysis::Well::Positive;
-        spec.sample_rate_hz = rate_hz;
+        spec.sample_rate_hz = sample_rate_hz;
         spec.seed = seed;
         if (ideal_sensors) {
           spec.sensors.accelerometer = {0.0, 0.0, 0.0};
@@ -248,18 +258,19 @@ cycles, start_s, end_s). progress: callable(info) with info['fraction']; Ctrl-C 
       py::arg("well") = "positive", py::arg("freq_hz") = 9.0, py::arg("levels_n") = "0.2:0.1:2.7",
       py::arg("hold_s") = 10.0, py::arg("ramp_s") = 0.5, py::arg("lead_in_s") = 2.5,
       py::arg("rms_n") = 2.0, py::arg("band_hz") = std::pair<double, double>(2.0, 30.0),
-      py::arg("duration_s") = 120.0, py::arg("rate_hz") = 512.0, py::arg("seed") = 1,
+      py::arg("duration_s") = 120.0, py::arg("sample_rate_hz") = 512.0, py::arg("seed") = 1,
       py::arg("ideal_sensors") = false, py::arg("progress") = py::none(),
+      py::arg("rate_hz") = py::none(),
       R"doc(The virtual rig (`oscilab-cli simulate`): the model on the shaking table, an accelerometer
 on the table and a laser vibrometer on the mass (bias, noise, quantisation, creep), stored as ADC
 counts. Same arguments as the CLI's options (freq_hz [Hz], levels_n [N] sequence or 'A:STEP:B',
-hold_s, ramp_s, lead_in_s, duration_s [s], rms_n [N], band_hz (low, high) [Hz], rate_hz [Hz],
-seed, ideal_sensors).
+hold_s, ramp_s, lead_in_s, duration_s [s], rms_n [N], band_hz (low, high) [Hz], sample_rate_hz
+[Hz], seed, ideal_sensors). rate_hz: sample_rate_hz's former name, deprecated.
 
 Returns a dict: recording (a Recording: base_acc [m/s²] and y [m] with its sidecar; .write(path)
 gives the CLI's file), truth (arrays t_s, z_m, z_dot_m_s, z_ddot_m_s2, f_n, restoring_force_n,
 damping_force_n, work_in_j, dissipated_j, b_m), levels (true steady EDC per level), status,
-message. Raises ValueError when the integration fails.)doc");
+message. Raises InputError (a ValueError) when the integration fails.)doc");
 }
 
 }  // namespace oscilab::python

@@ -7,8 +7,11 @@ import oscilab
 
 
 def public_members(cls):
+    """The class's own public members: not those an exception inherits from Python's (args ...)."""
+    inherited = {name for base in cls.__mro__ if base.__module__ == "builtins"
+                 for name in vars(base)}
     for name, member in inspect.getmembers(cls):
-        if not name.startswith("_"):
+        if not name.startswith("_") and name not in inherited:
             yield name, member
 
 

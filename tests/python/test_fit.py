@@ -55,6 +55,8 @@ def test_fit_of_a_prepared_analysis_equals_fit_of_the_paths(cli_fit, problem):
     assert result["parameters"] == cli_fit["parameters"]
     assert result["cost_j"] == cli_fit["cost_j"]
     assert result["records"] == ["stepped_positive.flac", "stepped_negative.flac"]
+    for key in ("parameters", "standard_errors", "intervals_95"):  # θ's order, not sorted
+        assert list(result[key]) == problem.names, key
 
 
 def test_evaluate_at_the_cli_parameters_gives_the_cli_cost(cli_fit, problem):
@@ -79,6 +81,13 @@ def test_progress_reports_the_search_and_false_cancels_with_best_so_far(problem)
     assert result["evaluations"] < 100000
     assert {"fraction", "stage", "evaluations", "best_weighted_cost", "best_theta"} <= set(seen[0])
     assert len(seen[0]["best_theta"]) == len(problem.names)
+    # θ in one order everywhere: names, the progress's best_parameters, the result's dicts.
+    for info in seen:
+        assert list(info["best_parameters"]) == problem.names
+        assert list(info["best_parameters"].values()) == info["best_theta"]
+    assert list(result["parameters"]) == problem.names
+    for key in ("standard_errors", "intervals_95"):  # not in a cancelled fit's result
+        assert key not in result or list(result[key]) == problem.names, key
 
 
 @contextlib.contextmanager

@@ -62,7 +62,7 @@ def test_folds_and_stability_as_arrays(branches):
 
 def test_bad_options_raise_value_error():
     with pytest.raises(ValueError, match="well"):
-        oscilab.hbm_branch(well="both")
+        oscilab.hbm_branch(well="left")
     with pytest.raises(ValueError):
         oscilab.hbm_branch(harmonics=0)
 
@@ -97,3 +97,52 @@ def test_period_doubled_branches_equal_cli_follow_period_doubling(tmp_path):
         assert_branch_prints_as(b, [r for r in rows if r["period"] == str(b["period"])])
     with pytest.raises(ValueError, match="follow_period_doubling"):
         oscilab.hbm_branch(follow_period_doubling=True, stability=False)
+
+
+def test_bifurcation_map_equals_the_clis_map_csv_for_both_wells(tmp_path):
+    run_cli("hbm", "--model", "paper", "--freq", 9, "--f0", "1.0:1.2", "--well", "both",
+            "--out", tmp_path / "branch.csv", "--map", tmp_path / "map.csv", "--map-step", 0.1,
+            "--map-hold", 30, "--map-sampled", 4)
+    rows = read_csv(tmp_path / "map.csv")
+    result = oscilab.bifurcation_map(f0_n=(1.0, 1.2), step_n=0.1, well="both", hold_periods=30,
+                                     sampled_periods=4)
+    assert result["status"] == "ok"
+    python = result["rows"]
+    assert len(python["z_m"]) == len(rows) == 2 * 3 * 4  # wells × levels × sections
+    assert python["well"] == [r["well"] for r in rows]
+    assert list(python["period"]) == [int(r["period"]) for r in rows]
+    np.testing.assert_allclose(python["f0_n"], [float(r["f0_n"]) for r in rows], rtol=1e-9)
+    # The CSV holds 10 significant digits.
+    np.testing.assert_allclose(python["z_m"], [float(r["z_m"]) for r in rows], rtol=1e-9)
+    levels = result["levels"]
+    assert levels["well"] == ["positive"] * 3 + ["negative"] * 3
+    assert list(levels["distinct_points"]) == [1] * 6  # period 1 at these levels
+    with pytest.raises(oscilab.InputError, match="well"):
+        oscilab.bifurcation_map(well="left")
+
+
+def test_amplitude_sweep_equals_the_clis_sweep_csv(tmp_path):
+    run_cli("hbm", "--model", "paper", "--freq", 9, "--f0", "0.1:1.0", "--well", "positive",
+            "--out", tmp_path / "branch.csv", "--sweep", tmp_path / "sweep.csv",
+            "--sweep-time", 10)
+    rows = read_csv(tmp_path / "sweep.csv")
+    sweep = oscilab.amplitude_sweep(f0_max_n=1.0, up_s=10.0, well="positive")
+    assert sweep["status"] == "ok"
+    assert len(sweep["f0_n"]) == len(rows) == 2 * 10 * 9  # both ways, 10 s at 9 Hz each
+    assert sweep["direction"] == [r["direction"] for r in rows]
+    for column in ("f0_n", "amp_m", "t_s"):  # the CSV holds 10 significant digits
+        np.testing.assert_allclose(sweep[column], [float(r[column]) for r in rows], rtol=1e-9,
+                                   atol=1e-15, err_msg=column)
+    assert sweep["jump_up"]["f0_n"] > sweep["jump_down"]["f0_n"]  # hysteresis
+    with pytest.raises(oscilab.InputError):
+        oscilab.amplitude_sweep(f0_max_n=-1.0)
+
+
+def test_hbm_branch_of_both_wells_is_one_branch_per_well():
+    both = oscilab.hbm_branch(f0_n=(0.1, 1.0), well="both")
+    assert list(both) == ["positive", "negative"]
+    for well in ("positive", "negative"):
+        alone = oscilab.hbm_branch(f0_n=(0.1, 1.0), well=well)
+        assert both[well]["well"] == alone["well"]
+        np.testing.assert_array_equal(both[well]["f0_n"], alone["f0_n"])
+        np.testing.assert_array_equal(both[well]["amp_m"], alone["amp_m"])

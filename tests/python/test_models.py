@@ -2,6 +2,8 @@
 eq. (4) frequencies equal oscilab-cli model's."""
 
 import json
+import pickle
+import struct
 
 import numpy as np
 import pytest
@@ -88,3 +90,27 @@ def paper_terms():
 def test_missing_model_file_raises_os_error(tmp_path):
     with pytest.raises(OSError):
         oscilab.Model.load(tmp_path / "missing.json")
+
+
+def test_json_nested_too_deep_raises_value_error_not_a_crash():
+    # 100 000 nested arrays would overflow the stack when copied; a list holding itself never ends.
+    deep = '{"mass_kg": 0.26, "terms": [], "x": ' + "[" * 100000 + "]" * 100000 + "}"
+    with pytest.raises(ValueError, match="^model: JSON nested deeper than 64 levels"):
+        oscilab.Model.from_json(deep)
+    itself = []
+    itself.append(itself)
+    with pytest.raises(ValueError, match="nested deeper than 64 levels"):
+        oscilab.Model.from_json({"mass_kg": 0.26, "terms": [], "x": itself})
+
+
+def test_a_pickled_model_state_nested_too_deep_is_refused_not_a_crash():
+    data = pickle.dumps(oscilab.Model.paper(), 2)
+    # The state is the model JSON, a BINUNICODE item: 'X', its length (u32 LE), the text.
+    at = data.index(b"X")
+    while data[at + 5:at + 6] != b"{":
+        at = data.index(b"X", at + 1)
+    length = struct.unpack("<I", data[at + 1:at + 5])[0]
+    deep = b'{"x": ' + b"[" * 100000 + b"]" * 100000 + b"}"
+    bomb = data[:at] + b"X" + struct.pack("<I", len(deep)) + deep + data[at + 5 + length:]
+    with pytest.raises(ValueError, match="^Model state: JSON nested deeper than 64 levels"):
+        pickle.loads(bomb)

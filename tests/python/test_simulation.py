@@ -57,3 +57,12 @@ def test_progress_and_bad_arguments():
         oscilab.virtual_rig(test="sweep")
     with pytest.raises(ValueError, match="well: \"up\""):
         oscilab.simulate(well="up")
+
+
+def test_virtual_rig_names_its_rate_as_simulate_does_and_still_takes_the_old_name():
+    short = dict(test="random", duration_s=5.0, seed=4)
+    rig = oscilab.virtual_rig(sample_rate_hz=256.0, **short)
+    assert rig["recording"].sample_rate_hz == 256.0
+    with pytest.warns(DeprecationWarning, match="sample_rate_hz"):
+        old = oscilab.virtual_rig(rate_hz=256.0, **short)
+    assert old["recording"] == rig["recording"]

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 
 namespace oscilab::daq {
 
@@ -29,10 +30,13 @@ std::string contents_to_text(const FileContents& contents) {
 }
 
 FileContents contents_from_text(const std::string& text, const std::string& path) {
-  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
   const auto bad = [&] {
     return InputError(path + ": the reading process replied an unreadable description");
   };
+  // The description holds the file's own attributes: their nesting is bounded like any JSON's
+  // (its size is the reading process's, bounded there).
+  if (!json_limit_violation(text, kMaxJsonDepth, text.size()).empty()) throw bad();
+  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
   if (json.is_discarded() || !json.is_object()) throw bad();
   FileContents contents;
   try {

@@ -74,6 +74,13 @@ class TdmsFormat final : public SignalFileReader {
     contents.properties["file"] = nlohmann::json::object();
     contents.properties["groups"] = nlohmann::json::object();
     if (!parser.truncation().empty()) contents.properties["truncation"] = parser.truncation();
+    // A Silixa iDAS interrogator gives its rate only as a property of the file (root) object.
+    std::optional<double> file_rate_hz;
+    for (const TdmsObject& object : parser.objects()) {
+      if (object.names.empty()) {
+        file_rate_hz = number_property(object.properties, "SamplingFrequency[Hz]");
+      }
+    }
     for (const TdmsObject& object : parser.objects()) {
       if (object.names.empty()) {
         contents.properties["file"] = object.properties;
@@ -92,6 +99,8 @@ class TdmsFormat final : public SignalFileReader {
         if (increment_s && std::isfinite(*increment_s) && *increment_s > 0.0 &&
             std::isfinite(1.0 / *increment_s)) {
           signal.sample_rate_hz = 1.0 / *increment_s;
+        } else if (file_rate_hz && std::isfinite(*file_rate_hz) && *file_rate_hz > 0.0) {
+          signal.sample_rate_hz = *file_rate_hz;
         }
         signal.stored_type = stored_type(object);
         signal.properties = object.properties;

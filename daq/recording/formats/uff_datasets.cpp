@@ -1,5 +1,6 @@
 #include "daq/recording/formats/uff_datasets.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -444,11 +445,21 @@ std::string function_type_name(long long type) {
 
 std::optional<double> time_unit_s(std::string_view units) {
   units = trim(units);
-  if (unused_text(units) || units == "s" || units == "S" || units == "sec" || units == "Sec" ||
-      units == "SEC" || units == "seconds") {
-    return 1.0;
+  if (unused_text(units)) return 1.0;
+  // Instruments write the unit in any case, some in parentheses or brackets: a Data Translation
+  // DT9837 writes "(Sec)", others "Sec", "sec", "Seconds", "[s]".
+  if (units.size() >= 2 && ((units.front() == '(' && units.back() == ')') ||
+                            (units.front() == '[' && units.back() == ']'))) {
+    units = trim(units.substr(1, units.size() - 2));
   }
-  if (units == "ms" || units == "msec") return 1e-3;
+  std::string lower(units);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* name : {"s", "sec", "secs", "second", "seconds"}) {
+    if (lower == name) return 1.0;
+  }
+  for (const char* name : {"ms", "msec", "msecs", "millisecond", "milliseconds"}) {
+    if (lower == name) return 1e-3;
+  }
   return std::nullopt;
 }
 

@@ -84,7 +84,8 @@ Scan scan_datasets(const std::string& path);
 std::string function_type_name(long long type);
 
 /// Record 8 Field 6: the time unit of the abscissa (minimum and increment) in s, nothing when the
-/// units are not a time unit. "NONE" or blank: s.
+/// units are not a time unit. "NONE" or blank: s; s, sec, secs, second(s) and ms, msec(s),
+/// millisecond(s) in any case, also in parentheses or brackets ("(Sec)", "[s]").
 std::optional<double> time_unit_s(std::string_view units);
 
 }  // namespace oscilab::daq::uff

@@ -22,6 +22,18 @@ Eigen::VectorXd rich_point(const HarmonicBalance& hbm, double z_star) {
   return x;
 }
 
+// hbm --samples -1 used to mean the default silently; a negative N or one past the limit is
+// refused.
+TEST(HarmonicBalance, RefusesANegativeOrHugeSampleCount) {
+  HbmOptions options;
+  options.samples = -1;
+  EXPECT_THROW(HarmonicBalance(paper_model(), 9.0, options), InputError);
+  options.samples = (1 << 20) + 1;
+  EXPECT_THROW(HarmonicBalance(paper_model(), 9.0, options), InputError);
+  options.samples = 0;  // the default N
+  EXPECT_NO_THROW(HarmonicBalance(paper_model(), 9.0, options));
+}
+
 TEST(HarmonicBalance, AnalyticJacobianMatchesCentralDifferences) {
   for (int nu : {1, 2}) {
     const Model model = paper_model();

@@ -97,6 +97,41 @@ TEST(FitSetup, ValidateNamesTheFirstBadChoiceAsTheFrontEndSpellsIt) {
             "--evaluations: must be at least 10");
 }
 
+// Absurd budgets would run for days or allocate a population beyond memory: refused up front.
+TEST(FitSetup, ValidateRefusesBudgetsAndThreadCountsBeyondTheLimits) {
+  const auto error_with = [](const std::function<void(FitOptions&)>& change) {
+    FitOptions options;
+    change(options);
+    return input_error_of([&] { validate(options, "--"); });
+  };
+  EXPECT_EQ(error_with([](FitOptions& o) { o.max_evaluations = kMaxFitEvaluations; }), "");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.max_evaluations = 1'000'000'000'000; }),
+            "--evaluations: 1000000000000 is more than 10000000");
+  EXPECT_EQ(error_with([](FitOptions& o) {
+              o.method = FitMethod::Genetic;
+              o.genetic.population = 100000;
+              o.genetic.generations = 100;
+            }),
+            "--population: 100000 over 100 generations is more than 10000000 evaluations");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.threads = -1; }),
+            "--threads: -1 must be 0 (all cores) to 1024");
+  EXPECT_EQ(error_with([](FitOptions& o) { o.threads = kMaxThreads; }), "");
+}
+
+TEST(FitSetup, CostSettingsRefuseAReferenceOutsideTheSigmaBudgetsLadder) {
+  // The σ budget's defect correction climbs H_ref = 15, 23, 31, 47, 63: 5 would mean none.
+  EXPECT_EQ(input_error_of([] { cost_settings(7, 5, -1.0, "--harmonics", "--max-harmonics"); }),
+            "--max-harmonics: 5 must be in 15 … 63 (the σ budget's reference harmonics)");
+  EXPECT_EQ(input_error_of([] { cost_settings(7, 64, -1.0, "--harmonics", "--max-harmonics"); }),
+            "--max-harmonics: 64 must be in 15 … 63 (the σ budget's reference harmonics)");
+  EXPECT_EQ(input_error_of([] { cost_settings(7, 15, -1.0, "--harmonics", "--max-harmonics"); }),
+            "");
+  // A fixed model-error floor uses no reference: any positive value is accepted.
+  EXPECT_EQ(input_error_of([] { cost_settings(3, 3, 0.05, "harmonics", "max_harmonics"); }), "");
+  EXPECT_EQ(input_error_of([] { cost_settings(201, 63, -1.0, "--harmonics", "--max-harmonics"); }),
+            "--harmonics: 201 is more than 200");
+}
+
 TEST(FitSetup, StiffnessSourceNamesRoundTripAndOthersAreRejectedByName) {
   EXPECT_EQ(parse_stiffness_source("model", "--stiffness"), StiffnessSource::Model);
   EXPECT_EQ(parse_stiffness_source("rfs", "--stiffness"), StiffnessSource::Rfs);

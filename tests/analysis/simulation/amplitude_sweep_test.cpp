@@ -123,6 +123,16 @@ TEST(AmplitudeSweep, MotionForceIsTheRampedSine) {
   EXPECT_THROW(AmplitudeSweepMotion(0.0, 1.0, 1.0, 1.0, 1.0), InputError);
 }
 
+// hbm --sweep-time 1e9: refused by validate(), which the command calls before writing anything.
+TEST(AmplitudeSweep, ValidateRefusesASweepLongerThanATimeSimulationHolds) {
+  AmplitudeSweepOptions options;
+  options.freq_hz = 9.0;
+  options.up_s = options.down_s = 1e9;
+  EXPECT_THROW(options.validate(), InputError);
+  options.up_s = options.down_s = 400.0;  // the default: 460 800 samples
+  EXPECT_NO_THROW(options.validate());
+}
+
 TEST(AmplitudeSweep, CsvHasOneRowPerPeriod) {
   AmplitudeSweep sweep;
   sweep.periods = {{0.0, 0.1, true, 1e-3}, {0.5, 0.2, false, 2e-3}};

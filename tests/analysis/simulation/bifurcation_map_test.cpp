@@ -107,6 +107,11 @@ TEST(BifurcationMap, ThrowsInputErrorForBadOptions) {
   options = {};
   options.step_n = 0.0;
   EXPECT_THROW(options.validate(), InputError);
+  options = {};  // 73 levels of 10^6 periods: 7.3e7 samples a well, over the simulation's limit
+  options.hold_periods = 1000000;
+  EXPECT_THROW(options.validate(), InputError);
+  options.hold_periods = 100000;
+  EXPECT_NO_THROW(options.validate());
 }
 
 TEST(BifurcationMap, ResolvedLevelsIncludeTheEnd) {

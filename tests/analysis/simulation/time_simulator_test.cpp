@@ -8,10 +8,43 @@
 #include "analysis/model/polynomial_stiffness.h"
 #include "analysis/model/reference_models.h"
 #include "analysis/model/viscous_damping.h"
+#include "analysis/simulation/random_motion.h"
 #include "analysis/simulation/stepped_sine_run.h"
+#include "tests/input_error_of.h"
 
 namespace oscilab::analysis {
 namespace {
+
+// A run too long or too fast for memory is one InputError before anything is allocated, not
+// std::bad_alloc after gigabytes (simulate --hold 1e9, --rate 1e9, --duration 1e9).
+TEST(TimeSimulator, RefusesARunOfMoreSamplesThanTheLimitBeforeAllocating) {
+  const Model model = linear_oscillator_model(0.5, 2000.0, 4.0);
+  SteppedSineSchedule schedule;
+  schedule.frequency_hz = 7.0;
+  schedule.levels_n = {1.5};
+  schedule.hold_s = 1e9;
+  schedule.ramp_s = 0.5;
+  const SteppedSineMotion motion(schedule, 0.5);
+  const TimeSimulator simulator(model, {});
+  TimeSimulator::Run run;
+  run.duration_s = schedule.duration_s();
+  run.sample_rate_hz = 512.0;
+  EXPECT_EQ(testing::input_error_of([&] { simulator.simulate(motion, run); }),
+            "time simulation: 1e+09 s at 512 Hz is 5.12e+11 samples, more than the 5e+07 one run "
+            "holds (a day at 512 Hz is 4.4e+07)");
+  run.duration_s = 10.0;
+  run.sample_rate_hz = 1e9;
+  EXPECT_NE(testing::input_error_of([&] { simulator.simulate(motion, run); }).find("1e+10 samples"),
+            std::string::npos);
+  // A day at 512 Hz, the longest test a lab runs, stays within the limit.
+  EXPECT_LT(86400.0 * 512.0, TimeSimulator::kMaxSamples);
+
+  RandomMotionSpec random;
+  random.duration_s = 1e9;
+  EXPECT_EQ(testing::input_error_of([&] { RandomMotion(random, 0.5); }),
+            "random excitation: duration 1e+09 s needs 4.1e+12 grid points at 4096 Hz, more than "
+            "the 3.36e+07 (8192 s) it may hold");
+}
 
 TEST(TimeSimulator, LinearOscillatorReachesClosedFormSteadyState) {
   const double m = 0.5, k = 2000.0, c = 4.0;  // ω_n = 63 rad/s, decay c/2m = 4 s⁻¹

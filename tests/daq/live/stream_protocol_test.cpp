@@ -2,6 +2,7 @@
 
 #include "tests/daq/live/stream_test_layout.h"
 
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <set>
@@ -150,6 +151,69 @@ TEST(StreamProtocol, RejectsHostileFramesWithAReason) {
     bad_sidecar.push_back(static_cast<std::uint8_t>(text.size() >> (8 * i)));
   bad_sidecar.insert(bad_sidecar.end(), text.begin(), text.end());
   EXPECT_NE(decode_error(bad_sidecar).find("unknown unit"), std::string::npos);
+}
+
+// A whole HELLO or EVENT frame of `text`, however it is nested.
+std::vector<std::uint8_t> json_frame(FrameType type, const std::string& text) {
+  std::vector<std::uint8_t> bytes = {'O', 'S', 'C', 'S', 1, static_cast<std::uint8_t>(type), 0, 0};
+  for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<std::uint8_t>(text.size() >> (8 * i)));
+  bytes.insert(bytes.end(), text.begin(), text.end());
+  return bytes;
+}
+
+TEST(StreamProtocol, RefusesAJsonDepthBombFrameAloneAndGoesOn) {
+  // 100 000 nested arrays fit in 200 kB, under the frame limit; copied, they overflow the stack.
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::vector<std::uint8_t> bytes =
+      json_frame(FrameType::Hello, "{\"protocol\": \"oscilab-stream/1\", \"junk\": " + deep + "}");
+  append_hello({"id", two_channels()}, bytes);
+  const std::vector<std::uint8_t> event =
+      json_frame(FrameType::Event, "{\"kind\": \"mark\", \"data\": {\"x\": " + deep + "}}");
+  bytes.insert(bytes.end(), event.begin(), event.end());
+  const double values[2] = {1.0, 2.0};
+  append_data(0, 0, 1, 2, values, bytes);
+
+  FrameDecoder decoder;
+  decoder.feed(bytes.data(), bytes.size());
+  std::vector<Frame> frames;
+  Frame frame;
+  while (decoder.next(frame)) frames.push_back(frame);
+  EXPECT_EQ(decoder.error(), "");
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_EQ(frames[0].refused,
+            "HELLO frame refused: JSON nested deeper than 64 levels (at byte 104)");
+  EXPECT_TRUE(frames[1].refused.empty());
+  EXPECT_TRUE(frames[1].hello.has_value());
+  EXPECT_EQ(frames[2].refused,
+            "EVENT frame refused: JSON nested deeper than 64 levels (at byte 93)");
+  EXPECT_FALSE(frames[2].event.has_value());
+  EXPECT_EQ(frames[3].type, FrameType::Data);  // the stream goes on after both
+  EXPECT_EQ(frames[3].rows, 1);
+}
+
+// What a receiver acts on is checked against its clock: a level beyond Nyquist would hang the
+// cycle analysis and be written into the sidecar; a time of 1e300 s is no sample index.
+TEST(StreamEvent, ProblemNamesLevelsBeyondNyquistAndTimesBeyondAnyClock) {
+  const auto level = [](nlohmann::json data) {
+    return StreamEvent{1.0, EventKind::Level, "", std::move(data)};
+  };
+  EXPECT_EQ(stream_event_problem(level({{"f0_n", 0.5}, {"frequency_hz", 9.0}}), 512.0), "");
+  EXPECT_EQ(stream_event_problem(level({{"f0_n", 0.5}, {"frequency_hz", 1e9}}), 512.0),
+            "level event: frequency_hz 1e+09 is not in (0, 256) Hz (the Nyquist frequency of the "
+            "512 Hz stream)");
+  EXPECT_NE(stream_event_problem(level({{"frequency_hz", 256.0}}), 512.0), "");  // at Nyquist
+  EXPECT_NE(stream_event_problem(level({{"frequency_hz", 0.0}}), 512.0), "");
+  EXPECT_EQ(stream_event_problem(level({{"f0_n", -1.0}}), 512.0),
+            "level event: f0_n -1 N is not a finite amplitude >= 0");
+  EXPECT_EQ(stream_event_problem(level({{"f0_n", "x"}}), 512.0),
+            "level event: f0_n is not a number: \"x\"");
+  EXPECT_EQ(stream_event_problem(level({{"steady_to_s", 1e300}}), 512.0),
+            "level event: steady_to_s 1e+300 is not a stream time in [0, 1e9] s");
+  EXPECT_NE(stream_event_problem({1e300, EventKind::Discontinuity}, 512.0), "");
+  EXPECT_NE(stream_event_problem({1.0, EventKind::Invalid, "", {{"from_s", -5.0}}}, 512.0), "");
+  // No time (NaN) is allowed; kinds only logged are never refused.
+  EXPECT_EQ(stream_event_problem({std::nan(""), EventKind::Discontinuity}, 512.0), "");
+  EXPECT_EQ(stream_event_problem({1e300, EventKind::Mark, "", {{"f0_n", "x"}}}, 512.0), "");
 }
 
 TEST(StreamProtocol, RandomBytesNeverCrashAndMemoryStaysBounded) {

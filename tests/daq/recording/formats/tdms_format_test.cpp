@@ -199,6 +199,51 @@ TEST(TdmsReader, ReadsInterleavedInt32BigEndian) {
   EXPECT_EQ(read_named(path, "g/b"), (std::vector<double>{100000, 0, -7, 65536}));
 }
 
+// What a Silixa iDAS interrogator writes: one segment, its ToC saying interleaved data, 1152
+// int16 channels of 1000 samples each (one row per sample time, every channel in it), the rate
+// only in a root property "SamplingFrequency[Hz]". 1152 × 1000 × 2 bytes is exactly one chunk.
+TEST(TdmsReader, ReadsADasFileOfManyInterleavedChannelsInOneChunk) {
+  constexpr int kChannels = 1152;
+  constexpr int kSamples = 1000;
+  const std::uint32_t toc = kTocMetaData | kTocNewObjList | kTocRawData | kTocInterleavedData;
+  TdmsBytes m(false);    // metadata, little-endian
+  m.u32(2 + kChannels);  // objects: the root, one group, 1152 channels
+  m.str("/");            // object 0: the file (root)
+  m.u32(kIndexNoData);   //   no raw data
+  m.u32(1);              //   1 property:
+  m.str("SamplingFrequency[Hz]").u32(kTdsF64).f64(1000.0);  // the rate, 1 kHz
+  m.str("/'Measurement'");                                  // object 1: group "Measurement"
+  m.u32(kIndexNoData);                                      //   no raw data
+  m.u32(0);                                                 //   no properties
+  for (int c = 0; c < kChannels; ++c) {
+    m.str("/'Measurement'/'" + std::to_string(c) + "'");  // a channel, named by its index
+    m.u32(kIndexPlain);                                   //   raw data index of 20 bytes:
+    m.u32(kTdsI16);                                       //     int16
+    m.u32(1);                                             //     array dimension 1
+    m.u64(kSamples);                                      //     1000 values per chunk
+    m.u32(0);                                             //   no properties
+  }
+  TdmsBytes raw(false);  // 1000 rows of 1152 int16 values: channel c at row r holds c − r
+  for (int r = 0; r < kSamples; ++r) {
+    for (int c = 0; c < kChannels; ++c) raw.number<std::int16_t>(static_cast<std::int16_t>(c - r));
+  }
+  ASSERT_EQ(raw.bytes().size(), 2304000u);  // exactly one chunk
+  const TempDir dir;
+  const std::string path = dir.file("idas.tdms");
+  testing::write_file(path, tdms_segment(toc, m.bytes(), raw.bytes()));
+  const FileContents contents = tdms().describe(path);
+  EXPECT_EQ(contents.file_signals.size(), static_cast<std::size_t>(kChannels));
+  EXPECT_EQ(contents.properties["file"]["SamplingFrequency[Hz]"], 1000.0);
+  // No wf_increment: the rate is the file's SamplingFrequency[Hz].
+  EXPECT_EQ(signal_named(contents, "Measurement/1151").sample_rate_hz, 1000.0);
+  for (int c : {0, 1, 575, 1151}) {
+    const std::vector<double> values = read_named(path, "Measurement/" + std::to_string(c));
+    ASSERT_EQ(values.size(), static_cast<std::size_t>(kSamples)) << c;
+    EXPECT_EQ(values.front(), c);
+    EXPECT_EQ(values[999], c - 999);
+  }
+}
+
 // A channel's plain raw data index: 20 bytes.
 void plain_index(TdmsBytes& m, std::uint32_t type, std::uint64_t values) {
   m.u32(kIndexPlain);  // raw data index of 20 bytes

@@ -327,6 +327,53 @@ TEST(UffFormat, ReadsAnAbscissaInMillisecondsAndKeepsAnIncrementThatIsNoWholeRat
   EXPECT_DOUBLE_EQ(*contents.file_signals[1].sample_rate_hz, 1.0 / 1.6384e-3);
 }
 
+// A time response as a Data Translation DT9837 writes it: abscissa units "(Sec)" and the values
+// in fixed 13-character fields (6 to a line, format 6E13.6) with no space between them when
+// the sign takes the field's first column.
+TEST(UffFormat, ReadsADt9837TimeResponseWithItsUnitInParenthesesAndTouchingFields) {
+  Uff58Header h;
+  h.count = "8";                // record 7 field 2: 8 values
+  h.increment = "9.76563E-05";  // record 7 field 5: 10.24 kHz
+  h.abscissa_units = "(Sec)";   // record 8 field 6, as the DT9837 spells it
+  h.ordinate_type = "2";        // record 7 field 1: real single precision
+  const std::string lines =
+      "-1.234567E-01-2.500000E+00 3.000000E-05-4.000000E-01 5.000000E+00-6.000000E-02\n"  // 6 × 13
+      " 7.000000E+00-8.000000E-03\n";  // the last line: 2 × 13
+  const TempDir dir;
+  write_file(dir.file("dt9837.uff"), ascii_uff58(h, lines));
+  const FileContents contents = uff_format().describe(dir.file("dt9837.uff"));
+  ASSERT_EQ(contents.file_signals.size(), 1u);
+  EXPECT_NEAR(*contents.file_signals[0].sample_rate_hz, 10240.0, 0.5);
+  const std::vector<double> values =
+      uff_signals().read_signal(dir.file("dt9837.uff"), contents.file_signals[0], -1);
+  EXPECT_EQ(values, (std::vector<double>{-0.1234567, -2.5, 3e-5, -0.4, 5.0, -0.06, 7.0, -8e-3}));
+}
+
+// The spellings of seconds and milliseconds instruments write; a unit that is no time refused.
+TEST(UffFormat, ReadsTheAbscissaUnitsInstrumentsSpellForSecondsAndMilliseconds) {
+  const TempDir dir;
+  for (const char* units : {"s", "S", "Sec", "sec", "SEC", "(Sec)", "Seconds", "second", "[s]",
+                            "ms", "(ms)", "Milliseconds", "msec"}) {
+    Uff58Header h;
+    h.count = "1";
+    h.abscissa_units = units;
+    h.increment = "1.00000E-03";  // 1 kHz in s, 1 MHz in ms
+    write_file(dir.file("u.uff"), ascii_uff58(h, e13_lines({1.0})));
+    const FileContents contents = uff_format().describe(dir.file("u.uff"));
+    ASSERT_EQ(contents.file_signals.size(), 1u) << units;
+    const bool ms = std::string(units).find_first_of("mM") != std::string::npos;
+    EXPECT_DOUBLE_EQ(*contents.file_signals[0].sample_rate_hz, ms ? 1e6 : 1e3) << units;
+  }
+  Uff58Header hz;
+  hz.count = "1";
+  hz.abscissa_units = "(Hz)";
+  write_file(dir.file("hz.uff"), ascii_uff58(hz, e13_lines({1.0})));
+  EXPECT_NE(input_error_of([&] {
+              uff_format().describe(dir.file("hz.uff"));
+            }).find("abscissa units \"(Hz)\" are not a time unit"),
+            std::string::npos);
+}
+
 TEST(UffFormat, MatchesItsSignatureAndExtensions) {
   const FormatReader& uff = uff_format();
   EXPECT_TRUE(uff.matches_signature("    -1\n    58\n"));

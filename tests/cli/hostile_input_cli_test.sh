@@ -1,0 +1,237 @@
+#!/usr/bin/env bash
+# oscilab-cli against hostile input:
+#   hostile_input_cli_test.sh OSCILAB_CLI SOURCE_DIR
+# Whatever a file, an option or a network peer holds, the command ends with exit status 2 and
+# one line on stderr naming the problem, and leaves no partial output; a network frame is refused
+# alone and the stream goes on.
+source "$(dirname "$0")/cli_checks.sh"
+pos=$src/samples/stepped_positive.flac
+
+expect_error() {  # description, expected text, command...
+  local what=$1 text=$2
+  shift 2
+  "$@" > "$work/err.out" 2> "$work/err.log"
+  local status=$?
+  if [ $status -eq 2 ] && grep -q -- "$text" "$work/err.log" && [ "$(wc -l < "$work/err.log")" -eq 1 ]; then
+    pass "$what"
+  else
+    fail "$what: status $status, $(head -c 300 "$work/err.log")"
+  fi
+}
+expect_absent() {  # description, paths...
+  local what=$1
+  shift
+  local left=""
+  for path in "$@"; do [ -e "$path" ] && left="$left $path"; done
+  [ -z "$left" ] && pass "$what" || fail "$what: left$left"
+}
+
+# --- JSON nested 100 000 deep under an unknown key of a sidecar: refused, not a stack overflow.
+cp "$pos" "$work/bomb.flac"
+python3 - "$src/samples/stepped_positive.json" "$work/bomb.json" <<'PY'
+import json, sys
+sidecar = json.load(open(sys.argv[1]))
+text = json.dumps(sidecar)
+open(sys.argv[2], "w").write(text[:-1] + ', "junk": ' + "[" * 100000 + "]" * 100000 + "}")
+PY
+expect_error "info: a depth bomb in a sidecar" "bomb.json: JSON nested deeper than 64 levels" \
+  "$cli" info "$work/bomb.flac"
+expect_error "analyze: a depth bomb in a sidecar" "bomb.json: JSON nested deeper than 64 levels" \
+  "$cli" analyze "$work/bomb.flac" --edc "$work/bomb_edc.csv"
+expect_absent "analyze: no EDC table after a refused sidecar" "$work/bomb_edc.csv"
+python3 -c "print('{\"mass_kg\": 0.26, \"terms\": [], \"x\": ' + '[' * 100000 + ']' * 100000 + '}')" \
+  > "$work/bomb_model.json"
+expect_error "hbm: a depth bomb in a model" "bomb_model.json: JSON nested deeper than 64 levels" \
+  "$cli" hbm --model "$work/bomb_model.json" --freq 9 --f0 0.1:1 --out "$work/bomb_branch.csv"
+expect_absent "hbm: no branch after a refused model" "$work/bomb_branch.csv"
+
+# --- A network sender (the stream protocol, docs/stream-protocol.md) whose frames are given as
+# arguments: hello, data:FIRST_SAMPLE:ROWS (sequence numbers counted), event:JSON, bomb-hello,
+# bomb-event, bye. It connects as soon as the recorder listens.
+cat > "$work/send.py" <<'PY'
+import json, socket, struct, sys, time
+port, sidecar_path = int(sys.argv[1]), sys.argv[2]
+sidecar = json.load(open(sidecar_path))
+# The excitation's frequency (the live EDC runs), its levels left to the stream's level events.
+sidecar["excitation"] = {"type": "stepped-sine", "frequency_hz": 9.0}
+deep = "[" * 100000 + "]" * 100000
+def frame(kind, payload):
+    return b"OSCS" + struct.pack("<BBHI", 1, kind, 0, len(payload)) + payload
+out, sequence = b"", 0
+for item in sys.argv[3:]:
+    if item == "hello":
+        out += frame(1, json.dumps({"protocol": "oscilab-stream/1", "stream_id": "s",
+                                    "sidecar": sidecar}).encode())
+    elif item == "bomb-hello":
+        out += frame(1, ('{"protocol": "oscilab-stream/1", "junk": ' + deep + "}").encode())
+    elif item == "bomb-event":
+        out += frame(3, ('{"t_s": 0, "kind": "mark", "data": {"x": ' + deep + "}}").encode())
+    elif item.startswith("event:"):
+        out += frame(3, item[6:].encode())
+    elif item.startswith("data:"):
+        _, first, rows = item.split(":")
+        values = [0.001 * i for i in range(2 * int(rows))]
+        out += frame(2, struct.pack("<QQII", sequence, int(first), int(rows), 2) +
+                     struct.pack("<%dd" % len(values), *values))
+        sequence += 1
+    elif item == "bye":
+        out += frame(4, b"")
+for _ in range(100):
+    try:
+        connection = socket.create_connection(("127.0.0.1", port))
+        break
+    except OSError:
+        time.sleep(0.1)
+connection.sendall(out)
+connection.shutdown(socket.SHUT_WR)
+connection.recv(1)
+PY
+record_from() {  # name, frames...: records what the sender sends into $work/NAME.wav
+  local name=$1
+  shift
+  local port=$((20000 + RANDOM % 30000))
+  timeout 60 "$cli" record --source "net:127.0.0.1:$port" --out "$work/$name.wav" --wait 30 \
+    > "$work/$name.log" 2>&1 &
+  local recorder=$!
+  timeout 60 python3 "$work/send.py" "$port" "$src/samples/stepped_positive.json" "$@"
+  wait $recorder
+}
+if record_from net_bomb bomb-hello hello data:0:512 bomb-event data:512:512 bye; then
+  pass "record --source net: depth bombs in HELLO and EVENT frames, exit 0"
+else
+  fail "record net depth bomb: status $?, $(tail -3 "$work/net_bomb.log")"
+fi
+[ "$(grep -c '"kind":"malformed-frame".*nested deeper than 64 levels' "$work/net_bomb.events.jsonl")" -eq 2 ] \
+  && pass "both bombs logged as malformed frames" \
+  || fail "events: $(cut -c1-200 "$work/net_bomb.events.jsonl")"
+grep -q '"kind":"source-ended"' "$work/net_bomb.events.jsonl" \
+  && pass "the stream went on to its BYE" || fail "no source-ended event"
+"$cli" info "$work/net_bomb.wav" > "$work/net_bomb.info" 2>&1 && grep -q "samples: *1024$" "$work/net_bomb.info" \
+  && pass "both DATA frames recorded" || fail "net_bomb.wav: $(cat "$work/net_bomb.info")"
+
+# --- Absurd numeric options: refused before anything is allocated or written.
+neg=$src/samples/stepped_negative.flac
+expect_error "simulate --hold 1e9" "more than the 5e+07 one run holds" \
+  "$cli" simulate --hold 1e9 --out "$work/s1.flac"
+expect_error "simulate --rate 1e9" "262.5 s at 1e+09 Hz" \
+  "$cli" simulate --rate 1e9 --out "$work/s2.flac"
+expect_error "simulate --test random --duration 1e9" "random excitation: duration 1e+09 s" \
+  "$cli" simulate --test random --duration 1e9 --out "$work/s3.flac"
+expect_error "simulate --freq 1e9 (beyond Nyquist)" "excitation frequency 1e+09 Hz is not below the Nyquist" \
+  "$cli" simulate --freq 1e9 --out "$work/s4.flac"
+expect_error "simulate --band 2:300 at 512 Hz" "band's upper edge 300 Hz is not below the Nyquist" \
+  "$cli" simulate --test random --band 2:300 --out "$work/s5.flac"
+expect_error "record --source rig --freq 1e9" "is not below the Nyquist frequency" \
+  "$cli" record --source rig --freq 1e9 --speed 0 --duration 2 --out "$work/r1.wav"
+expect_absent "a refused recording leaves no file" "$work/r1.wav" "$work/r1.json" \
+  "$work/r1.events.jsonl" "$work/s4.flac" "$work/s5.flac"
+expect_absent "simulate: nothing written" "$work/s1.flac" "$work/s1.json" "$work/s2.flac" \
+  "$work/s3.flac"
+expect_error "hbm --sweep-time 1e9" "amplitude sweep: 1e+09 s up" \
+  "$cli" hbm --sweep-time 1e9 --sweep "$work/sweep.csv" --out "$work/b1.csv"
+expect_error "hbm --map-step 0" "bifurcation map: levels: need" \
+  "$cli" hbm --map-step 0 --map "$work/map.csv" --out "$work/b2.csv"
+expect_error "hbm --samples -1" "samples: -1 must be 0" \
+  "$cli" hbm --samples -1 --out "$work/b3.csv"
+expect_absent "hbm: no branch, sweep or map CSV" "$work/b1.csv" "$work/sweep.csv" "$work/b2.csv" \
+  "$work/map.csv" "$work/b3.csv"
+expect_error "fit --evaluations 1e12" "--evaluations: 1000000000000 is more than 10000000" \
+  "$cli" fit "$pos" "$neg" --evaluations 1000000000000 --out "$work/f1.json"
+expect_error "fit --evaluations 2^66" "--evaluations: .* is more than 10000000" \
+  "$cli" fit "$pos" "$neg" --evaluations 73786976294838206464 --out "$work/f2.json"
+expect_error "fit --threads -1" "--threads: -1 must be 0 (all cores) to 1024" \
+  "$cli" fit "$pos" "$neg" --threads -1 --out "$work/f3.json"
+expect_error "fit --max-harmonics 5" "--max-harmonics: 5 must be in 15 … 63" \
+  "$cli" fit "$pos" "$neg" --max-harmonics 5 --out "$work/f4.json"
+expect_error "diagnose --threads -1" "--threads: -1 must be 0 (all cores) to 1024" \
+  "$cli" diagnose "$pos" "$neg" --threads -1 --out "$work/diag"
+expect_absent "fit, diagnose: nothing written" "$work/f1.json" "$work/f2.json" "$work/f3.json" \
+  "$work/f4.json" "$work/diag"
+expect_error "record --wait -1" "--wait: -1 s must be >= 0" \
+  "$cli" record --source "net:127.0.0.1:$((20000 + RANDOM % 30000))" --wait -1 --out "$work/w.wav"
+expect_absent "record --wait -1: nothing written" "$work/w.wav" "$work/w.json"
+
+# --- Absurd network fields: each frame refused alone (one malformed-frame event), the stream
+# goes on, the clock never jumps, nothing beyond Nyquist reaches the analysis or the sidecar.
+level() { echo "event:{\"t_s\": 1.0, \"kind\": \"level\", \"data\": $1}"; }
+if record_from net_fields hello data:0:512 \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 1e9}')" \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 300}')" \
+    "$(level '{"f0_n": "x", "frequency_hz": 9}')" \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 9, "steady_from_s": 1e300}')" \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 9}')" \
+    data:512:512 data:9223372036854775808:512 data:1024:512 bye; then
+  pass "record --source net: absurd level events and a DATA clock jump, exit 0 (no hang)"
+else
+  fail "record net fields: status $?, $(tail -3 "$work/net_fields.log")"
+fi
+events=$work/net_fields.events.jsonl
+for text in "frequency_hz 1e+09 is not in (0, 256) Hz" "frequency_hz 300 is not in (0, 256) Hz" \
+    "f0_n is not a number" "steady_from_s 1e+300 is not a stream time" \
+    "DATA frame refused: first_sample 9223372036854775808 is 1.8e+16 s past"; do
+  grep -q "\"malformed-frame\".*$text" "$events" && pass "refused: $text" \
+    || fail "not refused: $text: $(cut -c1-160 "$events")"
+done
+grep -q '"kind":"source-ended","t_s":3.0' "$events" \
+  && pass "the stream clock ends at 3 s: the jump never moved it" \
+  || fail "clock: $(grep source-ended "$events")"
+python3 - "$work/net_fields.json" <<'PY' && pass "the sidecar holds the one valid level" || fail "sidecar levels"
+import json, sys
+excitation = json.load(open(sys.argv[1]))["excitation"]
+assert excitation["frequency_hz"] == 9.0, excitation
+assert [level["f0_n"] for level in excitation["levels"]] == [0.5], excitation
+PY
+"$cli" info "$work/net_fields.wav" 2>&1 | grep -q "samples: *1536$" \
+  && pass "the three valid DATA frames recorded" || fail "net_fields.wav samples"
+
+# --- Outputs never over inputs, and all or nothing.
+"$cli" fit "$pos" "$neg" --evaluations 20 --threads 1 --out "$work/fit1.json" > /dev/null 2>&1
+cp "$work/fit1.json" "$work/fit1.before"
+expect_error "merge: --out one of its inputs" "--out: $work/fit1.json is an input of this command" \
+  "$cli" merge "$work/fit1.json" --out "$work/fit1.json"
+expect_error "merge: --out one of its inputs by another path" "is an input of this command" \
+  "$cli" merge "$work/fit1.json" --out "$work/nowhere/../fit1.json"
+cmp -s "$work/fit1.json" "$work/fit1.before" && pass "merge: the input FIT JSON is intact" \
+  || fail "merge overwrote its input"
+cp "$pos" "$work/run.flac"
+cp "$src/samples/stepped_positive.json" "$work/run.json"
+expect_error "analyze: --summary over the recording's sidecar" "--summary: $work/run.json is an input" \
+  "$cli" analyze "$work/run.flac" --summary "$work/run.json"
+expect_error "fit: --out over a recording" "--out: $work/run.flac is an input" \
+  "$cli" fit "$work/run.flac" "$neg" --out "$work/run.flac"
+cmp -s "$work/run.json" "$src/samples/stepped_positive.json" && cmp -s "$work/run.flac" "$pos" \
+  && pass "analyze, fit: recording and sidecar intact" || fail "an input was overwritten"
+ls "$work" | grep -q "\.tmp\." && fail "temporaries left: $(ls "$work" | grep tmp)" || pass "no temporary left"
+
+# A full disk: a small file system made for the test (root only; skipped elsewhere).
+small=$work/small
+mkdir -p "$small"
+if mount -t tmpfs -o size=256k tmpfs "$small" 2> /dev/null; then
+  trap 'umount "$small" 2> /dev/null; kill $(jobs -p) 2> /dev/null; rm -rf "$work"' EXIT
+  cat /dev/zero > "$small/fill" 2> /dev/null  # until the file system is full
+  expect_error "analyze on a full disk" "No space left on device" \
+    "$cli" analyze "$pos" --edc "$small/e.csv" --cycles "$small/c.csv"
+  expect_absent "analyze on a full disk: neither table nor temporary left" "$small/e.csv" "$small/c.csv"
+  [ "$(ls "$small")" = "fill" ] && pass "full disk: nothing but the filler" || fail "left: $(ls "$small")"
+  expect_error "merge on a full disk" "No space left on device" \
+    "$cli" merge "$work/fit1.json" "$work/fit1.json" "$work/fit1.json" --out "$small/m.csv"
+  [ "$(ls "$small")" = "fill" ] && pass "merge on a full disk: nothing left" || fail "left: $(ls "$small")"
+  rm -f "$small/fill"
+  # The recorder filling the disk: it stops cleanly, says so once, and leaves a recording whose
+  # header matches what was written, so that it opens.
+  expect_error "record on a full disk" "x.wav: write failed: .*No space left on device" \
+    "$cli" record --source rig --speed 0 --duration 600 --out "$small/x.wav"
+  "$cli" info "$small/x.wav" > "$work/full_info.txt" 2>&1 && grep -q "samples: *[1-9]" "$work/full_info.txt" \
+    && pass "record on a full disk: the recording opens with what was written" \
+    || fail "record on a full disk: $(head -2 "$work/full_info.txt")"
+  grep -q '"kind":"error".*recording stopped: .*No space left on device' "$small/x.events.jsonl" \
+    && pass "record on a full disk: the error is in the event log" \
+    || fail "event log: $(cut -c1-120 "$small/x.events.jsonl")"
+  ls "$small" | grep -q "\.tmp\." && fail "temporaries left: $(ls "$small")" \
+    || pass "record on a full disk: no temporary left"
+else
+  echo "skipped: the full-disk checks (mounting a small tmpfs needs root)"
+fi
+
+echo "$passes passed, $failures failed"
+[ $failures -eq 0 ]
