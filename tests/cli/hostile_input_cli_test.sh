@@ -184,6 +184,73 @@ PY
 "$cli" info "$work/net_fields.wav" 2>&1 | grep -q "samples: *1536$" \
   && pass "the three valid DATA frames recorded" || fail "net_fields.wav samples"
 
+# --- Degenerate data said, not scored: a dead or constant channel, swapped roles, a steady
+# window shorter than a cycle, levels past the record's end. Each level gets a flag and the
+# report a note; a record none of whose levels measures anything is refused with one line.
+"$cli" import "$pos" --out "$work/deg.csv" > /dev/null
+python3 - "$work" <<'PY'
+import copy, csv, json, sys
+work = sys.argv[1]
+rows = list(csv.reader(open(work + "/deg.csv")))
+sidecar = json.load(open(work + "/deg.json"))
+def write(name, column=None, value=None, edit=None):
+    with open("%s/%s.csv" % (work, name), "w") as out:
+        for i, row in enumerate(rows):
+            if i > 0 and column is not None:
+                row = row[:column] + [value] + row[column + 1:]
+            out.write(",".join(row) + "\n")
+    side = copy.deepcopy(sidecar)
+    if edit:
+        edit(side)
+    json.dump(side, open("%s/%s.json" % (work, name), "w"))
+def swap(side):
+    side["channels"][0]["role"], side["channels"][1]["role"] = "mass", "base"
+def short(side):
+    side["excitation"]["levels"][0]["end_s"] = side["excitation"]["levels"][0]["start_s"] + 0.001
+def beyond(side):
+    for level in side["excitation"]["levels"]:
+        level["start_s"] += 1000
+        level["end_s"] += 1000
+def scale(side):
+    side["channels"][1]["scale"] = 1e300
+write("zero_base", 1, "0")
+write("const_base", 1, "80")  # counts: the accelerometer's bias alone
+write("const_mass", 2, "236663")
+write("swapped", edit=swap)
+write("short", edit=short)
+write("beyond", edit=beyond)
+write("scale", edit=scale)
+PY
+for case in "zero_base:base-constant: the base channel shows no motion above its noise" \
+    "const_base:base-constant" \
+    "const_mass:mass-constant: the mass channel shows no motion above its noise" \
+    "swapped:negative-edc: .* roles (or a channel's sign) are likely swapped" \
+    "beyond:beyond-record: the sidecar's steady window reaches past the end"; do
+  name=${case%%:*}
+  text=${case#*:}
+  flag=${text%%:*}
+  expect_error "analyze: $name refused" "$name.csv: no usable level: 26 of 26 levels flagged $text" \
+    "$cli" analyze "$work/$name.csv" --edc "$work/${name}_edc.csv"
+  [ "$(grep -c "[ ;]$flag\$" "$work/err.out")" -eq 26 ] \
+    && grep -q "^note: 26 of 26 levels flagged $flag" "$work/err.out" \
+    && pass "analyze: $name: each level flagged $flag in the report, with a note" \
+    || fail "analyze $name report: $(head -4 "$work/err.out")"
+  expect_absent "analyze: $name: no EDC table" "$work/${name}_edc.csv"
+done
+expect_error "analyze: a scale of 1e300" \
+  "scale.json: channels\[1\].scale: 1e+300 is outside the magnitudes a calibration can have" \
+  "$cli" analyze "$work/scale.csv" --edc "$work/scale_edc.csv"
+expect_absent "analyze: no EDC table after an absurd scale" "$work/scale_edc.csv"
+if "$cli" analyze "$work/short.csv" --edc "$work/short_edc.csv" > "$work/short.out" 2>&1 \
+    && [ "$(wc -l < "$work/short_edc.csv")" -eq 27 ] \
+    && sed -n 2p "$work/short_edc.csv" | grep -q ",3.001000,0,0,0,few-cycles;short-window$" \
+    && [ "$(grep -c ',1,$' "$work/short_edc.csv")" -eq 25 ] \
+    && grep -q "^note: 1 of 26 levels flagged short-window" "$work/short.out"; then
+  pass "analyze: a 1 ms steady window is a row flagged short-window, not usable, with a note"
+else
+  fail "analyze short window: $(head -2 "$work/short_edc.csv"; head -3 "$work/short.out")"
+fi
+
 # --- Outputs never over inputs, and all or nothing.
 "$cli" fit "$pos" "$neg" --evaluations 20 --threads 1 --out "$work/fit1.json" > /dev/null 2>&1
 cp "$work/fit1.json" "$work/fit1.before"
