@@ -17,6 +17,7 @@
 #include "analysis/common/input_error.h"
 #include "app/cli/commands.h"
 #include "app/cli/live_source_options.h"
+#include "app/cli/output_files.h"
 #include "daq/live/acquisition.h"
 
 namespace oscilab::cli {
@@ -50,15 +51,17 @@ void print_status(const daq::AcquisitionStatus& s, bool final_line) {
       s.cycles, s.excluded_cycles, s.levels, final_line ? "\n" : "   ");
 }
 
+// The live EDC table, complete under a temporary name before it takes its own.
 void write_edc(const std::vector<analysis::LevelResult>& levels, const std::string& path) {
-  std::FILE* out = std::fopen(path.c_str(), "w");
-  if (!out) throw InputError(path + ": cannot write");
-  std::fprintf(out, "well,f0_n,edc_mean_j,edc_std_j,cycles,flags\n");
-  for (const auto& l : levels) {
-    std::fprintf(out, "%s,%.9g,%.9g,%.9g,%d,%s\n", to_string(l.well).c_str(), l.f0_n, l.edc_mean_j,
-                 l.edc_std_j, l.cycles, l.flags().c_str());
-  }
-  if (std::fclose(out) != 0) throw InputError(path + ": write failed");
+  write_output_file(path, [&](std::ostream& out) {
+    out << "well,f0_n,edc_mean_j,edc_std_j,cycles,flags\n";
+    char row[256];
+    for (const auto& l : levels) {
+      std::snprintf(row, sizeof row, "%s,%.9g,%.9g,%.9g,%d,", to_string(l.well).c_str(), l.f0_n,
+                    l.edc_mean_j, l.edc_std_j, l.cycles);
+      out << row << l.flags() << '\n';
+    }
+  });
 }
 
 void run(const RecordOptions& o) {

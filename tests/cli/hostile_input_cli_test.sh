@@ -147,6 +147,9 @@ expect_error "diagnose --threads -1" "--threads: -1 must be 0 (all cores) to 102
   "$cli" diagnose "$pos" "$neg" --threads -1 --out "$work/diag"
 expect_absent "fit, diagnose: nothing written" "$work/f1.json" "$work/f2.json" "$work/f3.json" \
   "$work/f4.json" "$work/diag"
+expect_error "diagnose: a missing recording" "missing.flac: file not found" \
+  "$cli" diagnose "$work/missing.flac" --out "$work/diag_bad"
+expect_absent "diagnose: no folder made for a recording it cannot read" "$work/diag_bad"
 expect_error "record --wait -1" "--wait: -1 s must be >= 0" \
   "$cli" record --source "net:127.0.0.1:$((20000 + RANDOM % 30000))" --wait -1 --out "$work/w.wav"
 expect_absent "record --wait -1: nothing written" "$work/w.wav" "$work/w.json"
@@ -283,7 +286,18 @@ if mount -t tmpfs -o size=256k tmpfs "$small" 2> /dev/null; then
   expect_error "merge on a full disk" "No space left on device" \
     "$cli" merge "$work/fit1.json" "$work/fit1.json" "$work/fit1.json" --out "$small/m.csv"
   [ "$(ls "$small")" = "fill" ] && pass "merge on a full disk: nothing left" || fail "left: $(ls "$small")"
+  expect_error "hbm on a full disk" "b.csv: write failed: No space left on device" \
+    "$cli" hbm --out "$small/b.csv"
+  expect_error "model on a full disk" "write failed: No space left on device" \
+    "$cli" model paper --out "$small/m.json" --summary "$small/ms.json"
+  [ "$(ls "$small")" = "fill" ] && pass "hbm, model on a full disk: nothing left" \
+    || fail "left: $(ls "$small")"
   rm -f "$small/fill"
+  # Room for the recording (6 kB) but not for its truth (280 kB): none of the four files stays.
+  expect_error "simulate --truth on a full disk" "s.truth.csv: write failed: No space left" \
+    "$cli" simulate --levels 0.5:0.1:0.5 --hold 2 --truth --out "$small/s.flac"
+  [ -z "$(ls "$small")" ] && pass "simulate --truth on a full disk: nothing left" \
+    || fail "left: $(ls "$small")"
   # The recorder filling the disk: it stops cleanly, says so once, and leaves a recording whose
   # header matches what was written, so that it opens.
   expect_error "record on a full disk" "x.wav: write failed: .*No space left on device" \
