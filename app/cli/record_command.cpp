@@ -35,9 +35,10 @@ struct RecordOptions {
   int sync_ms = 1000;   // the recording goes to the disk at most this often
 };
 
-void print_status(const daq::AcquisitionStatus& s, bool final_line) {
+// The status line: redrawn in place on a terminal (`final_line` false), or once at the end.
+void print_status(std::FILE* out, const daq::AcquisitionStatus& s, bool final_line) {
   std::fprintf(
-      stderr,
+      out,
       "%s%s  t %.1f s  samples %llu  gaps %llu (%llu samples)  dup %llu  reord %llu  "
       "late %llu  nan %llu  sat %llu  overflow %llu  queue %zu/%zu  cycles %ld (-%ld)  "
       "levels %zu%s",
@@ -84,6 +85,7 @@ void run(const RecordOptions& o) {
   std::printf("recording %s from %s\n", o.out.c_str(), acquisition->source().describe().c_str());
   std::fflush(stdout);
   acquisition->start();
+  // The live status line is for a person watching: drawn only when stderr is a terminal.
   const bool terminal = isatty(STDERR_FILENO) != 0;
   const auto started = std::chrono::steady_clock::now();
   auto last_print = started;
@@ -99,7 +101,7 @@ void run(const RecordOptions& o) {
     if (!status.recorder_error.empty()) break;
     if (o.live.duration_s && status.stream_time_s >= *o.live.duration_s) break;
     if (terminal && std::chrono::steady_clock::now() - last_print > std::chrono::seconds(1)) {
-      print_status(status, false);
+      print_status(stderr, status, false);
       last_print = std::chrono::steady_clock::now();
     }
   }
@@ -108,7 +110,9 @@ void run(const RecordOptions& o) {
   if (terminal) std::fputc('\n', stderr);
   // A failed recording (a full disk) is the one line on stderr; what it holds opens as it is.
   if (!status.recorder_error.empty()) throw InputError(status.recorder_error);
-  print_status(status, true);
+  // The final counts are a result: they close the live line on a terminal, and otherwise go to
+  // standard output with the rest, so that stderr (a log, a pipe) holds nothing but errors.
+  print_status(terminal ? stderr : stdout, status, true);
   const auto levels = acquisition->levels();
   std::printf("recorded %s: %llu samples (%.1f s)%s\n", o.out.c_str(),
               static_cast<unsigned long long>(status.recorded_samples),

@@ -254,6 +254,15 @@ else
   fail "analyze short window: $(head -2 "$work/short_edc.csv"; head -3 "$work/short.out")"
 fi
 
+# --- The live status line is for a person at a terminal: with stderr a file (a log, a service),
+# a good recording leaves it empty, and the final counts go to stdout with the rest.
+"$cli" record --source rig --speed 0 --duration 3 --out "$work/quiet.wav" > "$work/quiet.out" \
+  2> "$work/quiet.err"
+status=$?
+[ $status -eq 0 ] && [ ! -s "$work/quiet.err" ] && grep -q "samples 1536 .* levels 0$" "$work/quiet.out" \
+  && pass "record: no status line on a stderr that is not a terminal" \
+  || fail "record status: exit $status, stderr $(head -c 200 "$work/quiet.err")"
+
 # --- Outputs never over inputs, and all or nothing.
 "$cli" fit "$pos" "$neg" --evaluations 20 --threads 1 --out "$work/fit1.json" > /dev/null 2>&1
 cp "$work/fit1.json" "$work/fit1.before"
