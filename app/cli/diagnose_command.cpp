@@ -15,6 +15,7 @@
 #include "analysis/identification/fit_setup.h"
 #include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/model_json.h"
+#include "analysis/pipeline/offline_analysis.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/cost_options.h"
@@ -140,6 +141,8 @@ void run(const DiagnoseOptions& o) {
                      std::to_string(analysis::kMaxThreads));
   }
   const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, {}, {});
+  // A stepped-sine record none of whose levels measures anything is refused, as by analyze.
+  analysis::require_measured_levels(campaign);
   analysis::FitSetup setup;
   setup.base_model = analysis::model_from_spec(o.model);
   setup.stiffness = analysis::parse_stiffness_source(o.stiffness, "--stiffness");

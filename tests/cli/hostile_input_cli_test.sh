@@ -240,6 +240,15 @@ for case in "zero_base:base-constant: the base channel shows no motion above its
     || fail "analyze $name report: $(head -4 "$work/err.out")"
   expect_absent "analyze: $name: no EDC table" "$work/${name}_edc.csv"
 done
+expect_error "fit: a record with a dead base channel" "zero_base.csv: no usable level: 26 of 26" \
+  "$cli" fit "$work/zero_base.csv" "$neg" --evaluations 20 --out "$work/deg_fit.json"
+expect_error "diagnose: a record with swapped roles" "swapped.csv: no usable level: 26 of 26" \
+  "$cli" diagnose "$work/swapped.csv" "$neg" --out "$work/deg_diag"
+expect_error "export --edc-mat: a record with a constant mass channel" \
+  "const_mass.csv: no usable level: 26 of 26" \
+  "$cli" export "$work/const_mass.csv" --edc-mat "$work/deg.mat"
+expect_absent "fit, diagnose, export: nothing written for a degenerate record" \
+  "$work/deg_fit.json" "$work/deg_diag" "$work/deg.mat"
 expect_error "analyze: a scale of 1e300" \
   "scale.json: channels\[1\].scale: 1e+300 is outside the magnitudes a calibration can have" \
   "$cli" analyze "$work/scale.csv" --edc "$work/scale_edc.csv"
