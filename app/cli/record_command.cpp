@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/level_tracker.h"
 #include "app/cli/commands.h"
 #include "app/cli/live_source_options.h"
 #include "app/cli/output_files.h"
@@ -126,6 +127,10 @@ void run(const RecordOptions& o) {
   for (const auto& l : levels) {
     std::printf("  %-8s f0 %.3f N  EDC %.6g ± %.2g mJ  %d cycles %s\n", to_string(l.well).c_str(),
                 l.f0_n, 1e3 * l.edc_mean_j, 1e3 * l.edc_std_j, l.cycles, l.flags().c_str());
+  }
+  // What the degenerate-data flags mean, once each (as analyze's report says them).
+  for (const std::string& note : analysis::degenerate_level_notes(levels)) {
+    std::printf("note: %s\n", note.c_str());
   }
   if (!o.edc.empty()) write_edc(levels, o.edc);
 }

@@ -249,6 +249,13 @@ expect_error "export --edc-mat: a record with a constant mass channel" \
   "$cli" export "$work/const_mass.csv" --edc-mat "$work/deg.mat"
 expect_absent "fit, diagnose, export: nothing written for a degenerate record" \
   "$work/deg_fit.json" "$work/deg_diag" "$work/deg.mat"
+# The same record replayed live: the live table flags each level and the report notes it.
+"$cli" record --source "file:$work/zero_base.csv" --speed 0 --out "$work/live_dead.wav" \
+  --edc "$work/live_dead_edc.csv" > "$work/live_dead.out" 2>&1
+[ "$(grep -c ',base-constant$' "$work/live_dead_edc.csv")" -eq 26 ] \
+  && grep -q "^note: 26 of 26 levels flagged base-constant" "$work/live_dead.out" \
+  && pass "record --edc: a dead base channel's live levels flagged base-constant, with a note" \
+  || fail "record --edc dead base: $(tail -2 "$work/live_dead.out")"
 expect_error "analyze: a scale of 1e300" \
   "scale.json: channels\[1\].scale: 1e+300 is outside the magnitudes a calibration can have" \
   "$cli" analyze "$work/scale.csv" --edc "$work/scale_edc.csv"
