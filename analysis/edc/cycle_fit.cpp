@@ -142,6 +142,7 @@ bool fit_cycle(const CycleFitInput& input, double start_s, const double* t_s, co
     const std::complex<double> z = input.mass_is_relative ? y_d : y_d - b_d;
     const std::complex<double> f = excitation_force_harmonic(input.mass_kg, hw, b_d);
     out.z_h[static_cast<std::size_t>(h - 1)] = z;
+    if (h == 1) out.y1_abs_m = std::abs(y_d);
     f_h[static_cast<std::size_t>(h - 1)] = f;
     b_disp(2 * h) = b_d.real();
     b_disp(2 * h + 1) = b_d.imag();

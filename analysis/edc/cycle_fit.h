@@ -29,9 +29,11 @@ struct CycleFit {
   double z_min_m = 0.0;   // extremes of the fitted z over the cycle
   double z_max_m = 0.0;
   std::vector<std::complex<double>> z_h;  // Z_1..Z_H, displacement [m], phase at t_ref
-  double lag_rad = 0.0;                   // θ1 ∈ (−π, π]
-  double edc_j = 0.0;                     // ∮ f dz from all fitted harmonics
-  double edc_eq13_j = 0.0;                // π f0 |Z1| sin θ1
+  double y1_abs_m = 0.0;     // |Y1|: the mass channel's first harmonic as displacement (|Z1| when
+                             // the channel measures z)
+  double lag_rad = 0.0;      // θ1 ∈ (−π, π]
+  double edc_j = 0.0;        // ∮ f dz from all fitted harmonics
+  double edc_eq13_j = 0.0;   // π f0 |Z1| sin θ1
   double edc_trapz_j = 0.0;  // trapezoidal ∮ f dz on the samples (f measured, z = y − b_fit)
   double base_residual_rms = 0.0;  // fit residuals, in the channel's own SI unit
   double mass_residual_rms = 0.0;

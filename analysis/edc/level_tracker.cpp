@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "analysis/common/quantile.h"
@@ -62,7 +63,48 @@ std::string LevelResult::flags() const {
   if (!period1) add("not-period-1");
   if (cross_well) add("cross-well");
   if (few_cycles) add("few-cycles");
+  if (base_constant) add("base-constant");
+  if (mass_constant) add("mass-constant");
+  if (negative_edc) add("negative-edc");
+  if (non_finite) add("non-finite");
+  if (short_window) add("short-window");
+  if (beyond_record) add("beyond-record");
   return text;
+}
+
+std::vector<std::string> degenerate_level_notes(const std::vector<LevelResult>& levels) {
+  struct Fault {
+    bool LevelResult::*flag;
+    const char* text;  // follows "N of M levels"
+  };
+  static const Fault kFaults[] = {
+      {&LevelResult::base_constant,
+       "base-constant: the base channel shows no motion above its noise, so no excitation is "
+       "measured; check that channel's wiring, role and scale"},
+      {&LevelResult::mass_constant,
+       "mass-constant: the mass channel shows no motion above its noise, so the EDC is noise; "
+       "check that channel's wiring, role and scale"},
+      {&LevelResult::negative_edc,
+       "negative-edc: the energy dissipated per cycle is negative beyond its noise, which a "
+       "passive specimen cannot do; the base and mass roles (or a channel's sign) are likely "
+       "swapped"},
+      {&LevelResult::non_finite,
+       "non-finite: the results overflow; a channel's values or its scale are absurd"},
+      {&LevelResult::short_window,
+       "short-window: the sidecar's steady window is shorter than one forcing period and holds "
+       "no cycle"},
+      {&LevelResult::beyond_record,
+       "beyond-record: the sidecar's steady window reaches past the end of the record"},
+  };
+  std::vector<std::string> notes;
+  for (const Fault& fault : kFaults) {
+    const auto count = std::count_if(levels.begin(), levels.end(),
+                                     [&](const LevelResult& l) { return l.*(fault.flag); });
+    if (count == 0) continue;
+    notes.push_back(std::to_string(count) + " of " + std::to_string(levels.size()) +
+                    " levels flagged " + fault.text);
+  }
+  return notes;
 }
 
 LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOptions& options) {
@@ -163,6 +205,27 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
     level.period1 = harmonics_repeat && energy_repeats;
   }
 
+  // Degenerate data. Over a cycle of N samples a least-squares sine/cosine coefficient of white
+  // noise σ has σ·√(2/N), so the first harmonic of a channel that holds no tone is Rayleigh
+  // distributed with mean 1.25 of that and exceeds 5 of it with probability e^(−12.5) ≈ 4e-6.
+  // A channel whose first harmonic stays within 5 such σ does not measure the motion at all (a
+  // constant or disconnected channel: both are 0 then). Its phase, and the EDC, are noise.
+  constexpr double kToneSigmas = 5.0;
+  double y1 = 0.0;
+  for (const CycleFit& c : steady) y1 += c.y1_abs_m;
+  y1 /= n;
+  level.base_constant = !(level.f0_n > kToneSigmas * sigma_f);
+  level.mass_constant = !(y1 > kToneSigmas * mass_noise * coefficient_noise);
+  // A passive specimen dissipates: EDC ≥ 0. A mean below zero by more than 5 of its standard
+  // errors (the larger of the predicted floor and the observed scatter over √n) is not noise
+  // (p < 3e-7) but swapped base and mass roles or a channel of the wrong sign.
+  const double edc_standard_error =
+      std::max(level.edc_noise_floor_j, level.edc_std_j / std::sqrt(n));
+  level.negative_edc = level.edc_mean_j < -kToneSigmas * edc_standard_error;
+  level.non_finite = !(std::isfinite(level.edc_mean_j) && std::isfinite(level.edc_std_j) &&
+                       std::isfinite(level.edc_noise_floor_j) && std::isfinite(level.f0_n) &&
+                       std::isfinite(level.z1_abs_m));
+
   if (level.cross_well) {
     level.well = Well::CrossWell;
   } else if (std::isfinite(level.z_mean_m) &&
@@ -199,35 +262,72 @@ bool LevelTracker::starts_new_level(const CycleFit& cycle) const {
          std::max(options_.level_change_rel * reference, 5.0 * sigma);
 }
 
-void LevelTracker::close_level(std::vector<LevelResult>& finished) {
+namespace {
+
+// What a sidecar window says of its level, whatever its cycles: too short to hold one, or
+// reaching past the end of the stream (a tolerance of 1 µs, as window_of's).
+void mark_window(LevelResult& level, const LevelWindow& window, const LevelOptions& options,
+                 double stream_end_s) {
+  level.short_window = options.freq_hz > 0 && window.end_s - window.start_s < 1.0 / options.freq_hz;
+  level.beyond_record = std::isfinite(window.end_s) && window.end_s > stream_end_s + 1e-6;
+}
+
+}  // namespace
+
+void LevelTracker::close_level(std::vector<LevelResult>& finished, double stream_end_s) {
   // A sidecar level is always reported (flagged when it is short); a detected one needs enough
   // steady cycles to be a level at all, not a ramp between two.
   const bool from_window = level_window_ >= 0;
   if (from_window || static_cast<int>(level_cycles_.size()) >= options_.min_steady_cycles) {
     LevelResult level = summarise_level(level_cycles_, options_);
+    if (from_window) {
+      report_windows_without_cycles(static_cast<std::size_t>(level_window_), finished,
+                                    stream_end_s);
+      mark_window(level, options_.windows[static_cast<std::size_t>(level_window_)], options_,
+                  stream_end_s);
+      next_window_ = std::max(next_window_, static_cast<std::size_t>(level_window_) + 1);
+    }
     if (from_window || !level.few_cycles) finished.push_back(level);
   }
   level_cycles_.clear();
   level_window_ = -1;
 }
 
+void LevelTracker::report_windows_without_cycles(std::size_t until,
+                                                 std::vector<LevelResult>& finished,
+                                                 double stream_end_s) {
+  for (; next_window_ < std::min(until, options_.windows.size()); ++next_window_) {
+    const LevelWindow& window = options_.windows[next_window_];
+    // No cycle to measure: the level is known by its window alone.
+    LevelResult level;
+    level.start_s = window.start_s;
+    level.end_s = std::isfinite(window.end_s) ? window.end_s : window.start_s;
+    level.few_cycles = true;
+    mark_window(level, window, options_, stream_end_s);
+    finished.push_back(level);
+  }
+}
+
 void LevelTracker::push(const std::vector<CycleFit>& cycles, std::vector<LevelResult>& finished) {
   for (const CycleFit& cycle : cycles) {
     if (options_.windowed || !options_.windows.empty()) {
       const int window = window_of(cycle);
-      if (window != level_window_ && !level_cycles_.empty()) close_level(finished);
+      if (window != level_window_ && !level_cycles_.empty()) {
+        close_level(finished, std::numeric_limits<double>::infinity());
+      }
       if (window < 0) continue;  // ramps and gaps between the sidecar's levels
       level_window_ = window;
       level_cycles_.push_back(cycle);
     } else {
-      if (starts_new_level(cycle)) close_level(finished);
+      if (starts_new_level(cycle)) close_level(finished, std::numeric_limits<double>::infinity());
       level_cycles_.push_back(cycle);
     }
   }
 }
 
-void LevelTracker::finish(std::vector<LevelResult>& finished) {
-  if (!level_cycles_.empty()) close_level(finished);
+void LevelTracker::finish(std::vector<LevelResult>& finished, double stream_end_s) {
+  if (!level_cycles_.empty()) close_level(finished, stream_end_s);
+  report_windows_without_cycles(options_.windows.size(), finished, stream_end_s);
 }
 
 void LevelTracker::add_window(const LevelWindow& window) {

@@ -61,9 +61,21 @@ struct LevelResult {
   double period1_change = 0.0;  // median relative change of the harmonics between cycles
   bool period1 = true;          // false: sub-harmonic or non-periodic motion (Fig. 17)
   bool cross_well = false;
-  bool usable() const { return period1 && !cross_well && cycles > 0; }
-  std::string flags() const;  // "" or e.g. "not-period-1;cross-well;few-cycles"
   bool few_cycles = false;
+  // Degenerate data, said and never scored (docs/contracts.md §3):
+  bool base_constant = false;  // the force's first harmonic within the base channel's noise
+  bool mass_constant = false;  // the mass's first harmonic within its channel's noise
+  bool negative_edc = false;   // EDC below zero beyond its noise: roles or a sign swapped
+  bool non_finite = false;     // a result overflowed: a channel's values or scale are absurd
+  bool short_window = false;   // the sidecar's window is shorter than one forcing period
+  bool beyond_record = false;  // the sidecar's window reaches past the end of the record
+  /// Steady cycles of data that measure something: no degenerate-data flag. A level can be
+  /// measured and still not usable (not period-1, cross-well).
+  bool measured() const {
+    return cycles > 0 && !base_constant && !mass_constant && !negative_edc && !non_finite;
+  }
+  bool usable() const { return period1 && !cross_well && measured(); }
+  std::string flags() const;  // "" or e.g. "not-period-1;cross-well;few-cycles"
 };
 
 /// Groups fitted cycles into stepped-sine levels, finds each level's steady part, and reduces it
@@ -73,7 +85,11 @@ class LevelTracker {
  public:
   explicit LevelTracker(LevelOptions options);
   void push(const std::vector<CycleFit>& cycles, std::vector<LevelResult>& finished);
-  void finish(std::vector<LevelResult>& finished);
+  /// Ends the stream at `stream_end_s` (the end of its last sample): closes the level being
+  /// filled, and reports every window that got no cycle (flagged few-cycles, and short-window or
+  /// beyond-record where that is why), so that each of the sidecar's levels has its row.
+  void finish(std::vector<LevelResult>& finished,
+              double stream_end_s = std::numeric_limits<double>::infinity());
   /// The level being filled, summarised so far (live display); empty when there is none.
   std::optional<LevelResult> current() const;
   /// Live: a level's steady window starts (end_s may be +∞ until end_window). Windows come in
@@ -83,16 +99,23 @@ class LevelTracker {
   void end_window(double end_s);
 
  private:
-  void close_level(std::vector<LevelResult>& finished);
+  void close_level(std::vector<LevelResult>& finished, double stream_end_s);
+  void report_windows_without_cycles(std::size_t until, std::vector<LevelResult>& finished,
+                                     double stream_end_s);
   bool starts_new_level(const CycleFit& cycle) const;
   int window_of(const CycleFit& cycle) const;
 
   LevelOptions options_;
   std::vector<CycleFit> level_cycles_;
   int level_window_ = -1;
+  std::size_t next_window_ = 0;  // the first window not reported yet
 };
 
 /// Reduces one level's cycles (in time order, transient included) to its result.
 LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOptions& options);
+
+/// One note per degenerate-data flag the levels carry, with how many levels carry it and what
+/// it means (docs/contracts.md §3), in the order of LevelResult::flags(); none when there is none.
+std::vector<std::string> degenerate_level_notes(const std::vector<LevelResult>& levels);
 
 }  // namespace oscilab::analysis

@@ -95,12 +95,19 @@ const char* kF0Label = "forcing amplitude f0 [N]";
 
 void write_branches_csv(const std::vector<CsvBranch>& branches, bool well_column,
                         bool period_column, const std::string& path) {
-  if (branches.size() == 1 && !well_column && !period_column) {
-    analysis::write_branch_csv(*branches[0].branch, path);
-    return;
-  }
   std::ofstream file(path);
   if (!file) throw InputError(path + ": cannot write");
+  write_branches_csv(branches, well_column, period_column, file);
+  file.close();
+  if (!file) throw InputError(path + ": write failed");
+}
+
+void write_branches_csv(const std::vector<CsvBranch>& branches, bool well_column,
+                        bool period_column, std::ostream& file) {
+  if (branches.size() == 1 && !well_column && !period_column) {
+    analysis::write_branch_csv(*branches[0].branch, file);
+    return;
+  }
   for (std::size_t i = 0; i < branches.size(); ++i) {
     std::ostringstream text;
     analysis::write_branch_csv(*branches[i].branch, text);
@@ -117,7 +124,6 @@ void write_branches_csv(const std::vector<CsvBranch>& branches, bool well_column
       file << '\n';
     }
   }
-  if (!file) throw InputError(path + ": write failed");
 }
 
 Figure branch_figure(const std::string& title, const std::vector<NamedBranch>& branches) {

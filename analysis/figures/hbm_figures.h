@@ -1,5 +1,6 @@
 #pragma once
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct CsvBranch {
 /// naming the file when it cannot be written.
 void write_branches_csv(const std::vector<CsvBranch>& branches, bool well_column,
                         bool period_column, const std::string& path);
+/// The same into a stream (the caller checks it).
+void write_branches_csv(const std::vector<CsvBranch>& branches, bool well_column,
+                        bool period_column, std::ostream& out);
 
 /// Figs. 11 and 15: amplitude and EDC against f0 (stable parts solid, unstable dashed, folds and
 /// period doublings marked); with one branch also its harmonics |Z_h| / |Z_1|.

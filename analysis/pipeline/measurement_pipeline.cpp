@@ -1,5 +1,7 @@
 #include "analysis/pipeline/measurement_pipeline.h"
 
+#include <algorithm>
+
 #include "analysis/common/input_error.h"
 
 namespace oscilab::analysis {
@@ -56,6 +58,7 @@ void MeasurementPipeline::push(const SampleBlock& block) {
   for (Eigen::Index i = 0; i < n; ++i) {
     t_scratch_[static_cast<std::size_t>(i)] = block.t0_s + static_cast<double>(i) * dt;
   }
+  stream_end_s_ = std::max(stream_end_s_, block.t0_s + static_cast<double>(n) * dt);
   analyse(block.samples.col(0).data(), block.samples.col(1).data(), static_cast<int>(n));
 }
 
@@ -67,6 +70,7 @@ void MeasurementPipeline::push(std::int64_t first_sample, const double* base, co
   for (int i = 0; i < count; ++i) {
     t_scratch_[static_cast<std::size_t>(i)] = static_cast<double>(first_sample + i) * dt;
   }
+  stream_end_s_ = std::max(stream_end_s_, static_cast<double>(first_sample + count) * dt);
   analyse(base, mass, count);
 }
 
@@ -77,6 +81,6 @@ void MeasurementPipeline::analyse(const double* base, const double* mass, int co
   tracker_.push(completed_, levels_);
 }
 
-void MeasurementPipeline::finish() { tracker_.finish(levels_); }
+void MeasurementPipeline::finish() { tracker_.finish(levels_, stream_end_s_); }
 
 }  // namespace oscilab::analysis

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -49,7 +50,8 @@ class MeasurementPipeline {
   /// discontinuity.
   void exclude(double start_s, double end_s) { analyzer_.exclude(start_s, end_s); }
   long excluded_cycles() const { return analyzer_.excluded_cycles(); }
-  /// Ends the stream: closes the level being filled.
+  /// Ends the stream: closes the level being filled and reports the sidecar's levels that got
+  /// no cycle (LevelTracker::finish, with the end of the last sample pushed).
   void finish();
 
   const std::vector<CycleFit>& cycles() const { return cycles_; }
@@ -68,6 +70,7 @@ class MeasurementPipeline {
   std::vector<CycleFit> completed_;  // scratch, reused between pushes
   std::vector<double> t_scratch_;
   std::vector<LevelResult> levels_;
+  double stream_end_s_ = -std::numeric_limits<double>::infinity();  // end of the last sample
 };
 
 }  // namespace oscilab::analysis

@@ -130,6 +130,9 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
       out.notes.push_back(std::to_string(pipeline.excluded_cycles()) +
                           " cycle(s) touching invalid intervals left out of the EDC");
     }
+    for (std::string& note : degenerate_level_notes(out.levels)) {
+      out.notes.push_back(std::move(note));
+    }
   }
   out.motion = motion_signals(filled, settings, mass);
   // The zero-phase filters spread a bad stretch over about one period of the integration
@@ -144,6 +147,32 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
     }
   }
   return out;
+}
+
+std::string no_measured_level_reason(const RecordAnalysis& record) {
+  if (!record.stepped_sine) return "";
+  if (record.levels.empty()) {
+    return record.name +
+           ": no stepped-sine level found in the record (give the levels in the "
+           "sidecar, or check the base channel)";
+  }
+  if (std::any_of(record.levels.begin(), record.levels.end(),
+                  [](const LevelResult& level) { return level.measured(); })) {
+    return "";
+  }
+  std::string reason = record.name + ": no usable level";
+  const std::vector<std::string> notes = degenerate_level_notes(record.levels);
+  if (notes.empty()) return reason + ": no level has steady cycles";
+  for (std::size_t i = 0; i < notes.size(); ++i) reason += (i == 0 ? ": " : "; ") + notes[i];
+  return reason;
+}
+
+void require_measured_levels(const CampaignAnalysis& campaign) {
+  for (const RecordAnalysis& record : campaign.records) {
+    if (std::string reason = no_measured_level_reason(record); !reason.empty()) {
+      throw InputError(reason);
+    }
+  }
 }
 
 std::vector<const MotionSignals*> slice_records(const std::vector<RecordAnalysis>& records) {

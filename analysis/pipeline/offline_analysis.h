@@ -52,6 +52,16 @@ StreamSetup stream_setup(const MeasurementChannels& channels);
 RecordAnalysis analyze_record(const MeasurementChannels& channels,
                               const PipelineSettings& settings);
 
+/// Why a stepped-sine record has no level that measures anything (LevelResult::measured: every
+/// level flagged base-constant, mass-constant, negative-edc or non-finite, or without steady
+/// cycles), or none found at all; "" when it has one, or is no stepped sine. Levels that are
+/// measured but not usable (not period-1, cross-well) are results, not a fault.
+std::string no_measured_level_reason(const RecordAnalysis& record);
+
+/// Throws InputError with no_measured_level_reason for the first record that has one: what
+/// `analyze` and the EDC exports refuse.
+void require_measured_levels(const CampaignAnalysis& campaign);
+
 /// analyze_record for each, then the stiffness and damping slices over all of them.
 CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
                                   const PipelineSettings& settings, const ProgressFn& progress = {},

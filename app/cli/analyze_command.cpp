@@ -188,6 +188,9 @@ void run(const AnalyzeOptions& options) {
       analyze_recordings(options.recordings, overrides, options.settings, &times);
   const auto output_start = std::chrono::steady_clock::now();
   print_report(campaign);
+  // A stepped-sine record of which no level measures anything (a dead channel, swapped roles,
+  // levels beyond its end) is bad input: the report above shows its flags, no table is written.
+  analysis::require_measured_levels(campaign);
   // Every output complete before any is in place: a failure leaves none of them.
   OutputFiles outputs;
   if (!options.edc_path.empty()) {

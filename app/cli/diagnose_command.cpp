@@ -15,9 +15,11 @@
 #include "analysis/identification/fit_setup.h"
 #include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/model_json.h"
+#include "analysis/pipeline/offline_analysis.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/cost_options.h"
+#include "app/cli/output_files.h"
 #include "app/cli/progress_bar.h"
 
 namespace oscilab::cli {
@@ -41,8 +43,7 @@ struct DiagnoseOptions {
   bool no_png = false;
 };
 
-void write_levels_csv(const analysis::DiagnosisResult& r, const std::string& path) {
-  std::ofstream out(path);
+void write_levels_csv(const analysis::DiagnosisResult& r, std::ostream& out) {
   out << "well,f0_n,amplitude_m,edc_mes_j,edc_baseline_j,edc_final_j,sigma_j,"
          "residual_baseline_sigma,residual_final_sigma\n";
   for (std::size_t i = 0; i < r.baseline_maps.levels.size(); ++i) {
@@ -52,7 +53,6 @@ void write_levels_csv(const analysis::DiagnosisResult& r, const std::string& pat
         << b.amplitude_m << ',' << b.edc_mes_j << ',' << b.edc_mod_j << ',' << f.edc_mod_j << ','
         << b.sigma_j << ',' << b.residual_sigma << ',' << f.residual_sigma << '\n';
   }
-  if (!out) throw InputError(path + ": write failed");
 }
 
 std::string evidence_text(const std::vector<analysis::EvidenceChange>& evidence) {
@@ -140,11 +140,9 @@ void run(const DiagnoseOptions& o) {
     throw InputError("--threads: " + std::to_string(o.threads) + " must be 0 (all cores) to " +
                      std::to_string(analysis::kMaxThreads));
   }
-  std::error_code error;
-  std::filesystem::create_directories(o.out_dir, error);
-  if (error) throw InputError(o.out_dir + ": cannot create: " + error.message());
-
   const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, {}, {});
+  // A stepped-sine record none of whose levels measures anything is refused, as by analyze.
+  analysis::require_measured_levels(campaign);
   analysis::FitSetup setup;
   setup.base_model = analysis::model_from_spec(o.model);
   setup.stiffness = analysis::parse_stiffness_source(o.stiffness, "--stiffness");
@@ -171,19 +169,33 @@ void run(const DiagnoseOptions& o) {
 
   nlohmann::json report = analysis::diagnosis_report_json(result, o.recordings, o.bic_threshold);
   report["notes"] = notes;
-  const std::string report_path = o.out_dir + "/report.json";
-  std::ofstream out(report_path);
-  out << report.dump(2) << '\n';
-  if (!out) throw InputError(report_path + ": write failed");
-  write_levels_csv(result, o.out_dir + "/levels.csv");
-  if (result.final_form) {
-    analysis::save_model(result.final_form->build(result.final_theta),
-                         o.out_dir + "/final_model.json");
-  }
-  if (!o.no_png) {
-    figures::write_figure_png(figures::residual_figure(result), o.out_dir + "/residuals.png");
-    figures::write_figure_png(figures::missing_energy_figure(result),
-                              o.out_dir + "/missing_energy.png");
+  // The folder only now that there is something to put in it; every file complete under a
+  // temporary name before any takes its own, and a folder made here removed again when they fail.
+  std::error_code error;
+  const bool existed = std::filesystem::exists(o.out_dir, error);
+  std::filesystem::create_directories(o.out_dir, error);
+  if (error) throw InputError(o.out_dir + ": cannot create: " + error.message());
+  try {
+    OutputFiles outputs;
+    outputs.write(o.out_dir + "/report.json",
+                  [&](std::ostream& out) { out << report.dump(2) << '\n'; });
+    outputs.write(o.out_dir + "/levels.csv",
+                  [&](std::ostream& out) { write_levels_csv(result, out); });
+    if (result.final_form) {
+      const nlohmann::json model = result.final_form->build(result.final_theta).to_json();
+      outputs.write(o.out_dir + "/final_model.json",
+                    [&](std::ostream& out) { out << model.dump(2) << '\n'; });
+    }
+    if (!o.no_png) {
+      figures::write_figure_png(figures::residual_figure(result),
+                                outputs.add(o.out_dir + "/residuals.png"));
+      figures::write_figure_png(figures::missing_energy_figure(result),
+                                outputs.add(o.out_dir + "/missing_energy.png"));
+    }
+    outputs.commit();
+  } catch (...) {
+    if (!existed) std::filesystem::remove(o.out_dir, error);  // only when still empty
+    throw;
   }
   std::printf("report, tables and figures written to %s/\n", o.out_dir.c_str());
 }

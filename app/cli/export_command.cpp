@@ -12,6 +12,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/edc/well.h"
+#include "analysis/pipeline/offline_analysis.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
 #include "app/cli/option_parsing.h"
@@ -134,6 +135,8 @@ void run(const ExportOptions& o) {
     }
     const analysis::CampaignAnalysis campaign =
         analyze_recordings(o.recordings, overrides, analysis::PipelineSettings{});
+    // A stepped-sine record none of whose levels measures anything is refused, as by analyze.
+    analysis::require_measured_levels(campaign);
     const std::vector<daq::EdcTableRow> rows = daq::edc_table_rows(campaign);
     daq::write_edc_mat(rows, o.edc_mat_path);
     std::cout << "wrote " << o.edc_mat_path << " (" << rows.size() << " EDC levels)\n";

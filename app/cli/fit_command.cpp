@@ -105,6 +105,8 @@ void run(const FitCommandOptions& o) {
   daq::MappingOverrides overrides;
   if (o.freq_hz > 0) overrides.excitation_freq_hz = o.freq_hz;
   const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, overrides, {});
+  // A stepped-sine record none of whose levels measures anything is refused, as by analyze.
+  analysis::require_measured_levels(campaign);
   analysis::FitSetup setup;
   setup.base_model = analysis::model_from_spec(o.model);
   setup.stiffness = stiffness;

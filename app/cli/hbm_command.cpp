@@ -18,10 +18,18 @@
 #include "analysis/simulation/bifurcation_map.h"
 #include "app/cli/commands.h"
 #include "app/cli/option_parsing.h"
+#include "app/cli/output_files.h"
 #include "app/cli/progress_bar.h"
 
 namespace oscilab::cli {
 namespace {
+
+// A figure written under a temporary name and renamed into place when complete.
+void write_png_output(const figures::Figure& figure, const std::string& target) {
+  OutputFiles output;
+  figures::write_figure_png(figure, output.add(target));
+  output.commit();
+}
 
 struct HbmCommandOptions {
   std::string model = "paper";
@@ -168,7 +176,10 @@ void run(const HbmCommandOptions& o) {
       follow_period_doublings(model, branches[i], options, wells[i], doubled, csv);
     }
   }
-  figures::write_branches_csv(csv, wells.size() > 1, o.follow_period_doubling, o.out);
+  // Each file complete under a temporary name before it takes its own (a full disk leaves none).
+  write_output_file(o.out, [&](std::ostream& out) {
+    figures::write_branches_csv(csv, wells.size() > 1, o.follow_period_doubling, out);
+  });
   std::printf("wrote %s\n", o.out.c_str());
   for (const analysis::Branch& branch : branches) {
     if (branch.status != JobStatus::Ok) {
@@ -187,7 +198,7 @@ void run(const HbmCommandOptions& o) {
                 o.harmonics,
                 o.subharmonic > 1 ? (", nu = " + std::to_string(o.subharmonic)).c_str() : "");
   if (!o.png.empty()) {
-    figures::write_figure_png(figures::branch_figure(title, named), o.png + "-branch.png");
+    write_png_output(figures::branch_figure(title, named), o.png + "-branch.png");
     std::printf("wrote %s-branch.png\n", o.png.c_str());
   }
 
@@ -197,7 +208,8 @@ void run(const HbmCommandOptions& o) {
       ProgressBar bar("sweep");
       sweep = analysis::amplitude_sweep(model, sweep_options, bar.callback());
     }
-    analysis::write_amplitude_sweep_csv(sweep, o.sweep);
+    write_output_file(o.sweep,
+                      [&](std::ostream& out) { analysis::write_amplitude_sweep_csv(sweep, out); });
     std::printf("wrote %s: sweep 0 -> %g -> 0 N, %g s each way (%g N/s), %s well\n",
                 o.sweep.c_str(), sweep_options.f0_max_n, o.sweep_time,
                 sweep_options.f0_max_n / o.sweep_time, to_string(wells[0]).c_str());
@@ -211,8 +223,8 @@ void run(const HbmCommandOptions& o) {
       std::snprintf(sweep_title, sizeof sweep_title,
                     "%s, time integration: f0 swept 0 -> %g -> 0 N at %.3g N/s", title,
                     sweep_options.f0_max_n, sweep_options.f0_max_n / o.sweep_time);
-      figures::write_figure_png(figures::sweep_figure(sweep_title, branches[0], sweep),
-                                o.png + "-sweep.png");
+      write_png_output(figures::sweep_figure(sweep_title, branches[0], sweep),
+                       o.png + "-sweep.png");
       std::printf("wrote %s-sweep.png\n", o.png.c_str());
     }
   }
@@ -223,7 +235,8 @@ void run(const HbmCommandOptions& o) {
       ProgressBar bar("map");
       map = analysis::bifurcation_map(model, map_options, bar.callback());
     }
-    analysis::write_bifurcation_map_csv(map, o.map);
+    write_output_file(o.map,
+                      [&](std::ostream& out) { analysis::write_bifurcation_map_csv(map, out); });
     std::printf("wrote %s: %zu levels, %d periods each, last %d sampled at t = nT\n", o.map.c_str(),
                 map.levels.size(), o.map_hold, o.map_sampled);
     for (const Well well : {Well::Positive, Well::Negative}) {
@@ -242,7 +255,7 @@ void run(const HbmCommandOptions& o) {
       std::snprintf(map_title, sizeof map_title,
                     "%s: bifurcation map, time simulation stepped %g N, %d periods per level",
                     title, o.map_step, o.map_hold);
-      figures::write_figure_png(figures::map_figure(map_title, named, map), o.png + "-map.png");
+      write_png_output(figures::map_figure(map_title, named, map), o.png + "-map.png");
       std::printf("wrote %s-map.png\n", o.png.c_str());
     }
   }

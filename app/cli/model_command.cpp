@@ -7,6 +7,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/model/model_json.h"
 #include "app/cli/commands.h"
+#include "app/cli/output_files.h"
 
 namespace oscilab::cli {
 namespace {
@@ -16,13 +17,6 @@ struct ModelOptions {
   std::string out_path;
   std::string summary_path;
 };
-
-void write_json(const nlohmann::json& json, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot write");
-  out << json.dump(2) << '\n';
-  if (!out) throw InputError(path + ": write failed");
-}
 
 void run(const ModelOptions& options) {
   const analysis::Model model = analysis::model_from_spec(options.spec);
@@ -39,8 +33,16 @@ void run(const ModelOptions& options) {
       std::printf("  z* = %+.6f m  unstable\n", e["z_m"].get<double>());
     }
   }
-  if (!options.out_path.empty()) analysis::save_model(model, options.out_path);
-  if (!options.summary_path.empty()) write_json(summary, options.summary_path);
+  // Both files complete under temporary names before either takes its own.
+  OutputFiles outputs;
+  if (!options.out_path.empty()) {
+    outputs.write(options.out_path,
+                  [&](std::ostream& out) { out << model.to_json().dump(2) << '\n'; });
+  }
+  if (!options.summary_path.empty()) {
+    outputs.write(options.summary_path, [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
+  }
+  outputs.commit();
 }
 
 }  // namespace

@@ -1,10 +1,14 @@
 #pragma once
 // What a command writes, never over what it reads, and all or nothing.
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "analysis/common/input_error.h"
@@ -57,6 +61,16 @@ class OutputFiles {
     files_.push_back(std::make_unique<daq::TemporaryFile>(target));
     return files_.back()->path();
   }
+  /// Writes `target`'s temporary with `fill(std::ostream&)` and closes it; throws InputError
+  /// naming `target` when the file cannot be opened or a byte of it did not reach the disk.
+  template <class Fill>
+  void write(const std::string& target, Fill&& fill) {
+    std::ofstream out(add(target), std::ios::binary);
+    if (!out) throw InputError(target + ": cannot write: " + std::strerror(errno));
+    fill(out);
+    out.close();  // the last buffer is written here: a full disk shows only now
+    if (!out) throw InputError(target + ": write failed: " + std::strerror(errno));
+  }
   /// Renames every temporary onto its target, in the order added.
   void commit() {
     for (const auto& file : files_) file->commit();
@@ -65,5 +79,14 @@ class OutputFiles {
  private:
   std::vector<std::unique_ptr<daq::TemporaryFile>> files_;
 };
+
+/// One file written with `fill(std::ostream&)` under a temporary name and renamed into place when
+/// complete (OutputFiles::write, then commit).
+template <class Fill>
+void write_output_file(const std::string& target, Fill&& fill) {
+  OutputFiles output;
+  output.write(target, std::forward<Fill>(fill));
+  output.commit();
+}
 
 }  // namespace oscilab::cli

@@ -15,8 +15,10 @@
 #include <CLI/CLI.hpp>
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/level_tracker.h"
 #include "app/cli/commands.h"
 #include "app/cli/live_source_options.h"
+#include "app/cli/output_files.h"
 #include "daq/live/acquisition.h"
 
 namespace oscilab::cli {
@@ -34,9 +36,10 @@ struct RecordOptions {
   int sync_ms = 1000;   // the recording goes to the disk at most this often
 };
 
-void print_status(const daq::AcquisitionStatus& s, bool final_line) {
+// The status line: redrawn in place on a terminal (`final_line` false), or once at the end.
+void print_status(std::FILE* out, const daq::AcquisitionStatus& s, bool final_line) {
   std::fprintf(
-      stderr,
+      out,
       "%s%s  t %.1f s  samples %llu  gaps %llu (%llu samples)  dup %llu  reord %llu  "
       "late %llu  nan %llu  sat %llu  overflow %llu  queue %zu/%zu  cycles %ld (-%ld)  "
       "levels %zu%s",
@@ -50,15 +53,17 @@ void print_status(const daq::AcquisitionStatus& s, bool final_line) {
       s.cycles, s.excluded_cycles, s.levels, final_line ? "\n" : "   ");
 }
 
+// The live EDC table, complete under a temporary name before it takes its own.
 void write_edc(const std::vector<analysis::LevelResult>& levels, const std::string& path) {
-  std::FILE* out = std::fopen(path.c_str(), "w");
-  if (!out) throw InputError(path + ": cannot write");
-  std::fprintf(out, "well,f0_n,edc_mean_j,edc_std_j,cycles,flags\n");
-  for (const auto& l : levels) {
-    std::fprintf(out, "%s,%.9g,%.9g,%.9g,%d,%s\n", to_string(l.well).c_str(), l.f0_n, l.edc_mean_j,
-                 l.edc_std_j, l.cycles, l.flags().c_str());
-  }
-  if (std::fclose(out) != 0) throw InputError(path + ": write failed");
+  write_output_file(path, [&](std::ostream& out) {
+    out << "well,f0_n,edc_mean_j,edc_std_j,cycles,flags\n";
+    char row[256];
+    for (const auto& l : levels) {
+      std::snprintf(row, sizeof row, "%s,%.9g,%.9g,%.9g,%d,", to_string(l.well).c_str(), l.f0_n,
+                    l.edc_mean_j, l.edc_std_j, l.cycles);
+      out << row << l.flags() << '\n';
+    }
+  });
 }
 
 void run(const RecordOptions& o) {
@@ -81,6 +86,7 @@ void run(const RecordOptions& o) {
   std::printf("recording %s from %s\n", o.out.c_str(), acquisition->source().describe().c_str());
   std::fflush(stdout);
   acquisition->start();
+  // The live status line is for a person watching: drawn only when stderr is a terminal.
   const bool terminal = isatty(STDERR_FILENO) != 0;
   const auto started = std::chrono::steady_clock::now();
   auto last_print = started;
@@ -96,7 +102,7 @@ void run(const RecordOptions& o) {
     if (!status.recorder_error.empty()) break;
     if (o.live.duration_s && status.stream_time_s >= *o.live.duration_s) break;
     if (terminal && std::chrono::steady_clock::now() - last_print > std::chrono::seconds(1)) {
-      print_status(status, false);
+      print_status(stderr, status, false);
       last_print = std::chrono::steady_clock::now();
     }
   }
@@ -105,7 +111,9 @@ void run(const RecordOptions& o) {
   if (terminal) std::fputc('\n', stderr);
   // A failed recording (a full disk) is the one line on stderr; what it holds opens as it is.
   if (!status.recorder_error.empty()) throw InputError(status.recorder_error);
-  print_status(status, true);
+  // The final counts are a result: they close the live line on a terminal, and otherwise go to
+  // standard output with the rest, so that stderr (a log, a pipe) holds nothing but errors.
+  print_status(terminal ? stderr : stdout, status, true);
   const auto levels = acquisition->levels();
   std::printf("recorded %s: %llu samples (%.1f s)%s\n", o.out.c_str(),
               static_cast<unsigned long long>(status.recorded_samples),
@@ -119,6 +127,10 @@ void run(const RecordOptions& o) {
   for (const auto& l : levels) {
     std::printf("  %-8s f0 %.3f N  EDC %.6g ± %.2g mJ  %d cycles %s\n", to_string(l.well).c_str(),
                 l.f0_n, 1e3 * l.edc_mean_j, 1e3 * l.edc_std_j, l.cycles, l.flags().c_str());
+  }
+  // What the degenerate-data flags mean, once each (as analyze's report says them).
+  for (const std::string& note : analysis::degenerate_level_notes(levels)) {
+    std::printf("note: %s\n", note.c_str());
   }
   if (!o.edc.empty()) write_edc(levels, o.edc);
 }

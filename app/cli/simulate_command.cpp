@@ -2,7 +2,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <system_error>
 
 #include "analysis/common/input_error.h"
 #include "analysis/edc/well.h"
@@ -10,6 +12,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/option_parsing.h"
 #include "app/cli/progress_bar.h"
+#include "daq/recording/sidecar.h"
 #include "daq/rig/virtual_rig.h"
 
 namespace oscilab::cli {
@@ -75,7 +78,17 @@ void run(const SimulateOptions& options) {
     throw InputError("simulate: integration failed: " + rig.message);
   }
   daq::write_recording(rig.recording, options.out);
-  if (options.truth) daq::write_truth(rig, model, options.out);
+  if (options.truth) {
+    try {
+      daq::write_truth(rig, model, options.out);
+    } catch (const InputError&) {
+      // A failed run leaves no file: not the recording without its truth either.
+      std::error_code ignored;
+      std::filesystem::remove(options.out, ignored);
+      std::filesystem::remove(daq::sidecar_path_for(options.out), ignored);
+      throw;
+    }
+  }
   const double duration = rig.recording.duration_s();
   std::printf("wrote %s: %s test, %s well, %.1f s at %g Hz, %ld samples\n", options.out.c_str(),
               options.test.c_str(), options.well.c_str(), duration, options.rate_hz,

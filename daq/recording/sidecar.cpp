@@ -38,6 +38,15 @@ constexpr double kMinSampleRateHz = 1e-3;  // one sample in 1000 s: slower is no
 constexpr double kMaxSampleRateHz = 1e8;   // 100 MHz: beyond any vibration acquisition system
 constexpr double kMinMassKg = 1e-9;        // 1 µg: a MEMS proof mass
 constexpr double kMaxMassKg = 1e6;         // 1000 t: beyond any shaking table's payload
+// |scale| and |offset| of a channel, in its unit (per stored unit for the scale). The finest
+// calibration in use is about a picometre per count (an interferometer's, in m: 1e-12); the
+// coarsest turns a count or a volt into at most a few thousand units (a kN load cell, 10 g per
+// volt). 1e12 leaves room for any unit and container: a full-scale 32-bit count (2e9) then
+// reaches 2e21, and an energy, the product of two channels and the squared frequency, stays far
+// inside the double's range (1e308), where 1e300 overflows it.
+constexpr double kMinScale = 1e-12;
+constexpr double kMaxScale = 1e12;
+constexpr double kMaxOffset = 1e12;
 
 // A number for a message: %g, so 1e+09 and 0.26 read as written.
 std::string format_number(double value) {
@@ -114,8 +123,19 @@ ChannelInfo parse_channel(const json& value, const JsonField& field) {
   unit_to_si(channel.unit, channel.quantity, (field / "unit").where());
   channel.scale = (field / "scale").finite_number(field.require(object, "scale"));
   if (channel.scale == 0.0) (field / "scale").fail("must not be zero");
+  if (std::abs(channel.scale) < kMinScale || std::abs(channel.scale) > kMaxScale) {
+    (field / "scale")
+        .fail(format_number(channel.scale) + " is outside the magnitudes a calibration can have (" +
+              format_number(kMinScale) + " to " + format_number(kMaxScale) + ", either sign)");
+  }
   if (const json* offset = JsonField::find(object, "offset")) {
     channel.offset = (field / "offset").finite_number(*offset);
+    if (std::abs(channel.offset) > kMaxOffset) {
+      (field / "offset")
+          .fail(format_number(channel.offset) +
+                " is outside the offsets a calibration can have (at most " +
+                format_number(kMaxOffset) + " in magnitude)");
+    }
   }
   if (const json* sensor = JsonField::find(object, "sensor")) {
     channel.sensor = (field / "sensor").string(*sensor);

@@ -1,6 +1,8 @@
 #include "daq/rig/virtual_rig.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -8,6 +10,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/edc/well.h"
 #include "analysis/simulation/stepped_sine_motion.h"
+#include "daq/recording/temporary_file.h"
 
 namespace oscilab::daq {
 namespace {
@@ -168,9 +171,12 @@ void write_truth(const RigRecording& rig, const analysis::Model& model,
                  const std::string& recording_path) {
   const std::filesystem::path path(recording_path);
   const std::string stem = (path.parent_path() / path.stem()).string();
+  // Both files complete under temporary names before either takes its own (TemporaryFile): a
+  // failed write leaves neither.
   const std::string csv_path = stem + ".truth.csv";
-  std::FILE* csv = std::fopen(csv_path.c_str(), "w");
-  if (!csv) throw InputError(csv_path + ": cannot write");
+  TemporaryFile csv_file(csv_path);
+  std::FILE* csv = std::fopen(csv_file.path().c_str(), "w");
+  if (!csv) throw InputError(csv_path + ": cannot write: " + std::strerror(errno));
   std::fprintf(csv, "t_s,z_m,z_dot_m_s,z_ddot_m_s2,b_m,f_n,restoring_force_n,damping_force_n\n");
   const auto& s = rig.truth;
   for (Eigen::Index k = 0; k < s.t_s.size(); ++k) {
@@ -179,7 +185,9 @@ void write_truth(const RigRecording& rig, const analysis::Model& model,
                  s.damping_force_n[k]);
   }
   const bool ok = std::ferror(csv) == 0;
-  if (std::fclose(csv) != 0 || !ok) throw InputError(csv_path + ": write failed");
+  if (std::fclose(csv) != 0 || !ok) {
+    throw InputError(csv_path + ": write failed: " + std::strerror(errno));
+  }
 
   nlohmann::json levels = nlohmann::json::array();
   for (const auto& level : rig.levels) {
@@ -197,9 +205,15 @@ void write_truth(const RigRecording& rig, const analysis::Model& model,
        "second half of each level's steady hold, per cycle"},
       {"levels", levels}};
   const std::string json_path = stem + ".truth.json";
-  std::ofstream out(json_path);
-  out << truth.dump(2) << '\n';
-  if (!out) throw InputError(json_path + ": write failed");
+  TemporaryFile json_file(json_path);
+  {
+    std::ofstream out(json_file.path());
+    out << truth.dump(2) << '\n';
+    out.close();
+    if (!out) throw InputError(json_path + ": write failed: " + std::strerror(errno));
+  }
+  csv_file.commit();
+  json_file.commit();
 }
 
 }  // namespace oscilab::daq

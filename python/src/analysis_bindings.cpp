@@ -165,6 +165,8 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
                                                           fraction_reporter(report), cancel);
       },
       progress);
+  // A stepped-sine record none of whose levels measures anything is refused, as the CLI does.
+  if (result->status == JobStatus::Ok) analysis::require_measured_levels(*result);
   return result;
 }
 

@@ -147,6 +147,9 @@ expect_error "diagnose --threads -1" "--threads: -1 must be 0 (all cores) to 102
   "$cli" diagnose "$pos" "$neg" --threads -1 --out "$work/diag"
 expect_absent "fit, diagnose: nothing written" "$work/f1.json" "$work/f2.json" "$work/f3.json" \
   "$work/f4.json" "$work/diag"
+expect_error "diagnose: a missing recording" "missing.flac: file not found" \
+  "$cli" diagnose "$work/missing.flac" --out "$work/diag_bad"
+expect_absent "diagnose: no folder made for a recording it cannot read" "$work/diag_bad"
 expect_error "record --wait -1" "--wait: -1 s must be >= 0" \
   "$cli" record --source "net:127.0.0.1:$((20000 + RANDOM % 30000))" --wait -1 --out "$work/w.wav"
 expect_absent "record --wait -1: nothing written" "$work/w.wav" "$work/w.json"
@@ -184,6 +187,98 @@ PY
 "$cli" info "$work/net_fields.wav" 2>&1 | grep -q "samples: *1536$" \
   && pass "the three valid DATA frames recorded" || fail "net_fields.wav samples"
 
+# --- Degenerate data said, not scored: a dead or constant channel, swapped roles, a steady
+# window shorter than a cycle, levels past the record's end. Each level gets a flag and the
+# report a note; a record none of whose levels measures anything is refused with one line.
+"$cli" import "$pos" --out "$work/deg.csv" > /dev/null
+python3 - "$work" <<'PY'
+import copy, csv, json, sys
+work = sys.argv[1]
+rows = list(csv.reader(open(work + "/deg.csv")))
+sidecar = json.load(open(work + "/deg.json"))
+def write(name, column=None, value=None, edit=None):
+    with open("%s/%s.csv" % (work, name), "w") as out:
+        for i, row in enumerate(rows):
+            if i > 0 and column is not None:
+                row = row[:column] + [value] + row[column + 1:]
+            out.write(",".join(row) + "\n")
+    side = copy.deepcopy(sidecar)
+    if edit:
+        edit(side)
+    json.dump(side, open("%s/%s.json" % (work, name), "w"))
+def swap(side):
+    side["channels"][0]["role"], side["channels"][1]["role"] = "mass", "base"
+def short(side):
+    side["excitation"]["levels"][0]["end_s"] = side["excitation"]["levels"][0]["start_s"] + 0.001
+def beyond(side):
+    for level in side["excitation"]["levels"]:
+        level["start_s"] += 1000
+        level["end_s"] += 1000
+def scale(side):
+    side["channels"][1]["scale"] = 1e300
+write("zero_base", 1, "0")
+write("const_base", 1, "80")  # counts: the accelerometer's bias alone
+write("const_mass", 2, "236663")
+write("swapped", edit=swap)
+write("short", edit=short)
+write("beyond", edit=beyond)
+write("scale", edit=scale)
+PY
+for case in "zero_base:base-constant: the base channel shows no motion above its noise" \
+    "const_base:base-constant" \
+    "const_mass:mass-constant: the mass channel shows no motion above its noise" \
+    "swapped:negative-edc: .* roles (or a channel's sign) are likely swapped" \
+    "beyond:beyond-record: the sidecar's steady window reaches past the end"; do
+  name=${case%%:*}
+  text=${case#*:}
+  flag=${text%%:*}
+  expect_error "analyze: $name refused" "$name.csv: no usable level: 26 of 26 levels flagged $text" \
+    "$cli" analyze "$work/$name.csv" --edc "$work/${name}_edc.csv"
+  [ "$(grep -c "[ ;]$flag\$" "$work/err.out")" -eq 26 ] \
+    && grep -q "^note: 26 of 26 levels flagged $flag" "$work/err.out" \
+    && pass "analyze: $name: each level flagged $flag in the report, with a note" \
+    || fail "analyze $name report: $(head -4 "$work/err.out")"
+  expect_absent "analyze: $name: no EDC table" "$work/${name}_edc.csv"
+done
+expect_error "fit: a record with a dead base channel" "zero_base.csv: no usable level: 26 of 26" \
+  "$cli" fit "$work/zero_base.csv" "$neg" --evaluations 20 --out "$work/deg_fit.json"
+expect_error "diagnose: a record with swapped roles" "swapped.csv: no usable level: 26 of 26" \
+  "$cli" diagnose "$work/swapped.csv" "$neg" --out "$work/deg_diag"
+expect_error "export --edc-mat: a record with a constant mass channel" \
+  "const_mass.csv: no usable level: 26 of 26" \
+  "$cli" export "$work/const_mass.csv" --edc-mat "$work/deg.mat"
+expect_absent "fit, diagnose, export: nothing written for a degenerate record" \
+  "$work/deg_fit.json" "$work/deg_diag" "$work/deg.mat"
+# The same record replayed live: the live table flags each level and the report notes it.
+"$cli" record --source "file:$work/zero_base.csv" --speed 0 --out "$work/live_dead.wav" \
+  --edc "$work/live_dead_edc.csv" > "$work/live_dead.out" 2>&1
+[ "$(grep -c ',base-constant$' "$work/live_dead_edc.csv")" -eq 26 ] \
+  && grep -q "^note: 26 of 26 levels flagged base-constant" "$work/live_dead.out" \
+  && pass "record --edc: a dead base channel's live levels flagged base-constant, with a note" \
+  || fail "record --edc dead base: $(tail -2 "$work/live_dead.out")"
+expect_error "analyze: a scale of 1e300" \
+  "scale.json: channels\[1\].scale: 1e+300 is outside the magnitudes a calibration can have" \
+  "$cli" analyze "$work/scale.csv" --edc "$work/scale_edc.csv"
+expect_absent "analyze: no EDC table after an absurd scale" "$work/scale_edc.csv"
+if "$cli" analyze "$work/short.csv" --edc "$work/short_edc.csv" > "$work/short.out" 2>&1 \
+    && [ "$(wc -l < "$work/short_edc.csv")" -eq 27 ] \
+    && sed -n 2p "$work/short_edc.csv" | grep -q ",3.001000,0,0,0,few-cycles;short-window$" \
+    && [ "$(grep -c ',1,$' "$work/short_edc.csv")" -eq 25 ] \
+    && grep -q "^note: 1 of 26 levels flagged short-window" "$work/short.out"; then
+  pass "analyze: a 1 ms steady window is a row flagged short-window, not usable, with a note"
+else
+  fail "analyze short window: $(head -2 "$work/short_edc.csv"; head -3 "$work/short.out")"
+fi
+
+# --- The live status line is for a person at a terminal: with stderr a file (a log, a service),
+# a good recording leaves it empty, and the final counts go to stdout with the rest.
+"$cli" record --source rig --speed 0 --duration 3 --out "$work/quiet.wav" > "$work/quiet.out" \
+  2> "$work/quiet.err"
+status=$?
+[ $status -eq 0 ] && [ ! -s "$work/quiet.err" ] && grep -q "samples 1536 .* levels 0$" "$work/quiet.out" \
+  && pass "record: no status line on a stderr that is not a terminal" \
+  || fail "record status: exit $status, stderr $(head -c 200 "$work/quiet.err")"
+
 # --- Outputs never over inputs, and all or nothing.
 "$cli" fit "$pos" "$neg" --evaluations 20 --threads 1 --out "$work/fit1.json" > /dev/null 2>&1
 cp "$work/fit1.json" "$work/fit1.before"
@@ -216,7 +311,18 @@ if mount -t tmpfs -o size=256k tmpfs "$small" 2> /dev/null; then
   expect_error "merge on a full disk" "No space left on device" \
     "$cli" merge "$work/fit1.json" "$work/fit1.json" "$work/fit1.json" --out "$small/m.csv"
   [ "$(ls "$small")" = "fill" ] && pass "merge on a full disk: nothing left" || fail "left: $(ls "$small")"
+  expect_error "hbm on a full disk" "b.csv: write failed: No space left on device" \
+    "$cli" hbm --out "$small/b.csv"
+  expect_error "model on a full disk" "write failed: No space left on device" \
+    "$cli" model paper --out "$small/m.json" --summary "$small/ms.json"
+  [ "$(ls "$small")" = "fill" ] && pass "hbm, model on a full disk: nothing left" \
+    || fail "left: $(ls "$small")"
   rm -f "$small/fill"
+  # Room for the recording (6 kB) but not for its truth (280 kB): none of the four files stays.
+  expect_error "simulate --truth on a full disk" "s.truth.csv: write failed: No space left" \
+    "$cli" simulate --levels 0.5:0.1:0.5 --hold 2 --truth --out "$small/s.flac"
+  [ -z "$(ls "$small")" ] && pass "simulate --truth on a full disk: nothing left" \
+    || fail "left: $(ls "$small")"
   # The recorder filling the disk: it stops cleanly, says so once, and leaves a recording whose
   # header matches what was written, so that it opens.
   expect_error "record on a full disk" "x.wav: write failed: .*No space left on device" \

@@ -103,6 +103,22 @@ def test_an_unreadable_recording_is_an_input_error_with_the_cli_message(tmp_path
     assert str(error.value) == message
 
 
+def test_a_record_none_of_whose_levels_measures_anything_is_refused_as_by_the_cli(tmp_path):
+    rec = oscilab.read_recording(STEPPED[0])
+    side = rec.sidecar
+    for channel in side["channels"]:  # the samples below are in SI
+        del channel["scale"]
+    samples = rec.samples.copy()
+    samples[:, 0] = 0.0  # a dead accelerometer
+    oscilab.Recording(side, samples).write(tmp_path / "dead.wav")
+    message = cli_error("analyze", tmp_path / "dead.wav", "--edc", tmp_path / "e.csv")
+    assert "no usable level: 26 of 26 levels flagged base-constant" in message
+    with pytest.raises(oscilab.InputError) as error:
+        oscilab.analyze(tmp_path / "dead.wav")
+    assert str(error.value) == message
+    assert not (tmp_path / "e.csv").exists()
+
+
 # --- Keyword names instead of the CLI's options -------------------------------------------------
 
 

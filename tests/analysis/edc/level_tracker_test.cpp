@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -21,7 +22,8 @@ constexpr double kPeriodS = 1.0 / kFreqHz;
 
 // A steady cycle of a stepped-sine hold, as CycleAnalyzer would report it: the force amplitude,
 // the EDC and a first harmonic Z1 = 1e-3 m/N · f0 around z_mean (all in the positive well unless
-// told otherwise). Residuals are zero: noise-free cycles.
+// told otherwise). Residuals are zero: noise-free cycles. The mass moves as Y1 = Z1 + B1, with
+// the table's B1 = F1 / (m ω²) (f = −m b̈, m = 0.26 kg), F1 = f0 at phase arg Z1 + lag.
 CycleFit make_cycle(long index, double f0_n, double edc_j, double z_mean_m = 0.02) {
   CycleFit c;
   c.start_s = static_cast<double>(index) * kPeriodS;
@@ -30,6 +32,8 @@ CycleFit make_cycle(long index, double f0_n, double edc_j, double z_mean_m = 0.0
   const double z1_m = 1e-3 * f0_n;
   c.z_h = {std::polar(z1_m, -1.0)};
   c.lag_rad = 1.0;
+  const double omega = 2.0 * kPi * kFreqHz;
+  c.y1_abs_m = std::abs(c.z_h[0] + std::polar(f0_n / (0.26 * omega * omega), -1.0 + c.lag_rad));
   c.z_mean_m = z_mean_m;
   c.z_min_m = z_mean_m - z1_m;
   c.z_max_m = z_mean_m + z1_m;
@@ -368,6 +372,132 @@ TEST(LevelTracker, CrossWellAndPeriodTwoLevelsAreFlagged) {
   EXPECT_NEAR(levels[2].period1_change, 0.4 / 0.8, 1e-12);
   EXPECT_FALSE(levels[2].usable());
   EXPECT_EQ(levels[2].flags(), "not-period-1");
+}
+
+// A level whose EDC is negative beyond its noise (a passive specimen dissipates: the roles or a
+// sign are swapped) is flagged negative-edc and not usable; a negative mean within its standard
+// error is noise about a small EDC and stays measured. Non-finite results are flagged non-finite.
+TEST(LevelTracker, NegativeEdcBeyondItsNoiseAndNonFiniteResultsAreNotUsable) {
+  std::vector<CycleFit> cycles;
+  long index = 0;
+  for (int i = 0; i < 20; ++i) cycles.push_back(make_cycle(index++, 0.5, -steady_edc(0.5)));
+  // Mean −0.1·S, per-cycle scatter 1.4·S: a standard error of 1.4·S/√20 = 0.31·S, so the mean is
+  // 0.3 standard errors below zero.
+  for (int i = 0; i < 20; ++i) {
+    cycles.push_back(make_cycle(index++, 1.0, (i % 2 == 0 ? 1.3 : -1.5) * steady_edc(1.0)));
+  }
+  for (int i = 0; i < 20; ++i) {
+    cycles.push_back(
+        make_cycle(index++, 1.5, i == 12 ? std::numeric_limits<double>::infinity() : 1.0));
+  }
+  LevelOptions options = detected_options();
+  options.steady_rel_tol = 1e3;  // every cycle steady: the flags alone are under test
+  const std::vector<LevelResult> levels = track(options, cycles);
+  ASSERT_EQ(levels.size(), 3u);
+  EXPECT_EQ(levels[0].flags(), "negative-edc");
+  EXPECT_FALSE(levels[0].usable());
+  EXPECT_LT(levels[1].edc_mean_j, 0.0);
+  EXPECT_FALSE(levels[1].negative_edc);
+  EXPECT_TRUE(levels[1].measured());  // (its scatter makes it not period-1, another matter)
+  EXPECT_TRUE(levels[2].non_finite);
+  EXPECT_FALSE(levels[2].usable());
+  EXPECT_FALSE(levels[2].measured());
+}
+
+// Every sidecar window gets its row, in time order, even without a cycle: one shorter than a
+// forcing period (flagged short-window), one past the end of the stream (beyond-record). A window
+// that the stream's end cuts keeps the cycles it has, flagged beyond-record.
+TEST(LevelTracker, WindowsWithoutCyclesAreReportedAndFlaggedWhy) {
+  const std::vector<Hold> holds = {{0.5, 40}, {1.0, 30}};
+  const Sequence s = stepped_sequence(holds);
+  LevelOptions options = windowed_options(s, holds, 1.3);
+  const double stream_end_s = s.cycles.back().end_s;
+  // A 1 ms window in the ramp between the holds, before the second hold's window.
+  const double ramp_s = s.cycles[static_cast<std::size_t>(s.first_cycle[1]) - 2].start_s;
+  options.windows.insert(options.windows.begin() + 1, {ramp_s, ramp_s + 1e-3, 0.7});
+  options.windows[2].end_s = stream_end_s + 5.0;  // the stream ends before the second hold's end
+  options.windows.push_back({stream_end_s + 10.0, stream_end_s + 20.0, 1.5});
+  LevelTracker tracker(options);
+  std::vector<LevelResult> levels;
+  tracker.push(s.cycles, levels);
+  tracker.finish(levels, stream_end_s);
+  ASSERT_EQ(levels.size(), 4u);
+  EXPECT_EQ(levels[0].flags(), "");
+  EXPECT_EQ(levels[1].flags(), "few-cycles;short-window");
+  EXPECT_EQ(levels[1].cycles, 0);
+  EXPECT_EQ(levels[1].start_s, ramp_s);
+  EXPECT_EQ(levels[1].end_s, ramp_s + 1e-3);
+  EXPECT_EQ(levels[1].well, Well::Unclassified);
+  EXPECT_FALSE(levels[1].usable());
+  EXPECT_EQ(levels[2].flags(), "beyond-record");
+  EXPECT_EQ(levels[2].cycles, 30 - 12);
+  EXPECT_TRUE(levels[2].usable());
+  EXPECT_EQ(levels[3].flags(), "few-cycles;beyond-record");
+  EXPECT_EQ(levels[3].start_s, stream_end_s + 10.0);
+  EXPECT_FALSE(levels[3].usable());
+  const std::vector<std::string> notes = degenerate_level_notes(levels);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_EQ(notes[0].rfind("1 of 4 levels flagged short-window: ", 0), 0u) << notes[0];
+  EXPECT_EQ(notes[1].rfind("2 of 4 levels flagged beyond-record: ", 0), 0u) << notes[1];
+}
+
+// Cycles fitted (CycleAnalyzer, H = 8) from a table moving as b = b_amp sin ωt and a mass as
+// y = z0 + y_amp sin(ωt − 0.9), each channel with white sensor noise (seeded): 60 cycles of one
+// level at 512 Hz, all taken as steady.
+LevelResult fitted_level(double b_amp_m, double y_amp_m, double base_noise_m_s2,
+                         double mass_noise_m) {
+  const double rate_hz = 512.0, mass_kg = 0.26, w = 2 * kPi * kFreqHz;
+  CycleAnalyzer::Options options;
+  options.fit.freq_hz = kFreqHz;
+  options.fit.mass_kg = mass_kg;
+  options.sample_rate_hz = rate_hz;
+  CycleAnalyzer analyzer(options);
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<CycleFit> cycles;
+  for (int i = 0; i < static_cast<int>(61 * rate_hz / kFreqHz); ++i) {
+    const double t = i / rate_hz;
+    const double base = -w * w * b_amp_m * std::sin(w * t) + base_noise_m_s2 * normal(rng);
+    const double mass = 0.02 + y_amp_m * std::sin(w * t - 0.9) + mass_noise_m * normal(rng);
+    analyzer.push(&t, &base, &mass, 1, cycles);
+  }
+  LevelOptions level_options = detected_options();
+  level_options.mass_kg = mass_kg;
+  level_options.steady_rel_tol = 1e3;
+  return summarise_level(cycles, level_options);
+}
+
+// A channel is constant when its first harmonic does not stand out of its own noise: over a cycle
+// of N samples a sine/cosine coefficient of white noise σ has σ·√(2/N), and the flag is set below
+// 5 of those. A dead channel (exactly constant: no noise either), one that holds only noise, and
+// one whose tone is 2 such σ are flagged and not usable; a tone of 12 σ is measured.
+TEST(LevelTracker, ABaseOrMassChannelWithoutItsToneAboveItsNoiseIsFlaggedConstant) {
+  const double w = 2 * kPi * kFreqHz;
+  const double base_noise_m_s2 = 2e-3, mass_noise_m = 1.5e-6;     // the virtual rig's sensors
+  const double coefficient = std::sqrt(2.0 / (512.0 / kFreqHz));  // σ·√(2/N) per σ
+  // Table displacement whose acceleration tone is k coefficient σ of the accelerometer.
+  const auto b_amp = [&](double k) { return k * base_noise_m_s2 * coefficient / (w * w); };
+  const auto y_amp = [&](double k) { return k * mass_noise_m * coefficient; };
+  const double b_m = 2e-4, y_m = 4e-3;  // a level of the rig, far above both floors
+
+  const LevelResult dead_base = fitted_level(0.0, y_m, 0.0, mass_noise_m);
+  EXPECT_EQ(dead_base.f0_n, 0.0);
+  EXPECT_EQ(dead_base.flags(), "base-constant");
+  EXPECT_FALSE(dead_base.usable());
+  EXPECT_TRUE(fitted_level(0.0, y_m, base_noise_m_s2, mass_noise_m).base_constant);
+  EXPECT_TRUE(fitted_level(b_amp(2.0), y_m, base_noise_m_s2, mass_noise_m).base_constant);
+  const LevelResult faint_base = fitted_level(b_amp(12.0), y_m, base_noise_m_s2, mass_noise_m);
+  EXPECT_FALSE(faint_base.base_constant);
+  EXPECT_TRUE(faint_base.measured());
+
+  const LevelResult dead_mass = fitted_level(b_m, 0.0, base_noise_m_s2, 0.0);
+  EXPECT_EQ(dead_mass.flags(), "mass-constant");
+  EXPECT_FALSE(dead_mass.usable());
+  EXPECT_TRUE(fitted_level(b_m, 0.0, base_noise_m_s2, mass_noise_m).mass_constant);
+  EXPECT_TRUE(fitted_level(b_m, y_amp(2.0), base_noise_m_s2, mass_noise_m).mass_constant);
+  const LevelResult faint_mass = fitted_level(b_m, y_amp(12.0), base_noise_m_s2, mass_noise_m);
+  EXPECT_FALSE(faint_mass.mass_constant);
+  EXPECT_FALSE(faint_mass.base_constant);
 }
 
 // A velocity channel does not know where z is: the well comes from the hint, or is unknown.

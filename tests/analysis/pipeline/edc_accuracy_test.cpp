@@ -1,10 +1,14 @@
 // The measurement analysis against the virtual rig's truth (target: every level's mean EDC within
 // 0.5 % + 5 noise-floor σ of the simulator's true dissipated energy, both wells, 0.2 to 2.7 N).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
+#include "analysis/common/input_error.h"
 #include "analysis/model/reference_models.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "daq/recording/measurement_mapping.h"
@@ -168,6 +172,56 @@ TEST(EdcAnalysis, FlagsPeriodDoublingBeyondThreePointFiveNewton) {
   EXPECT_TRUE(analysis.levels[0].usable());
   EXPECT_FALSE(analysis.levels[1].period1);
   EXPECT_FALSE(analysis.levels[1].usable());
+}
+
+// Degenerate recordings of the rig are said, not scored: a base channel held at a constant (an
+// unplugged accelerometer's offset), base and mass swapped, or levels whose windows lie past the
+// record's end give flagged levels that are not usable, a note saying why, and a record that
+// the analysis refuses; the intact record gives none of that.
+TEST(EdcAnalysis, DegenerateRecordsAreFlaggedNotedAndRefused) {
+  SteppedSineSchedule schedule;
+  schedule.levels_n = {0.5, 1.5};
+  const daq::RigRecording rig = rig_record(true, 61, schedule);
+  const MeasurementChannels intact = daq::measurement_channels(rig.recording);
+  const auto analyse = [](const MeasurementChannels& channels) {
+    CampaignAnalysis campaign;
+    campaign.records.push_back(analyze_record(channels, PipelineSettings{}));
+    return campaign;
+  };
+  const CampaignAnalysis good = analyse(intact);
+  EXPECT_EQ(no_measured_level_reason(good.records[0]), "");
+  EXPECT_NO_THROW(require_measured_levels(good));
+
+  const auto expect_refused = [&](const MeasurementChannels& channels, const char* flag) {
+    SCOPED_TRACE(flag);
+    const CampaignAnalysis campaign = analyse(channels);
+    const RecordAnalysis& record = campaign.records[0];
+    ASSERT_EQ(record.levels.size(), 2u);
+    for (const LevelResult& level : record.levels) {
+      EXPECT_NE(level.flags().find(flag), std::string::npos) << level.flags();
+      EXPECT_FALSE(level.usable());
+    }
+    const std::string note = std::string("2 of 2 levels flagged ") + flag + ": ";
+    EXPECT_TRUE(std::any_of(record.notes.begin(), record.notes.end(),
+                            [&](const std::string& n) { return n.rfind(note, 0) == 0; }));
+    const std::string reason = no_measured_level_reason(record);
+    EXPECT_EQ(reason.rfind(intact.name + ": no usable level: " + note, 0), 0u) << reason;
+    EXPECT_THROW(require_measured_levels(campaign), InputError);
+  };
+  MeasurementChannels constant_base = intact;
+  constant_base.base.setConstant(0.004);  // m/s²: the accelerometer's bias alone
+  expect_refused(constant_base, "base-constant");
+  MeasurementChannels swapped = intact;
+  std::swap(swapped.base, swapped.mass);
+  std::swap(swapped.base_quantity, swapped.mass_quantity);
+  expect_refused(swapped, "negative-edc");
+  MeasurementChannels beyond = intact;
+  const double duration_s = static_cast<double>(intact.base.size()) / intact.sample_rate_hz;
+  for (LevelWindow& window : beyond.level_windows) {
+    window.start_s += duration_s;
+    window.end_s += duration_s;
+  }
+  expect_refused(beyond, "beyond-record");
 }
 
 }  // namespace

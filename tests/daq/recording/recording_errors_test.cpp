@@ -196,11 +196,11 @@ TEST(CsvReader, ThrowsInputErrorNamingChannelSampleAndLineOfNanOrInf) {
 TEST(CsvReader, ThrowsInputErrorWhenCalibrationOverflows) {
   const TempDir dir;
   std::string sidecar = kCsvSidecar;
-  sidecar.replace(sidecar.find("\"scale\": 1}"), 11, "\"scale\": 1e300}");
-  EXPECT_EQ(csv_error(dir, "base_acc,y\n1,2\n1e10,3\n", sidecar),
+  sidecar.replace(sidecar.find("\"scale\": 1}"), 11, "\"scale\": 1e12}");
+  EXPECT_EQ(csv_error(dir, "base_acc,y\n1,2\n1e300,3\n", sidecar),
             dir.file("rec.csv") +
-                ": channel \"base_acc\": sample 1 (t = 0.25 s, line 3) (1e+10) overflows after "
-                "calibration (scale 1e+300); 1 of 2 samples of this channel are not finite");
+                ": channel \"base_acc\": sample 1 (t = 0.25 s, line 3) (1e+300) overflows after "
+                "calibration (scale 1e+12); 1 of 2 samples of this channel are not finite");
 }
 
 TEST(CsvReader, ThrowsInputErrorNamingTheLineWhereTimeDoesNotIncrease) {

@@ -189,6 +189,18 @@ TEST(SidecarReader, ThrowsInputErrorNamingTheFieldForEachInvalidValue) {
        "run1.json: channels[0].unit: expected a string, got 1"},
       {[](json& v) { v["channels"][0]["scale"] = 0; },
        "run1.json: channels[0].scale: must not be zero"},
+      // A scale takes a stored value into the channel's unit: a picometre per count (1e-12) to
+      // 1e12; beyond, energies (products of two channels) overflow or the file is corrupt.
+      {[](json& v) { v["channels"][1]["scale"] = 1e300; },
+       "run1.json: channels[1].scale: 1e+300 is outside the magnitudes a calibration can have "
+       "(1e-12 to 1e+12, either sign)"},
+      {[](json& v) { v["channels"][0]["scale"] = -1e13; },
+       "run1.json: channels[0].scale: -1e+13 is outside the magnitudes"},
+      {[](json& v) { v["channels"][0]["scale"] = 1e-15; },
+       "run1.json: channels[0].scale: 1e-15 is outside the magnitudes"},
+      {[](json& v) { v["channels"][0]["offset"] = -1e200; },
+       "run1.json: channels[0].offset: -1e+200 is outside the offsets a calibration can have (at "
+       "most 1e+12 in magnitude)"},
       {[](json& v) { v["channels"][1]["ac_coupling_hz"] = 0.0; },
        "run1.json: channels[1].ac_coupling_hz: expected a positive number, got 0.0"},
       {[](json& v) { v["channels"][1]["ac_coupling_hz"] = "2 Hz"; },
@@ -269,6 +281,16 @@ TEST(SidecarReader, AcceptsAPartialExcitationAndNullOptionals) {
   value.erase("excitation");
   value.erase("format");  // optional on read
   EXPECT_FALSE(parse_sidecar(value, "run1.json").excitation.has_value());
+}
+
+TEST(SidecarReader, AcceptsScalesAtTheEndsOfTheirRangeOfEitherSign) {
+  json value = contract_example();
+  value["channels"][0]["scale"] = 1e-12;  // a picometre per count
+  value["channels"][1]["scale"] = -1e12;  // a sensor mounted the other way round
+  value["channels"][1]["offset"] = 1e12;
+  const Sidecar sidecar = parse_sidecar(value, "run1.json");
+  EXPECT_EQ(sidecar.channels[0].scale, 1e-12);
+  EXPECT_EQ(sidecar.channels[1].scale, -1e12);
 }
 
 TEST(UnitToSi, GivesTheSiFactorOfEachKnownUnit) {
