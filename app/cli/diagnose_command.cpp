@@ -187,10 +187,12 @@ void run(const DiagnoseOptions& o) {
                     [&](std::ostream& out) { out << model.dump(2) << '\n'; });
     }
     if (!o.no_png) {
-      figures::write_figure_png(figures::residual_figure(result),
-                                outputs.add(o.out_dir + "/residuals.png"));
-      figures::write_figure_png(figures::missing_energy_figure(result),
-                                outputs.add(o.out_dir + "/missing_energy.png"));
+      outputs.write_to(o.out_dir + "/residuals.png", [&](const std::string& path) {
+        figures::write_figure_png(figures::residual_figure(result), path);
+      });
+      outputs.write_to(o.out_dir + "/missing_energy.png", [&](const std::string& path) {
+        figures::write_figure_png(figures::missing_energy_figure(result), path);
+      });
     }
     outputs.commit();
   } catch (...) {

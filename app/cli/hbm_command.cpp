@@ -27,7 +27,8 @@ namespace {
 // A figure written under a temporary name and renamed into place when complete.
 void write_png_output(const figures::Figure& figure, const std::string& target) {
   OutputFiles output;
-  figures::write_figure_png(figure, output.add(target));
+  output.write_to(target,
+                  [&](const std::string& path) { figures::write_figure_png(figure, path); });
   output.commit();
 }
 

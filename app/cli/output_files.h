@@ -71,6 +71,22 @@ class OutputFiles {
     out.close();  // the last buffer is written here: a full disk shows only now
     if (!out) throw InputError(target + ": write failed: " + std::strerror(errno));
   }
+  /// Writes `target`'s temporary with `write_to_path(path)`, for writers that take a file name (a
+  /// PNG figure); an InputError they throw names `target`, not the temporary.
+  template <class WriteToPath>
+  void write_to(const std::string& target, WriteToPath&& write_to_path) {
+    const std::string path = add(target);
+    try {
+      write_to_path(path);
+    } catch (const InputError& error) {
+      std::string message = error.what();
+      for (auto at = message.find(path); at != std::string::npos;
+           at = message.find(path, at + target.size())) {
+        message.replace(at, path.size(), target);
+      }
+      throw InputError(message);
+    }
+  }
   /// Renames every temporary onto its target, in the order added.
   void commit() {
     for (const auto& file : files_) file->commit();
