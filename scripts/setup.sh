@@ -114,7 +114,8 @@ run_tests() {
   phase "release build"
   build build -DOSCILAB_WERROR=ON
   phase "release tests"
-  ctest --test-dir build --output-on-failure -j "$JOBS" -LE benchmark
+  # `study`: suites that are studies more than checks (minutes each), run with `ctest -L study`.
+  ctest --test-dir build --output-on-failure -j "$JOBS" -LE "benchmark|study"
   phase "benchmarks"
   # Benchmarks one at a time, verbose, so their figures (medians) are printed.
   ctest --test-dir build --output-on-failure -L benchmark -V | grep -E "^[0-9]+: (BM_|Benchmark )|tests passed|tests failed|Failed|rror"
