@@ -7,17 +7,6 @@
 source "$(dirname "$0")/cli_checks.sh"
 pos=$src/samples/stepped_positive.flac
 
-expect_error() {  # description, expected text, command...
-  local what=$1 text=$2
-  shift 2
-  "$@" > "$work/err.out" 2> "$work/err.log"
-  local status=$?
-  if [ $status -eq 2 ] && grep -q -- "$text" "$work/err.log" && [ "$(wc -l < "$work/err.log")" -eq 1 ]; then
-    pass "$what"
-  else
-    fail "$what: status $status, $(head -c 300 "$work/err.log")"
-  fi
-}
 expect_absent() {  # description, paths...
   local what=$1
   shift

@@ -55,17 +55,6 @@ grep -q "stopped by a signal" "$work/term.log" && pass "SIGTERM: says so" || fai
 "$cli" info "$work/term.wav" > /dev/null 2>&1 && pass "SIGTERM: the recording opens" || fail "SIGTERM recording unreadable"
 
 # Bad input: one line naming the problem, exit status 2, nothing left behind.
-expect_error() {  # description, expected text, command...
-  local what=$1 text=$2
-  shift 2
-  "$@" > "$work/err.out" 2> "$work/err.log"
-  local status=$?
-  if [ $status -eq 2 ] && grep -q -- "$text" "$work/err.log" && [ "$(wc -l < "$work/err.log")" -eq 1 ]; then
-    pass "$what"
-  else
-    fail "$what: status $status, $(cat "$work/err.log")"
-  fi
-}
 expect_error "a FLAC live recording is refused" ".wav, .w64 or .rf64" \
   "$cli" record --source rig --duration 1 --speed 0 --out "$work/x.flac"
 expect_error "a missing replay file is named" "missing.wav" \
