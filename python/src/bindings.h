@@ -62,6 +62,8 @@ std::string text_argument(const py::handle& object, const std::string& name);
 
 /// A `well` argument: "positive" or "negative"; throws InputError naming the value otherwise.
 analysis::Well well_argument(const std::string& well);
+/// A `well` argument that may also be "both": the wells it names, positive first.
+std::vector<analysis::Well> wells_argument(const std::string& well);
 
 // --- Long jobs (job_runner.cpp) --------------------------------------------------------------
 

@@ -175,6 +175,11 @@ analysis::Well well_argument(const std::string& well) {
   return *parsed;
 }
 
+std::vector<analysis::Well> wells_argument(const std::string& well) {
+  if (well == "both") return {analysis::Well::Positive, analysis::Well::Negative};
+  return {well_argument(well)};
+}
+
 std::vector<std::string> path_list(const py::handle& object, const std::string& where) {
   if (is_path(object)) return {path_string(object)};
   std::vector<std::string> out;

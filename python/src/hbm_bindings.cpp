@@ -131,12 +131,7 @@ void bind_hbm(py::module_& m) {
          bool follow_period_doubling, const py::object& progress) {
         const analysis::Model model = model_argument(model_arg);
         // 'both': one branch per well, as `hbm --well both`, in one job.
-        std::vector<analysis::Well> wells;
-        if (well == "both") {
-          wells = {analysis::Well::Positive, analysis::Well::Negative};
-        } else {
-          wells = {well_argument(well)};
-        }
+        const std::vector<analysis::Well> wells = wells_argument(well);
         analysis::ContinuationOptions options;
         options.start = f0_n.first;
         options.end = f0_n.second;
@@ -294,13 +289,9 @@ amp_after_m}: the largest period-to-period change each way), status, message.)do
         options.end_n = f0_n.second;
         options.step_n = step_n;
         if (!levels_n.is_none()) options.levels_n = levels_argument(levels_n);
-        if (well == "both") {
-          options.positive_well = options.negative_well = true;
-        } else {
-          const bool positive = well_argument(well) == analysis::Well::Positive;
-          options.positive_well = positive;
-          options.negative_well = !positive;
-        }
+        const std::vector<analysis::Well> wells = wells_argument(well);
+        options.positive_well = wells.front() == analysis::Well::Positive;
+        options.negative_well = wells.back() == analysis::Well::Negative;
         options.hold_periods = hold_periods;
         options.ramp_periods = ramp_periods;
         options.sampled_periods = sampled_periods;
