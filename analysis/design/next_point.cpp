@@ -1,0 +1,234 @@
+#include "analysis/design/next_point.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+
+#include "analysis/common/input_error.h"
+#include "analysis/common/parallel_for.h"
+#include "analysis/common/quantile.h"
+#include "analysis/design/response_prediction.h"
+#include "analysis/diagnosis/response_fingerprints.h"
+
+namespace oscilab::analysis {
+
+std::vector<double> AdmissibleSettings::f0_grid() const {
+  std::vector<double> out;
+  // Counted by rounding, so that 0.2:0.1:2.7 gives 26 levels despite the step's rounding.
+  const int count = static_cast<int>(std::floor((f0_max_n - f0_min_n) / f0_step_n + 1e-9)) + 1;
+  for (int i = 0; i < count; ++i) out.push_back(f0_min_n + i * f0_step_n);
+  return out;
+}
+
+std::vector<double> AdmissibleSettings::freq_grid() const {
+  if (!(freq_span_hz > 0.0)) return {freq_hz};
+  std::vector<double> out;
+  const int half = static_cast<int>(std::floor(freq_span_hz / freq_step_hz + 1e-9));
+  for (int i = -half; i <= half; ++i) out.push_back(freq_hz + i * freq_step_hz);
+  return out;
+}
+
+void AdmissibleSettings::validate() const {
+  const auto finite = [](double x) { return std::isfinite(x); };
+  if (!finite(f0_min_n) || !finite(f0_max_n) || !(f0_min_n > 0.0) || !(f0_max_n >= f0_min_n)) {
+    throw InputError("admissible settings: f0 range must be 0 < f0_min <= f0_max");
+  }
+  if (!(f0_step_n > 0.0) || !finite(f0_step_n)) {
+    throw InputError("admissible settings: f0 step must be positive");
+  }
+  if (!(freq_hz > 0.0) || !finite(freq_hz) || !(freq_span_hz >= 0.0) || !finite(freq_span_hz) ||
+      !(freq_step_hz > 0.0) || !finite(freq_step_hz) || !(freq_hz - freq_span_hz > 0.0)) {
+    throw InputError(
+        "admissible settings: frequency range must stay positive with a positive step");
+  }
+  if (!positive_well && !negative_well) throw InputError("admissible settings: no well allowed");
+  if (!(dwell_s > 0.0) || !finite(dwell_s) || !(settling_s >= 0.0) || !finite(settling_s) ||
+      !(well_change_s >= 0.0) || !finite(well_change_s)) {
+    throw InputError("admissible settings: dwell must be positive, settling and well change >= 0");
+  }
+}
+
+namespace {
+
+// The relative standard error a new level would have from its cycles: the median over the
+// levels measured so far (0 for twin data without cycles).
+struct MeasurementNoise {
+  double edc_rel = 0.0;
+  double z1_rel = 0.0;
+};
+
+MeasurementNoise typical_noise(const EdcDataset& data) {
+  std::vector<double> edc, z1;
+  for (const EdcGroup& g : data.groups) {
+    for (const MeasuredLevel& m : g.levels) {
+      if (m.cycles > 0 && m.edc_j > 0.0) edc.push_back(m.sigma_of_mean_j() / m.edc_j);
+      if (m.harmonic_cycles > 0 && m.amplitude_m > 0.0) z1.push_back(m.z1_abs_se_m / m.amplitude_m);
+    }
+  }
+  MeasurementNoise out;
+  if (!edc.empty()) out.edc_rel = quantiles(edc, {0.5}).front();
+  if (!z1.empty()) out.z1_rel = quantiles(z1, {0.5}).front();
+  return out;
+}
+
+struct Slot {
+  bool positive_well = true;
+  double freq_hz = 0.0;
+};
+
+}  // namespace
+
+NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
+                             const AdmissibleSettings& settings, const NextPointOptions& options,
+                             const ProgressFn& progress, const CancelToken& cancel) {
+  settings.validate();
+  NextPoint out;
+  for (std::size_t i = 0; i < hypotheses.size(); ++i) {
+    const ModelHypothesis& h = hypotheses[i];
+    if (h.solved && h.objective && h.weight >= options.min_weight) {
+      out.plausible.push_back(static_cast<int>(i));
+    }
+  }
+  if (out.plausible.empty()) {
+    out.status = JobStatus::InvalidInput;
+    out.message = "no solved hypothesis to predict";
+    return out;
+  }
+  const std::vector<double> f0 = settings.f0_grid();
+  std::vector<Slot> slots;
+  for (bool positive : {true, false}) {
+    if (positive ? !settings.positive_well : !settings.negative_well) continue;
+    for (double freq : settings.freq_grid()) slots.push_back({positive, freq});
+  }
+  // predictions[a][s]: plausible hypothesis a at slot s.
+  const std::size_t count = out.plausible.size();
+  std::vector<std::vector<PredictedLevels>> predictions(count);
+  std::mutex done_mutex;
+  std::size_t done = 0;
+  parallel_for(count, options.threads, [&](std::size_t a) {
+    const ModelHypothesis& h = hypotheses[static_cast<std::size_t>(out.plausible[a])];
+    const Eigen::MatrixXd cov = unit_covariance(*h.objective, h.theta, options.use_fingerprints,
+                                                options.difference_step, cancel);
+    for (const Slot& s : slots) {
+      if (cancel.cancelled()) return;
+      predictions[a].push_back(predict_levels(*h.objective, h.theta, cov, s.positive_well,
+                                              s.freq_hz, f0, options.difference_step, cancel));
+    }
+    const std::lock_guard lock(done_mutex);
+    ++done;
+    if (progress) progress(static_cast<double>(done) / count);
+  });
+  if (cancel.cancelled()) {
+    out.status = JobStatus::Cancelled;
+    out.message = "cancelled";
+    return out;
+  }
+  const MeasurementNoise noise =
+      typical_noise(hypotheses[static_cast<std::size_t>(out.plausible.front())].objective->data());
+  for (std::size_t s = 0; s < slots.size(); ++s) {
+    for (std::size_t k = 0; k < f0.size(); ++k) {
+      SettingScore score;
+      score.f0_n = f0[k];
+      score.freq_hz = slots[s].freq_hz;
+      score.positive_well = slots[s].positive_well;
+      score.shaker_s =
+          settings.dwell_s + settings.settling_s +
+          (slots[s].positive_well != settings.current_positive_well ? settings.well_change_s : 0.0);
+      score.admissible = true;
+      double weight_sum = 0.0, edc_mean = 0.0, z1_mean = 0.0;
+      for (std::size_t a = 0; a < count; ++a) {
+        const PredictedLevels& p = predictions[a][s];
+        const ModelHypothesis& h = hypotheses[static_cast<std::size_t>(out.plausible[a])];
+        if (!p.valid[k]) {
+          score.admissible = false;
+          score.why_not =
+              h.label() + (p.first_well_jump >= 0 && static_cast<int>(k) >= p.first_well_jump
+                               ? ": the response jumps wells"
+                               : ": no prediction");
+          break;
+        }
+        weight_sum += h.weight;
+        edc_mean += h.weight * p.edc_j[k];
+        z1_mean += h.weight * p.z1_m[k];
+      }
+      if (score.admissible) {
+        edc_mean /= weight_sum;
+        z1_mean /= weight_sum;
+        const double var_edc =
+            std::pow(edc_mean * std::hypot(kEdcEstimatorBiasRel, noise.edc_rel), 2);
+        const double var_z1 = std::pow(z1_mean * std::hypot(kAmplitudeBiasRel, noise.z1_rel), 2);
+        double best_term = -1.0;
+        const auto add = [&](int i, int j, const char* quantity, double wij, double delta,
+                             double variance) {
+          if (!(variance > 0.0)) return;
+          const double separation2 = delta * delta / variance;
+          score.criterion += wij * separation2;
+          if (wij * separation2 > best_term) {
+            best_term = wij * separation2;
+            score.pair_i = i;
+            score.pair_j = j;
+            score.quantity = quantity;
+            score.separation_sigma = std::sqrt(separation2);
+          }
+        };
+        if (count == 1) {
+          // One plausible model: where its own prediction is least certain against what a level
+          // measures, the setting that teaches its parameters most.
+          const PredictedLevels& p = predictions[0][s];
+          const int i = out.plausible[0];
+          add(i, i, "EDC", 1.0, p.edc_sigma_j[k], var_edc);
+          if (options.use_amplitude) add(i, i, "|Z1|", 1.0, p.z1_sigma_m[k], var_z1);
+        }
+        for (std::size_t a = 0; a < count; ++a) {
+          for (std::size_t b = a + 1; b < count; ++b) {
+            const PredictedLevels& pa = predictions[a][s];
+            const PredictedLevels& pb = predictions[b][s];
+            const int i = out.plausible[a], j = out.plausible[b];
+            const double wij = hypotheses[static_cast<std::size_t>(i)].weight *
+                               hypotheses[static_cast<std::size_t>(j)].weight;
+            add(i, j, "EDC", wij, pa.edc_j[k] - pb.edc_j[k],
+                var_edc + pa.edc_sigma_j[k] * pa.edc_sigma_j[k] +
+                    pb.edc_sigma_j[k] * pb.edc_sigma_j[k]);
+            if (options.use_amplitude) {
+              add(i, j, "|Z1|", wij, pa.z1_m[k] - pb.z1_m[k],
+                  var_z1 + pa.z1_sigma_m[k] * pa.z1_sigma_m[k] +
+                      pb.z1_sigma_m[k] * pb.z1_sigma_m[k]);
+            }
+          }
+        }
+        score.criterion_per_s = score.criterion / score.shaker_s;
+        if (!out.found || score.criterion_per_s > out.best.criterion_per_s) {
+          out.found = true;
+          out.best = score;
+        }
+      }
+      out.settings.push_back(score);
+    }
+  }
+  if (!out.found) {
+    out.message = "no admissible setting: every one jumps wells or is not predicted";
+    out.reason = out.message;
+    return out;
+  }
+  const SettingScore& b = out.best;
+  char text[400];
+  const char* well = b.positive_well ? "positive" : "negative";
+  if (b.pair_i == b.pair_j) {
+    std::snprintf(text, sizeof text,
+                  "only %s is plausible; its %s is least certain (%.1f sigma of a measurement) at "
+                  "%.2f N, %.2f Hz, %s well",
+                  hypotheses[static_cast<std::size_t>(b.pair_i)].label().c_str(),
+                  b.quantity.c_str(), b.separation_sigma, b.f0_n, b.freq_hz, well);
+  } else {
+    std::snprintf(text, sizeof text,
+                  "%s vs %s differ by %.1f sigma in %s at %.2f N, %.2f Hz, %s well",
+                  hypotheses[static_cast<std::size_t>(b.pair_i)].label().c_str(),
+                  hypotheses[static_cast<std::size_t>(b.pair_j)].label().c_str(),
+                  b.separation_sigma, b.quantity.c_str(), b.f0_n, b.freq_hz, well);
+  }
+  out.reason = text;
+  return out;
+}
+
+}  // namespace oscilab::analysis
