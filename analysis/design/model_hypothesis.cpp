@@ -8,6 +8,7 @@
 
 #include "analysis/common/parallel_for.h"
 #include "analysis/design/model_weights.h"
+#include "analysis/diagnosis/campaign_fit.h"
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/diagnosis/effect_candidates.h"
 #include "analysis/diagnosis/joint_refit.h"
@@ -85,17 +86,48 @@ JointRefit best_refit(const EdcObjective& objective, const std::vector<Eigen::Ve
   return best;
 }
 
+// Starting values of a candidate's own parameters besides its scan points: each parameter on a
+// log-spaced grid from 1e-3 of its upper bound (or its lower bound, when larger) to the upper
+// bound, 10 values for one parameter and 5 × 5 for two (the diagnosis's grid); more parameters
+// keep the scan points only.
+std::vector<Eigen::VectorXd> candidate_grid(const EffectCandidate& c) {
+  const int p = static_cast<int>(c.free.size());
+  if (p < 1 || p > 2) return {};
+  const int per = p == 1 ? 10 : 5;
+  std::vector<std::vector<double>> axes;
+  for (const FreeParameter& f : c.free) {
+    const double hi = f.upper, lo = std::max(f.lower, 1e-3 * f.upper);
+    std::vector<double> axis;
+    for (int i = 0; i < per; ++i) {
+      axis.push_back(lo > 0.0 ? lo * std::pow(hi / lo, i / (per - 1.0))
+                              : lo + (hi - lo) * i / (per - 1.0));
+    }
+    axes.push_back(axis);
+  }
+  std::vector<Eigen::VectorXd> out;
+  for (int i = 0; i < per; ++i) {
+    for (int j = 0; j < (p == 2 ? per : 1); ++j) {
+      Eigen::VectorXd point(p);
+      point[0] = axes[0][static_cast<std::size_t>(i)];
+      if (p == 2) point[1] = axes[1][static_cast<std::size_t>(j)];
+      out.push_back(point);
+    }
+  }
+  return out;
+}
+
 bool wanted(const std::vector<std::string>& effects, const std::string& effect) {
   return effects.empty() || std::find(effects.begin(), effects.end(), effect) != effects.end();
 }
 
 }  // namespace
 
-std::vector<ModelHypothesis> initial_hypotheses(const ModelForm& form, const Eigen::VectorXd& theta,
-                                                const EdcDataset& data,
-                                                const HypothesisOptions& options,
-                                                const ProgressFn& progress,
-                                                const CancelToken& cancel) {
+namespace {
+
+std::vector<ModelHypothesis> initial(const ModelForm& form, const Eigen::VectorXd& theta,
+                                     const CampaignAnalysis* campaign, const EdcDataset& data,
+                                     const HypothesisOptions& options, const ProgressFn& progress,
+                                     const CancelToken& cancel) {
   const EdcCostSettings shared = shared_cost(form, theta, data, options);
   std::vector<ModelHypothesis> out;
   out.emplace_back("none", "", form, theta);
@@ -119,12 +151,14 @@ std::vector<ModelHypothesis> initial_hypotheses(const ModelForm& form, const Eig
     if (slot == 0) {
       starts.push_back(h.theta);
     } else {
-      // The candidate's scan points with the baseline's parameters at θ, one evaluation each;
-      // Levenberg–Marquardt from the two best (a term that starts too weak or too strong needs
-      // more than one start, as in the diagnosis).
+      // The candidate's grid and scan points with the baseline's parameters at θ, one
+      // evaluation each; Levenberg–Marquardt from the three best (a term that starts too weak or
+      // too strong needs more than one start, as in the diagnosis).
       const EffectCandidate& c = candidates[slot - 1];
       std::vector<std::pair<double, Eigen::VectorXd>> scored;
-      for (const Eigen::VectorXd& s : c.scan) {
+      std::vector<Eigen::VectorXd> points = candidate_grid(c);
+      points.insert(points.end(), c.scan.begin(), c.scan.end());
+      for (const Eigen::VectorXd& s : points) {
         if (cancel.cancelled()) return;
         Eigen::VectorXd point(h.form.size());
         point << theta, s;
@@ -136,8 +170,27 @@ std::vector<ModelHypothesis> initial_hypotheses(const ModelForm& form, const Eig
       }
       std::sort(scored.begin(), scored.end(),
                 [](const auto& x, const auto& y) { return x.first < y.first; });
-      for (std::size_t i = 0; i < std::min<std::size_t>(2, scored.size()); ++i) {
+      for (std::size_t i = 0; i < std::min<std::size_t>(3, scored.size()); ++i) {
         starts.push_back(scored[i].second);
+      }
+    }
+    if (campaign && options.global_evaluations > 0 && !cancel.cancelled()) {
+      // The global search over the hypothesis's form; the grid's best point stays a start.
+      EdcCostSettings cost = options.cost;
+      cost.budget.reset();
+      const PreparedFit prepared{
+          std::make_shared<const EdcObjective>(h.form, data, cost), {}, cost};
+      FitOptions fit_options;
+      fit_options.max_evaluations = options.global_evaluations;
+      fit_options.seed = options.seed;
+      fit_options.threads = 1;  // the hypotheses run in parallel
+      fit_options.compute_uncertainty = false;
+      fit_options.check_truncation = false;
+      const CampaignFit global = fit_campaign(prepared, *campaign, fit_options, {}, cancel);
+      h.evaluations += global.fit.evaluations;
+      if (global.fit.theta.size() == h.form.size()) {
+        starts.resize(std::min<std::size_t>(starts.size(), 1));
+        starts.insert(starts.begin(), global.fit.theta);
       }
     }
     const int per_start =
@@ -160,6 +213,25 @@ std::vector<ModelHypothesis> initial_hypotheses(const ModelForm& form, const Eig
   });
   update_weights(out);
   return out;
+}
+
+}  // namespace
+
+std::vector<ModelHypothesis> initial_hypotheses(const ModelForm& form, const Eigen::VectorXd& theta,
+                                                const EdcDataset& data,
+                                                const HypothesisOptions& options,
+                                                const ProgressFn& progress,
+                                                const CancelToken& cancel) {
+  return initial(form, theta, nullptr, data, options, progress, cancel);
+}
+
+std::vector<ModelHypothesis> initial_hypotheses(const ModelForm& form, const Eigen::VectorXd& theta,
+                                                const CampaignAnalysis& campaign,
+                                                const EdcDataset& data,
+                                                const HypothesisOptions& options,
+                                                const ProgressFn& progress,
+                                                const CancelToken& cancel) {
+  return initial(form, theta, &campaign, data, options, progress, cancel);
 }
 
 void refit_hypotheses(std::vector<ModelHypothesis>& hypotheses, const EdcDataset& data,

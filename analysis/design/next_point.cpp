@@ -84,12 +84,24 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
                              const ProgressFn& progress, const CancelToken& cancel) {
   settings.validate();
   NextPoint out;
+  std::vector<int> ranked;
   for (std::size_t i = 0; i < hypotheses.size(); ++i) {
-    const ModelHypothesis& h = hypotheses[i];
-    if (h.solved && h.objective && h.weight >= options.min_weight) {
-      out.plausible.push_back(static_cast<int>(i));
+    if (hypotheses[i].solved && hypotheses[i].objective) ranked.push_back(static_cast<int>(i));
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), [&](int a, int b) {
+    return hypotheses[static_cast<std::size_t>(a)].weight >
+           hypotheses[static_cast<std::size_t>(b)].weight;
+  });
+  for (std::size_t r = 0; r < ranked.size(); ++r) {
+    if (static_cast<int>(r) < options.min_models ||
+        hypotheses[static_cast<std::size_t>(ranked[r])].weight >= options.min_weight) {
+      out.plausible.push_back(ranked[r]);
     }
   }
+  std::sort(out.plausible.begin(), out.plausible.end());
+  const auto weight = [&](int i) {
+    return std::max(hypotheses[static_cast<std::size_t>(i)].weight, options.min_weight);
+  };
   if (out.plausible.empty()) {
     out.status = JobStatus::InvalidInput;
     out.message = "no solved hypothesis to predict";
@@ -124,8 +136,21 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
     out.message = "cancelled";
     return out;
   }
-  const MeasurementNoise noise =
-      typical_noise(hypotheses[static_cast<std::size_t>(out.plausible.front())].objective->data());
+  const EdcDataset& data =
+      hypotheses[static_cast<std::size_t>(out.plausible.front())].objective->data();
+  const MeasurementNoise noise = typical_noise(data);
+  const auto measured = [&](const Slot& slot, double f0_n) {
+    for (const EdcGroup& g : data.groups) {
+      if (g.positive_well != slot.positive_well ||
+          std::abs(g.freq_hz - slot.freq_hz) > 1e-6 * slot.freq_hz) {
+        continue;
+      }
+      for (const MeasuredLevel& m : g.levels) {
+        if (std::abs(m.f0_n - f0_n) < 0.5 * settings.f0_step_n) return true;
+      }
+    }
+    return false;
+  };
   for (std::size_t s = 0; s < slots.size(); ++s) {
     for (std::size_t k = 0; k < f0.size(); ++k) {
       SettingScore score;
@@ -136,6 +161,12 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
           settings.dwell_s + settings.settling_s +
           (slots[s].positive_well != settings.current_positive_well ? settings.well_change_s : 0.0);
       score.admissible = true;
+      if (!options.repeat_measured && measured(slots[s], f0[k])) {
+        score.admissible = false;
+        score.why_not = "measured already";
+        out.settings.push_back(score);
+        continue;
+      }
       double weight_sum = 0.0, edc_mean = 0.0, z1_mean = 0.0;
       for (std::size_t a = 0; a < count; ++a) {
         const PredictedLevels& p = predictions[a][s];
@@ -148,9 +179,10 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
                                : ": no prediction");
           break;
         }
-        weight_sum += h.weight;
-        edc_mean += h.weight * p.edc_j[k];
-        z1_mean += h.weight * p.z1_m[k];
+        const double w = weight(out.plausible[a]);
+        weight_sum += w;
+        edc_mean += w * p.edc_j[k];
+        z1_mean += w * p.z1_m[k];
       }
       if (score.admissible) {
         edc_mean /= weight_sum;
@@ -185,8 +217,7 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
             const PredictedLevels& pa = predictions[a][s];
             const PredictedLevels& pb = predictions[b][s];
             const int i = out.plausible[a], j = out.plausible[b];
-            const double wij = hypotheses[static_cast<std::size_t>(i)].weight *
-                               hypotheses[static_cast<std::size_t>(j)].weight;
+            const double wij = weight(i) * weight(j);
             add(i, j, "EDC", wij, pa.edc_j[k] - pb.edc_j[k],
                 var_edc + pa.edc_sigma_j[k] * pa.edc_sigma_j[k] +
                     pb.edc_sigma_j[k] * pb.edc_sigma_j[k]);

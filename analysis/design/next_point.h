@@ -36,12 +36,22 @@ struct AdmissibleSettings {
 };
 
 struct NextPointOptions {
-  /// Hypotheses of smaller weight are not predicted (they add nothing to the criterion).
+  /// Hypotheses of smaller weight are not predicted (they add little to the criterion), except
+  /// that the `min_models` of largest weight always are, their weights in the criterion floored
+  /// at min_weight: when the BIC weights saturate (one model far ahead but its misfit still above
+  /// the noise), the test keeps separating it from its closest rivals instead of stopping to
+  /// learn.
   double min_weight = 1e-3;
+  int min_models = 2;
   double difference_step = 1e-3;  // unit-cube step of the Jacobians (unit_covariance)
   bool use_amplitude = true;      // |Z1| joins the EDC in the criterion
   bool use_fingerprints = true;   // in the parameters' covariance (as the refits weigh them)
-  int threads = 0;                // 0: all hardware threads
+  /// Whether a setting already measured (same well and frequency, f0 within half a grid step)
+  /// may be proposed again. Off by default: a repeated level merges with the first (edc_dataset)
+  /// and only its cycles' scatter averages down, not the estimator's bias floor that bounds its
+  /// σ, while the fitted models already pass through it.
+  bool repeat_measured = false;
+  int threads = 0;  // 0: all hardware threads
 };
 
 /// One admissible setting and its score.
@@ -83,12 +93,15 @@ struct NextPoint {
 ///
 ///   D(s) = Σ_{i<j} w_i w_j Σ_q (μ_i,q − μ_j,q)² / (σ_meas,q² + σ_i,q² + σ_j,q²),
 ///
-/// q ∈ {EDC, |Z1|}, w the BIC weights. σ_meas is what one new level would measure: the
+/// q ∈ {EDC, |Z1|}, w the BIC weights (floored at NextPointOptions::min_weight). With a single
+/// solved hypothesis D is instead Σ_q σ_i,q² / σ_meas,q²: where its own prediction is least
+/// certain. σ_meas is what one new level would measure: the
 /// estimator's bias floors (kEdcEstimatorBiasRel, kAmplitudeBiasRel) and the cycles' relative
 /// standard error typical of the levels measured so far (their median), at the predictions'
 /// weighted mean. A setting is scored by D / (dwell + settling (+ well change)). It is not
 /// admissible when any plausible model's response there reaches the saddle between the wells
-/// (or is not solved): the test never proposes a setting that would jump wells.
+/// (or is not solved): the test never proposes a setting that would jump wells; nor, unless asked,
+/// one already measured (NextPointOptions::repeat_measured).
 ///
 /// Progress is the fraction of hypotheses predicted; `cancel` returns status Cancelled.
 NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,

@@ -18,5 +18,6 @@ void add_diagnose_command(CLI::App& app);
 void add_record_command(CLI::App& app);
 void add_stream_command(CLI::App& app);
 void add_export_command(CLI::App& app);
+void add_adaptive_test_command(CLI::App& app);
 
 }  // namespace oscilab::cli

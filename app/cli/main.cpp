@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   oscilab::cli::add_record_command(app);
   oscilab::cli::add_stream_command(app);
   oscilab::cli::add_export_command(app);
+  oscilab::cli::add_adaptive_test_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
