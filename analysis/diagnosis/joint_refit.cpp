@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <unsupported/Eigen/LevenbergMarquardt>
 
@@ -25,9 +26,52 @@ struct Residuals : Eigen::DenseFunctor<double> {
   int operator()(const Eigen::VectorXd& u, Eigen::VectorXd& r) const {
     if (cancel_.cancelled()) return -1;
     const Eigen::VectorXd theta = objective_.form().from_unit(u.cwiseMax(0.0).cwiseMin(1.0));
-    const EdcEvaluation e = objective_.evaluate(theta);
+    keep(theta, objective_.evaluate(theta), r);
     ++best_.evaluations;
-    const ResponseFingerprints f = response_fingerprints(objective_.data(), e);
+    return 0;
+  }
+
+  // Forward differences in the unit cube (step 1e-6, backwards at the upper bound), the shifted
+  // points evaluated by one Newton step from u's solutions (EdcObjective::evaluate_nearby), or
+  // solved each when that is not possible.
+  int df(const Eigen::VectorXd& u, Eigen::MatrixXd& jacobian) const {
+    if (cancel_.cancelled()) return -1;
+    constexpr double kStep = 1e-6;
+    const Eigen::VectorXd at = u.cwiseMax(0.0).cwiseMin(1.0);
+    std::vector<double> steps(static_cast<std::size_t>(inputs()));
+    std::vector<Eigen::VectorXd> shifted(steps.size(), at);
+    for (int j = 0; j < inputs(); ++j) {
+      steps[j] = at[j] + kStep > 1.0 ? -kStep : kStep;
+      shifted[j][j] += steps[j];
+    }
+    const ModelForm& form = objective_.form();
+    std::vector<Eigen::VectorXd> nearby;
+    for (const Eigen::VectorXd& s : shifted) nearby.push_back(form.from_unit(s));
+    EdcEvaluation center;
+    std::vector<EdcEvaluation> around;
+    jacobian.resize(values(), inputs());
+    Eigen::VectorXd r0, r1;
+    const Eigen::VectorXd theta = form.from_unit(at);
+    if (objective_.evaluate_nearby(theta, nearby, center, around)) {
+      keep(theta, center, r0);
+      best_.evaluations += 2;
+      for (int j = 0; j < inputs(); ++j) {
+        residual_vector(around[j], response_fingerprints(objective_.data(), around[j]), r1);
+        jacobian.col(j) = (r1 - r0) / steps[j];
+      }
+      return 0;
+    }
+    if ((*this)(at, r0) < 0) return -1;
+    for (int j = 0; j < inputs(); ++j) {
+      if ((*this)(shifted[j], r1) < 0) return -1;
+      jacobian.col(j) = (r1 - r0) / steps[j];
+    }
+    return 0;
+  }
+
+  // The joint residuals: the EDC's, then (if asked) the fingerprints'.
+  void residual_vector(const EdcEvaluation& e, const ResponseFingerprints& f,
+                       Eigen::VectorXd& r) const {
     r.resize(values());
     Eigen::Index i = 0;
     for (Eigen::Index k = 0; k < e.residuals.size(); ++k) {
@@ -40,6 +84,12 @@ struct Residuals : Eigen::DenseFunctor<double> {
         }
       }
     }
+  }
+
+  // r at θ's evaluation, which becomes the best if its joint χ² is the lowest seen.
+  void keep(const Eigen::VectorXd& theta, const EdcEvaluation& e, Eigen::VectorXd& r) const {
+    const ResponseFingerprints f = response_fingerprints(objective_.data(), e);
+    residual_vector(e, f, r);
     const double chi2 = joint_chi2(e, f, fingerprints_);
     if (best_.theta.size() == 0 || chi2 < best_.joint_chi2) {
       best_.theta = theta;
@@ -47,23 +97,6 @@ struct Residuals : Eigen::DenseFunctor<double> {
       best_.fingerprints = f;
       best_.joint_chi2 = chi2;
     }
-    return 0;
-  }
-
-  // Forward differences in the unit cube (step 1e-6, backwards at the upper bound).
-  int df(const Eigen::VectorXd& u, Eigen::MatrixXd& jacobian) const {
-    Eigen::VectorXd r0, r1;
-    if ((*this)(u, r0) < 0) return -1;
-    jacobian.resize(values(), inputs());
-    constexpr double kStep = 1e-6;
-    for (int j = 0; j < inputs(); ++j) {
-      Eigen::VectorXd shifted = u.cwiseMax(0.0).cwiseMin(1.0);
-      const double h = shifted[j] + kStep > 1.0 ? -kStep : kStep;
-      shifted[j] += h;
-      if ((*this)(shifted, r1) < 0) return -1;
-      jacobian.col(j) = (r1 - r0) / h;
-    }
-    return 0;
   }
 
   const EdcObjective& objective_;

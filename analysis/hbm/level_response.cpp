@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
+
+#include <Eigen/LU>
 
 #include "analysis/common/input_error.h"
 #include "analysis/hbm/continuation.h"
@@ -153,6 +156,52 @@ LevelResponse level_response(const Model& model, double freq_hz, bool positive_w
   resolved.harmonics = contact;
   resolved.samples = 0;
   return responses_at(model, freq_hz, positive_well, levels_n, resolved);
+}
+
+std::vector<LevelResponse> nearby_level_responses(const Model& model,
+                                                  const std::vector<Model>& nearby, double freq_hz,
+                                                  const LevelResponse& base,
+                                                  const HbmOptions& hbm_options) {
+  // The options level_response solved base with: H raised for a ringing contact, N by default.
+  HbmOptions options = hbm_options;
+  if (base.harmonics != options.harmonics) {
+    options.harmonics = base.harmonics;
+    options.samples = 0;
+  }
+  HarmonicBalance at_base(model, freq_hz, options);
+  std::vector<std::unique_ptr<HarmonicBalance>> balances;
+  std::vector<LevelResponse> out(nearby.size());
+  for (std::size_t j = 0; j < nearby.size(); ++j) {
+    balances.push_back(std::make_unique<HarmonicBalance>(nearby[j], freq_hz, options));
+    out[j].harmonics = base.harmonics;
+    out[j].status = base.status;
+    out[j].message = base.message;
+  }
+  Eigen::VectorXd r, r_nearby, x_nearby;
+  Eigen::MatrixXd jacobian;
+  for (std::size_t k = 0; k < base.coefficients.size() && k < base.f0_n.size(); ++k) {
+    const Eigen::VectorXd& x = base.coefficients[k];
+    const double f0 = base.f0_n[k];
+    at_base.residual_and_jacobian(x, f0, r, jacobian);
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jacobian);
+    for (std::size_t j = 0; j < nearby.size(); ++j) {
+      if (out[j].status == JobStatus::NumericalIssue) continue;
+      balances[j]->residual(x, f0, r_nearby);
+      x_nearby = x - lu.solve(r_nearby - r);
+      if (!x_nearby.allFinite()) {
+        out[j] = LevelResponse{};
+        out[j].status = JobStatus::NumericalIssue;
+        out[j].message = "the Jacobian is singular at f0 = " + std::to_string(f0) + " N";
+        continue;
+      }
+      const HbmMeasures measures = balances[j]->measure(x_nearby, f0);
+      out[j].f0_n.push_back(f0);
+      out[j].edc_j.push_back(measures.edc_j);
+      out[j].amp_m.push_back(measures.amp_m);
+      out[j].coefficients.push_back(x_nearby);
+    }
+  }
+  return out;
 }
 
 }  // namespace oscilab::analysis

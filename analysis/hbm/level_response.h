@@ -47,4 +47,19 @@ int contact_resolving_harmonics(const Model& model, double freq_hz, bool positiv
 LevelResponse level_response(const Model& model, double freq_hz, bool positive_well,
                              const std::vector<double>& levels_n, const HbmOptions& hbm = {});
 
+/// The responses of models near `model` (parameters changed a little) at the levels of `base`,
+/// `model`'s level_response with these options, without solving each again: at each level one
+/// Newton step from base's solution x with `model`'s Jacobian there,
+///
+///   x_j = x − J(x)⁻¹ (r_j(x) − r(x)),
+///
+/// which is the implicit-function derivative dx/dθ = −J⁻¹ ∂r/∂θ applied to the change (exact to
+/// first order in it: what a finite-difference Jacobian of a fit needs, at the cost of one
+/// Jacobian and one residual per nearby model instead of a continuation each). The responses use
+/// base's H. A response whose step is not finite has status NumericalIssue and no levels.
+std::vector<LevelResponse> nearby_level_responses(const Model& model,
+                                                  const std::vector<Model>& nearby, double freq_hz,
+                                                  const LevelResponse& base,
+                                                  const HbmOptions& hbm = {});
+
 }  // namespace oscilab::analysis

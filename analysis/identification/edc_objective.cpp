@@ -259,51 +259,62 @@ std::vector<double> EdcObjective::edc_at(const Model& model, bool positive_well,
   return out;
 }
 
-EdcEvaluation EdcObjective::evaluate(const Eigen::VectorXd& theta,
-                                     const std::vector<double>* level_weights) const {
-  evaluations_->fetch_add(1);
-  EdcEvaluation out;
-  out.residuals.resize(level_count());
-  std::optional<Model> model;
+std::vector<EdcObjective::GroupResponse> EdcObjective::respond(const Eigen::VectorXd& theta,
+                                                               std::optional<Model>& model) const {
+  std::vector<GroupResponse> responses(data_.groups.size());
   try {
     model.emplace(form_.build(theta));
   } catch (const InputError& error) {
-    out.ok = false;
-    out.message = error.what();
+    for (GroupResponse& g : responses) g.message = error.what();
+    return responses;
   }
+  for (std::size_t i = 0; i < data_.groups.size(); ++i) {
+    const EdcGroup& group = data_.groups[i];
+    std::vector<double> f0;
+    for (const MeasuredLevel& level : group.levels) f0.push_back(level.f0_n);
+    try {
+      responses[i].response =
+          level_response(*model, group.freq_hz, group.positive_well, f0, settings_.hbm);
+    } catch (const InputError& error) {
+      responses[i].message = error.what();
+    }
+  }
+  return responses;
+}
+
+EdcEvaluation EdcObjective::assemble(const std::vector<GroupResponse>& responses,
+                                     const std::vector<double>* level_weights) const {
+  EdcEvaluation out;
+  out.residuals.resize(level_count());
   int k = 0;
   double deviation_sum[2] = {0.0, 0.0};
   int deviation_count[2] = {0, 0};
-  for (const EdcGroup& group : data_.groups) {
-    std::vector<double> f0;
-    for (const MeasuredLevel& level : group.levels) f0.push_back(level.f0_n);
-    std::vector<double> predicted(f0.size(), 0.0);
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    std::vector<std::array<double, 3>> harmonics(f0.size(), {nan, nan, nan});
-    if (model) {
-      try {
-        const LevelResponse response =
-            level_response(*model, group.freq_hz, group.positive_well, f0, settings_.hbm);
-        for (std::size_t i = 0; i < response.edc_j.size() && i < f0.size(); ++i) {
-          // Defect correction of the budget: S(H) + (S(H_ref) − S(H)) at the calibration θ.
-          const std::size_t level = static_cast<std::size_t>(k) + i;
-          predicted[i] = response.edc_j[i] + budget_.correction_j[level];
-          const Eigen::VectorXd& x = response.coefficients[i];
-          const double a1 = std::hypot(x[1], x[2]);
-          harmonics[i] = {a1 + budget_.correction_z1_m[level],
-                          std::hypot(x[3], x[4]) / a1 + budget_.correction_h2[level],
-                          std::hypot(x[5], x[6]) / a1 + budget_.correction_h3[level]};
-        }
-        if (response.status != JobStatus::Ok || response.edc_j.size() < f0.size()) {
-          out.ok = false;
-          out.message = response.message;
-        }
-      } catch (const InputError& error) {
-        out.ok = false;
-        out.message = error.what();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t g = 0; g < data_.groups.size(); ++g) {
+    const EdcGroup& group = data_.groups[g];
+    const std::size_t count = group.levels.size();
+    std::vector<double> predicted(count, 0.0);
+    std::vector<std::array<double, 3>> harmonics(count, {nan, nan, nan});
+    if (const std::optional<LevelResponse>& response = responses[g].response) {
+      for (std::size_t i = 0; i < response->edc_j.size() && i < count; ++i) {
+        // Defect correction of the budget: S(H) + (S(H_ref) − S(H)) at the calibration θ.
+        const std::size_t level = static_cast<std::size_t>(k) + i;
+        predicted[i] = response->edc_j[i] + budget_.correction_j[level];
+        const Eigen::VectorXd& x = response->coefficients[i];
+        const double a1 = std::hypot(x[1], x[2]);
+        harmonics[i] = {a1 + budget_.correction_z1_m[level],
+                        std::hypot(x[3], x[4]) / a1 + budget_.correction_h2[level],
+                        std::hypot(x[5], x[6]) / a1 + budget_.correction_h3[level]};
       }
+      if (response->status != JobStatus::Ok || response->edc_j.size() < count) {
+        out.ok = false;
+        out.message = response->message;
+      }
+    } else {
+      out.ok = false;
+      out.message = responses[g].message;
     }
-    for (std::size_t i = 0; i < f0.size(); ++i, ++k) {
+    for (std::size_t i = 0; i < count; ++i, ++k) {
       const double measured = group.levels[i].edc_j;
       const double difference = measured - predicted[i];
       out.cost_j += std::abs(difference);  // eq. (8)
@@ -319,12 +330,54 @@ EdcEvaluation EdcObjective::evaluate(const Eigen::VectorXd& theta,
     }
     out.edc_mod_j.push_back(std::move(predicted));
   }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   out.mean_deviation_pct_positive =
       deviation_count[0] ? 100.0 * deviation_sum[0] / deviation_count[0] : nan;
   out.mean_deviation_pct_negative =
       deviation_count[1] ? 100.0 * deviation_sum[1] / deviation_count[1] : nan;
   return out;
+}
+
+EdcEvaluation EdcObjective::evaluate(const Eigen::VectorXd& theta,
+                                     const std::vector<double>* level_weights) const {
+  evaluations_->fetch_add(1);
+  std::optional<Model> model;
+  return assemble(respond(theta, model), level_weights);
+}
+
+bool EdcObjective::evaluate_nearby(const Eigen::VectorXd& theta,
+                                   const std::vector<Eigen::VectorXd>& nearby, EdcEvaluation& at,
+                                   std::vector<EdcEvaluation>& at_nearby) const {
+  // One evaluation at θ, and one more for the Jacobians and residuals of the nearby θ.
+  evaluations_->fetch_add(2);
+  std::optional<Model> model;
+  const std::vector<GroupResponse> responses = respond(theta, model);
+  at = assemble(responses, nullptr);
+  at_nearby.clear();
+  if (!at.ok) return false;
+  std::vector<Model> models;
+  try {
+    for (const Eigen::VectorXd& t : nearby) models.push_back(form_.build(t));
+  } catch (const InputError&) {
+    return false;
+  }
+  std::vector<std::vector<GroupResponse>> nearby_responses(
+      nearby.size(), std::vector<GroupResponse>(data_.groups.size()));
+  for (std::size_t g = 0; g < data_.groups.size(); ++g) {
+    // Each level's solution, reached by natural continuation or by arclength past a fold, is a
+    // regular root of the balance (a landing exactly on a fold would make J singular: refused
+    // below), so a small change of θ moves it along dx/dθ = −J⁻¹ ∂r/∂θ.
+    const LevelResponse& base = *responses[g].response;
+    std::vector<LevelResponse> near =
+        nearby_level_responses(*model, models, data_.groups[g].freq_hz, base, settings_.hbm);
+    for (std::size_t j = 0; j < near.size(); ++j) {
+      if (near[j].status != JobStatus::Ok) return false;
+      nearby_responses[j][g].response = std::move(near[j]);
+    }
+  }
+  for (const std::vector<GroupResponse>& r : nearby_responses) {
+    at_nearby.push_back(assemble(r, nullptr));
+  }
+  return true;
 }
 
 }  // namespace oscilab::analysis

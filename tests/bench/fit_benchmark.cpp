@@ -5,6 +5,7 @@
 // reports medians over repetitions; nothing here asserts a speed.
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -88,6 +89,46 @@ BENCHMARK(BM_CostEvaluationPreslidingRegime)
     ->Arg(1)
     ->Arg(3)
     ->Arg(30)
+    ->Unit(benchmark::kMillisecond);
+
+// One finite-difference Jacobian of the residuals as a Levenberg–Marquardt refit takes it (θ and
+// one shifted θ per parameter), the friction in its presliding regime at δ µm (range 0; 0 the
+// sliding law): range 1 = 0 solves every shifted θ again (the reference), 1 takes the shifted
+// evaluations by one Newton step per level from θ's solutions (EdcObjective::evaluate_nearby).
+void BM_ResidualJacobianPreslidingRegime(benchmark::State& state) {
+  const double length_m = 1e-6 * static_cast<double>(state.range(0));
+  const bool nearby_steps = state.range(1) == 1;
+  Model truth = paper_model();
+  if (length_m > 0.0) truth.set_parameter(1, "presliding_length_m", length_m);
+  EdcCostSettings cost;
+  cost.hbm.harmonics = 7;
+  cost.adaptive_harmonics = false;
+  const EdcObjective o(ModelForm::paper(truth), testing::twin_dataset(paper_model()), cost);
+  const Eigen::VectorXd theta = o.form().initial();
+  std::vector<Eigen::VectorXd> shifted;
+  for (int j = 0; j < theta.size(); ++j) {
+    shifted.push_back(theta);
+    shifted.back()[j] *= 1.0 + 1e-6;
+  }
+  double column_sum = 0.0;
+  for (auto _ : state) {
+    EdcEvaluation at;
+    std::vector<EdcEvaluation> around;
+    if (!nearby_steps || !o.evaluate_nearby(theta, shifted, at, around)) {
+      if (nearby_steps) state.SkipWithError("evaluate_nearby refused");
+      at = o.evaluate(theta);
+      around.clear();
+      for (const Eigen::VectorXd& t : shifted) around.push_back(o.evaluate(t));
+    }
+    column_sum = 0.0;
+    for (const EdcEvaluation& e : around) column_sum += (e.residuals - at.residuals).norm();
+    benchmark::DoNotOptimize(column_sum);
+  }
+  state.counters["parameters"] = static_cast<double>(theta.size());
+  state.SetLabel(nearby_steps ? "nearby Newton steps" : "every shifted theta solved");
+}
+BENCHMARK(BM_ResidualJacobianPreslidingRegime)
+    ->ArgsProduct({{0, 1, 3, 30}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 
 void BM_Fit2000Evaluations(benchmark::State& state) {

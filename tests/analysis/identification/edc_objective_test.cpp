@@ -158,5 +158,58 @@ TEST(EdcObjective, RejectsLevelsWithNoSpreadAndNoFloor) {
       InputError);
 }
 
+// The nearby evaluations (one Newton step per level from θ's solutions) against the derivative of
+// the solved evaluations by central differences: the implicit-function derivative is exact to
+// first order, so the two agree to the central difference's own error, O(h²) of the parameter
+// step plus the Newton tolerance (1e-11 N) over the step, both far below 1e-4 of the derivative.
+// For the sliding law and for the friction in its presliding regime at δ = 3 µm (H raised to
+// resolve the stuck contact's ringing, the exact march's Jacobian).
+void expect_nearby_derivatives_match(const Model& truth) {
+  const EdcObjective objective(ModelForm::paper(truth),
+                               testing::twin_dataset(paper_model(), {}, testing::few_levels_n()),
+                               testing::twin_settings());
+  const Eigen::VectorXd theta = objective.form().initial();
+  constexpr double kNearbyStep = 1e-7, kCentralStep = 1e-5;  // relative to each parameter
+  std::vector<Eigen::VectorXd> nearby;
+  for (int j = 0; j < theta.size(); ++j) {
+    nearby.push_back(theta);
+    nearby.back()[j] += kNearbyStep * theta[j];
+  }
+  EdcEvaluation at;
+  std::vector<EdcEvaluation> around;
+  ASSERT_TRUE(objective.evaluate_nearby(theta, nearby, at, around));
+  ASSERT_EQ(around.size(), nearby.size());
+  EXPECT_NEAR(at.weighted_cost, objective.evaluate(theta).weighted_cost, 1e-12);
+  for (int j = 0; j < theta.size(); ++j) {
+    Eigen::VectorXd up = theta, down = theta;
+    up[j] += kCentralStep * theta[j];
+    down[j] -= kCentralStep * theta[j];
+    const EdcEvaluation e_up = objective.evaluate(up), e_down = objective.evaluate(down);
+    ASSERT_TRUE(e_up.ok && e_down.ok);
+    const Eigen::VectorXd central =
+        (e_up.residuals - e_down.residuals) / (2.0 * kCentralStep * theta[j]);
+    const Eigen::VectorXd linear = (around[j].residuals - at.residuals) / (kNearbyStep * theta[j]);
+    EXPECT_LE((linear - central).norm(), 1e-4 * central.norm() + 1e-6)
+        << objective.form().names()[j] << ": |d| " << central.norm();
+    for (std::size_t k = 0; k < at.z1_abs_m.size(); ++k) {
+      const double d_central =
+          (e_up.z1_abs_m[k] - e_down.z1_abs_m[k]) / (2.0 * kCentralStep * theta[j]);
+      const double d_linear = (around[j].z1_abs_m[k] - at.z1_abs_m[k]) / (kNearbyStep * theta[j]);
+      EXPECT_NEAR(d_linear, d_central, 1e-4 * std::abs(d_central) + 1e-12)
+          << objective.form().names()[j] << " level " << k;
+    }
+  }
+}
+
+TEST(EdcObjective, NearbyEvaluationsFollowTheSolvedDerivative) {
+  expect_nearby_derivatives_match(paper_model());
+}
+
+TEST(EdcObjective, NearbyEvaluationsFollowTheSolvedDerivativeInThePreslidingRegime) {
+  Model truth = paper_model();
+  truth.set_parameter(1, "presliding_length_m", 3e-6);
+  expect_nearby_derivatives_match(truth);
+}
+
 }  // namespace
 }  // namespace oscilab::analysis
