@@ -179,6 +179,9 @@ double halton(int k, int base) {
 }
 constexpr std::array<int, 8> kPrimes = {2, 3, 5, 7, 11, 13, 17, 19};
 constexpr int kBoundRestarts = 4;
+// A friction parameter farther than this from the form's start (a share of its range) makes the
+// candidates' refits start from the form's friction as well.
+constexpr double kLabStartDistance = 0.05;
 
 // Whether a parameter other than the stiffness's sits within 1e-3 of a bound (unit cube).
 bool at_a_bound(const ModelForm& form, const Eigen::VectorXd& theta) {
@@ -349,12 +352,13 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
       // (2) Levenberg–Marquardt refits of all parameters from the two best grid points and the
       // two best scan points: a new term that starts too strong or too weak, or whose effect the
       // current parameters partly mimic, needs more than one start.
-      const auto scored = [&](const std::vector<Eigen::VectorXd>& own) {
+      const auto scored_at = [&](const Eigen::VectorXd& others,
+                                 const std::vector<Eigen::VectorXd>& own) {
         std::vector<std::pair<double, Eigen::VectorXd>> out;
         for (const Eigen::VectorXd& s : own) {
           if (cancel.cancelled()) break;
           Eigen::VectorXd point(extended.size());
-          point << theta, s;
+          point << others, s;
           point = extended.clamp(point);
           const EdcEvaluation e = extended_objective.evaluate(point);
           out.emplace_back(joint_chi2(e, response_fingerprints(data, e), use_fp), point);
@@ -362,6 +366,9 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         std::sort(out.begin(), out.end(),
                   [](const auto& x, const auto& y) { return x.first < y.first; });
         return out;
+      };
+      const auto scored = [&](const std::vector<Eigen::VectorXd>& own) {
+        return scored_at(theta, own);
       };
       const auto grid = scored(candidate_grid(c));
       const auto scan = scored(c.scan);
@@ -373,6 +380,25 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
         starts.push_back(scan[i].second);
       }
       long spent = static_cast<long>(grid.size() + scan.size());
+      // The form's starting friction (the lab's model) with the current stiffness and accepted
+      // terms: a baseline bends its friction to stand in for a missing effect (a sliding law
+      // pushed to its bounds for a stiff presliding regime), and an effect that changes that
+      // law needs the friction to move back, which a refit from the bent θ may not find. One
+      // more start, from the best grid point about that friction, when it differs.
+      Eigen::VectorXd lab_start = theta;
+      bool differs = false;
+      const Eigen::VectorXd form_unit = form.to_unit(form.initial()),
+                            current_unit = current.to_unit(theta);
+      for (int i = 0; i < form.size(); ++i) {
+        if (form.is_stiffness(i)) continue;
+        lab_start(i) = form.initial()(i);
+        differs = differs || std::abs(form_unit(i) - current_unit(i)) > kLabStartDistance;
+      }
+      if (differs) {
+        const auto lab_grid = scored_at(lab_start, candidate_grid(c));
+        if (!lab_grid.empty()) starts.push_back(lab_grid.front().second);
+        spent += static_cast<long>(lab_grid.size());
+      }
       JointRefit fit;
       fit.joint_chi2 = std::numeric_limits<double>::infinity();
       const long per_start = std::max<long>(

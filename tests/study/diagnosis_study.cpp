@@ -9,6 +9,9 @@
 //                                         SCALE × its reference strength (presliding-regime: the
 //                                         friction's own presliding regime, SCALE = δ in µm;
 //                                         one-sided-damper: outside the vocabulary)
+//   diagnosis_study moved EFFECT SCALE FREQ NOISE SEED [LEVELS]
+//                                         the same with the friction parameters θ moved as a
+//                                         control's of that seed (the start is not the truth's)
 //   diagnosis_study control SEED FREQ NOISE [LEVELS]
 //                                         one blind diagnosis of the paper's model with its
 //                                         friction parameters θ (eq. (9)) moved by up to ±30 %
@@ -18,6 +21,7 @@
 // LEVELS: stepped-sine levels per well, 0.2 → 2.7 N evenly (26 by default). Every diagnosis is
 // run as a lab runs it, the stiffness identified from the records (`--stiffness identified`);
 // OSCILAB_STUDY_TRUE_STIFFNESS=1 gives it the truth's K(z) instead (labelled in the output).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -31,6 +35,7 @@
 #include "analysis/hbm/level_response.h"
 #include "analysis/identification/campaign_model.h"
 #include "analysis/identification/edc_dataset.h"
+#include "analysis/identification/edc_objective.h"
 #include "analysis/identification/fit_setup.h"
 #include "analysis/model/position_dependent_friction.h"
 #include "tests/analysis/diagnosis/hidden_effect_campaign.h"
@@ -84,7 +89,7 @@ void print_header() {
   std::printf(
       "case,effect,scale,freq_hz,noise_scale,seed,verdict,correct,status,seconds,"
       "baseline_reduced_chi2,noise_reduced_chi2,steps,accepted,levels,stiffness,gap_explained,"
-      "final_reduced_chi2,embodiment\n");
+      "final_reduced_chi2,embodiment,truth_reduced_chi2,baseline_reaches_truth\n");
 }
 
 bool true_stiffness() {
@@ -101,8 +106,18 @@ std::string expected_verdict(const std::string& effect) {
   return effect;
 }
 
+// Whether the settled baseline reached the minimum: its EDC χ² against the χ² of the true
+// parameters, both under the final model's σ budget, which must not exceed it by more than
+// 2 √(2ν) (two standard deviations of χ² with ν degrees of freedom). Only for a control, whose
+// truth the baseline's form holds exactly.
+struct TruthComparison {
+  double truth_reduced_chi2 = std::nan("");
+  int reaches = -1;  // 1 yes, 0 no, -1 not a control
+};
+
 void print_result(const std::string& kind, const std::string& effect, double scale, double freq,
-                  double noise, int seed, int levels, const DiagnosisResult& r) {
+                  double noise, int seed, int levels, const DiagnosisResult& r,
+                  const TruthComparison& truth = {}) {
   std::string accepted, embodiment = "-";
   for (const DiagnosisStep& s : r.steps) {
     if (s.effect != "none") accepted += (accepted.empty() ? "" : "+") + s.effect;
@@ -110,12 +125,13 @@ void print_result(const std::string& kind, const std::string& effect, double sca
   }
   const bool correct =
       effect == "one-sided-damper" ? !r.gap_explained : r.verdict == expected_verdict(effect);
-  std::printf("%s,%s,%g,%g,%g,%d,%s,%d,%s,%.1f,%.4g,%.4g,%zu,%s,%d,%s,%d,%.4g,%s\n", kind.c_str(),
-              effect.c_str(), scale, freq, noise, seed, r.verdict.c_str(), correct ? 1 : 0,
-              r.incomplete ? "incomplete" : "complete", r.seconds, r.baseline_maps.reduced_chi2,
-              r.noise_reduced_chi2, r.steps.size(), accepted.empty() ? "-" : accepted.c_str(),
-              levels, true_stiffness() ? "true" : "identified", r.gap_explained ? 1 : 0,
-              r.final_maps.reduced_chi2, embodiment.c_str());
+  std::printf(
+      "%s,%s,%g,%g,%g,%d,%s,%d,%s,%.1f,%.4g,%.4g,%zu,%s,%d,%s,%d,%.4g,%s,%.4g,%d\n", kind.c_str(),
+      effect.c_str(), scale, freq, noise, seed, r.verdict.c_str(), correct ? 1 : 0,
+      r.incomplete ? "incomplete" : "complete", r.seconds, r.baseline_maps.reduced_chi2,
+      r.noise_reduced_chi2, r.steps.size(), accepted.empty() ? "-" : accepted.c_str(), levels,
+      true_stiffness() ? "true" : "identified", r.gap_explained ? 1 : 0, r.final_maps.reduced_chi2,
+      embodiment.c_str(), truth.truth_reduced_chi2, truth.reaches);
   std::fflush(stdout);
 }
 
@@ -126,7 +142,13 @@ std::vector<double> level_grid(int count) {
   return levels;
 }
 
-DiagnosisResult run_blind(const Model& truth, int seed, double freq, double noise, int levels) {
+struct BlindRun {
+  DiagnosisResult result;
+  TruthComparison truth;
+};
+
+BlindRun run_blind(const Model& truth, int seed, double freq, double noise, int levels,
+                   bool compare_with_truth) {
   testing::CampaignSpec spec;
   spec.freq_hz = freq;
   spec.noise_scale = noise;
@@ -149,11 +171,26 @@ DiagnosisResult run_blind(const Model& truth, int seed, double freq, double nois
   options.seed = static_cast<std::uint64_t>(seed);
   const char* seconds = std::getenv("OSCILAB_DIAGNOSE_MAX_SECONDS");
   if (seconds) options.max_seconds = std::atof(seconds);
-  DiagnosisResult result = diagnose(campaign, form, options);
+  // The study script runs JOBS diagnoses at once on cores / JOBS threads each (OMP_NUM_THREADS),
+  // so that they do not compete for the cores and each one's time is its own.
+  if (const char* threads = std::getenv("OMP_NUM_THREADS")) {
+    options.threads = std::clamp(std::atoi(threads), 0, 1024);
+  }
+  BlindRun run{diagnose(campaign, form, options), {}};
+  const DiagnosisResult& result = run.result;
   if (const char* path = std::getenv("OSCILAB_STUDY_REPORT")) {
     std::ofstream(path) << diagnosis_report_json(result, {"virtual rig"}).dump(2) << '\n';
   }
-  return result;
+  if (compare_with_truth && result.status == oscilab::JobStatus::Ok && !result.incomplete) {
+    // Both χ² under one σ budget (the final model's): the baseline's settled θ and the truth's.
+    const EdcObjective objective(form, edc_dataset(campaign), result.final_cost);
+    const double nu = std::max(1, objective.level_count() - form.size());
+    const double truth_chi2 = objective.evaluate(form.theta_of(truth)).weighted_cost;
+    const double baseline_chi2 = objective.evaluate(result.baseline.theta).weighted_cost;
+    run.truth.truth_reduced_chi2 = truth_chi2 / nu;
+    run.truth.reaches = baseline_chi2 <= truth_chi2 + 2.0 * std::sqrt(2.0 * nu) ? 1 : 0;
+  }
+  return run;
 }
 
 int power_study(const std::string& effect, double scale, double freq, double noise, int seed,
@@ -161,22 +198,36 @@ int power_study(const std::string& effect, double scale, double freq, double noi
   print_header();
   const Model truth = testing::truth_with_effect(effect, scale);
   print_result("power", effect, scale, freq, noise, seed, levels,
-               run_blind(truth, seed, freq, noise, levels));
+               run_blind(truth, seed, freq, noise, levels, false).result);
   return 0;
+}
+
+// The paper's model with θ of eq. (9) moved by a uniform factor in [0.7, 1.3] each, drawn from
+// the seed: the diagnosis starts from the paper's friction, not from this truth's.
+Model moved_friction(int seed) {
+  std::mt19937_64 rng(static_cast<std::uint64_t>(seed) * 7919);
+  std::uniform_real_distribution<double> factor(0.7, 1.3);
+  const ModelForm form = ModelForm::paper(paper_model());
+  Eigen::VectorXd theta = form.initial();
+  for (int i = 0; i < theta.size(); ++i) theta[i] *= factor(rng);
+  return form.build(form.clamp(theta));
 }
 
 int control_study(int seed, double freq, double noise, int levels) {
   print_header();
-  // θ of eq. (9) moved by a uniform factor in [0.7, 1.3] each, drawn from the seed.
-  std::mt19937_64 rng(static_cast<std::uint64_t>(seed) * 7919);
-  std::uniform_real_distribution<double> factor(0.7, 1.3);
-  Model base = paper_model();
-  const ModelForm form = ModelForm::paper(base);
-  Eigen::VectorXd theta = form.initial();
-  for (int i = 0; i < theta.size(); ++i) theta[i] *= factor(rng);
-  const Model truth = form.build(form.clamp(theta));
-  print_result("control", "none", 0.0, freq, noise, seed, levels,
-               run_blind(truth, seed, freq, noise, levels));
+  const BlindRun run = run_blind(moved_friction(seed), seed, freq, noise, levels, true);
+  print_result("control", "none", 0.0, freq, noise, seed, levels, run.result, run.truth);
+  return 0;
+}
+
+// A hidden effect on top of friction moved as a control's (the seed's): the start is then not
+// the truth's friction.
+int moved_study(const std::string& effect, double scale, double freq, double noise, int seed,
+                int levels) {
+  print_header();
+  const Model truth = testing::truth_with_effect(effect, scale, moved_friction(seed));
+  print_result("moved", effect, scale, freq, noise, seed, levels,
+               run_blind(truth, seed, freq, noise, levels, false).result);
   return 0;
 }
 
@@ -195,6 +246,12 @@ int main(int argc, char** argv) {
     return power_study(argv[2], std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]),
                        std::atoi(argv[6]), levels);
   }
+  if (mode == "moved" && (argc == 7 || argc == 8)) {
+    const int levels = argc == 8 ? std::atoi(argv[7]) : 26;
+    if (levels < 5) return 2;
+    return moved_study(argv[2], std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]),
+                       std::atoi(argv[6]), levels);
+  }
   if (mode == "control" && (argc == 5 || argc == 6)) {
     const int levels = argc == 6 ? std::atoi(argv[5]) : 26;
     if (levels < 5) return 2;
@@ -202,6 +259,7 @@ int main(int argc, char** argv) {
   }
   std::fprintf(stderr,
                "usage: diagnosis_study header | bias SEEDS | power EFFECT SCALE FREQ NOISE SEED "
-               "[LEVELS] | control SEED FREQ NOISE [LEVELS]\n");
+               "[LEVELS] | moved EFFECT SCALE FREQ NOISE SEED [LEVELS] | control SEED FREQ NOISE "
+               "[LEVELS]\n");
   return 2;
 }

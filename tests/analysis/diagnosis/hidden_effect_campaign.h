@@ -71,8 +71,8 @@ class OneSidedDamper final : public ModelTerm {
 
 /// The paper's model with its friction in the presliding regime of length δ (eqs. (5)–(6), the
 /// Coulomb part a Dahl state of the contact).
-inline Model paper_with_presliding(double length_m) {
-  Model model = paper_model();
+inline Model paper_with_presliding(double length_m, const Model& base = paper_model()) {
+  Model model = base;
   for (std::size_t i = 0; i < model.terms().size(); ++i) {
     if (model.terms()[i]->type() == "position-dependent-friction") {
       model.set_parameter(i, "presliding_length_m", length_m);
@@ -86,11 +86,12 @@ inline Model paper_with_presliding(double length_m) {
 /// multiplies the term's force (F_c, f_s, c_p) and keeps its shape (presliding length, v_s).
 /// Several effects hidden together: their names joined by '+' ("presliding-hysteresis+
 /// quadratic-damping"), each at `scale`.
-inline Model truth_with_effect(const std::string& effect, double scale) {
-  Model model = paper_model();
+inline Model truth_with_effect(const std::string& effect, double scale,
+                               const Model& base = paper_model()) {
+  Model model = base;
   if (const std::size_t plus = effect.find('+'); plus != std::string::npos) {
-    Model first = truth_with_effect(effect.substr(0, plus), scale);
-    const Model rest = truth_with_effect(effect.substr(plus + 1), scale);
+    Model first = truth_with_effect(effect.substr(0, plus), scale, base);
+    const Model rest = truth_with_effect(effect.substr(plus + 1), scale, base);
     for (std::size_t i = model.terms().size(); i < rest.terms().size(); ++i) {
       first.add_term(rest.terms()[i]->clone());
     }
@@ -98,7 +99,7 @@ inline Model truth_with_effect(const std::string& effect, double scale) {
   }
   if (effect == "presliding-regime") {
     // The friction's own presliding regime: `scale` is δ in µm (a length, not a strength).
-    return paper_with_presliding(1e-6 * scale);
+    return paper_with_presliding(1e-6 * scale, base);
   }
   if (effect == "one-sided-damper") {
     // Outside the vocabulary: c (z − z₊*)² ż beyond the positive well, c = 2e6 N s/m³ × scale.
