@@ -59,6 +59,13 @@ FitSettingsForm::FitSettingsForm(QWidget* parent)
   stiffness_box_->addItem(tr("the model's K(z)"), "model");
   stiffness_box_->addItem(tr("cubic fit of the restoring-force slice"), "rfs");
   stiffness_box_->addItem(tr("identified with the friction (from the slice)"), "identified");
+  // As `oscilab-cli diagnose` does by default: a lab's K(z) is measured, with its errors, and a
+  // stiffness held at such an estimate reads as a missing effect.
+  stiffness_box_->setCurrentIndex(stiffness_box_->findData("identified"));
+  stiffness_box_->setToolTip(
+      tr("Where K(z) comes from: identified with the friction, starting from the random record's "
+         "restoring-force slice (the default); that slice's cubic held fixed; or the base "
+         "model's K(z) held fixed"));
   harmonics_box_ = new QSpinBox;
   harmonics_box_->setObjectName("harmonics");
   harmonics_box_->setRange(1, 63);
