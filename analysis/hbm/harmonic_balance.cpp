@@ -126,7 +126,11 @@ void HarmonicBalance::residual(const Eigen::VectorXd& x, double f0_n, Eigen::Vec
 
 void HarmonicBalance::residual_and_jacobian(const Eigen::VectorXd& x, double f0_n,
                                             Eigen::VectorXd& r, Eigen::MatrixXd& jacobian) {
-  residual(x, f0_n, r);  // leaves z_, z_dot_ at the samples
+  residual(x, f0_n, r);  // leaves z_, z_dot_ and the stateful terms' march at the samples of x
+  jacobian_after_residual(x, jacobian);
+}
+
+void HarmonicBalance::jacobian_after_residual(const Eigen::VectorXd& x, Eigen::MatrixXd& jacobian) {
   const int n = grid_.samples();
   for (int i = 0; i < n; ++i) {
     const TermPartials p = model_.partials(z_[i], z_dot_[i], nullptr);
@@ -282,7 +286,9 @@ NewtonReport HarmonicBalance::solve(Eigen::VectorXd& x, double f0_n, const Newto
     }
     x = trial;
     report.step_norm = scale * step.norm();
-    residual_and_jacobian(x, f0_n, r, jacobian);
+    // The last residual evaluated was the accepted trial's: its samples and march stand.
+    r = trial_r;
+    jacobian_after_residual(x, jacobian);
     report.residual_norm_n = r.norm();
   }
   if (report.residual_norm_n <= options.residual_tolerance_n) {

@@ -141,6 +141,9 @@ class HarmonicBalance {
               Eigen::VectorXd& z_dot_m_s);
 
  private:
+  /// ∂r/∂x at x right after residual(x, …): the samples, partials and the stateful terms' march
+  /// that residual left are used as they are (Newton evaluates the accepted step's residual once).
+  void jacobian_after_residual(const Eigen::VectorXd& x, Eigen::MatrixXd& jacobian);
   void evaluate_samples(const Eigen::VectorXd& x);
   /// The stateful terms' periodic force at the samples of x into hysteretic_ (zero without them).
   void march_hysteresis(const Eigen::VectorXd& x);
