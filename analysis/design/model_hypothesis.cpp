@@ -116,6 +116,20 @@ std::vector<Eigen::VectorXd> candidate_grid(const EffectCandidate& c) {
   return out;
 }
 
+// Runs one hypothesis's fit on a worker: nothing throws across threads. A fit that throws (a θ
+// outside a term's domain that the search reached, a model harmonic balance cannot take) leaves
+// its hypothesis unsolved with the message.
+template <typename Fit>
+void guarded(ModelHypothesis& h, const Fit& fit, std::size_t slot) {
+  try {
+    fit(slot);
+  } catch (const std::exception& error) {
+    h.solved = false;
+    h.bic = std::numeric_limits<double>::infinity();
+    h.message = error.what();
+  }
+}
+
 bool wanted(const std::vector<std::string>& effects, const std::string& effect) {
   return effects.empty() || std::find(effects.begin(), effects.end(), effect) != effects.end();
 }
@@ -143,7 +157,7 @@ std::vector<ModelHypothesis> initial(const ModelForm& form, const Eigen::VectorX
   }
   std::mutex done_mutex;
   std::size_t done = 0;
-  parallel_for(out.size(), options.threads, [&](std::size_t slot) {
+  const auto fit_one = [&](std::size_t slot) {
     ModelHypothesis& h = out[slot];
     if (cancel.cancelled()) return;
     const auto objective = std::make_shared<const EdcObjective>(h.form, data, shared);
@@ -210,7 +224,9 @@ std::vector<ModelHypothesis> initial(const ModelForm& form, const Eigen::VectorX
     const std::lock_guard lock(done_mutex);
     ++done;
     if (progress) progress(static_cast<double>(done) / out.size());
-  });
+  };
+  parallel_for(out.size(), options.threads,
+               [&](std::size_t slot) { guarded(out[slot], fit_one, slot); });
   update_weights(out);
   return out;
 }
@@ -242,7 +258,7 @@ void refit_hypotheses(std::vector<ModelHypothesis>& hypotheses, const EdcDataset
       shared_cost(hypotheses.front().form, hypotheses.front().theta, data, options);
   std::mutex done_mutex;
   std::size_t done = 0;
-  parallel_for(hypotheses.size(), options.threads, [&](std::size_t slot) {
+  const auto refit_one = [&](std::size_t slot) {
     ModelHypothesis& h = hypotheses[slot];
     if (cancel.cancelled() || h.theta.size() != h.form.size()) return;
     const auto objective = std::make_shared<const EdcObjective>(
@@ -260,7 +276,9 @@ void refit_hypotheses(std::vector<ModelHypothesis>& hypotheses, const EdcDataset
     const std::lock_guard lock(done_mutex);
     ++done;
     if (progress) progress(static_cast<double>(done) / hypotheses.size());
-  });
+  };
+  parallel_for(hypotheses.size(), options.threads,
+               [&](std::size_t slot) { guarded(hypotheses[slot], refit_one, slot); });
   update_weights(hypotheses);
 }
 

@@ -28,6 +28,7 @@ struct ModelHypothesis {
   /// The objective of the last refit (its dataset, σ budget and defect correction).
   std::shared_ptr<const EdcObjective> objective;
   bool solved = false;
+  std::string message;      // why not solved, when a fit failed
   double edc_chi2 = 0.0;    // χ² of the EDC alone
   double joint_chi2 = 0.0;  // EDC plus, when weighed, the response fingerprints
   int levels = 0;           // EDC residuals n
@@ -66,7 +67,7 @@ struct HypothesisOptions {
   int refit_evaluations = 300;
   /// The largest reference H of each hypothesis's own defect correction (the shared budget's
   /// reference climbs to cost.max_harmonics).
-  int correction_max_harmonics = 63;
+  int correction_max_harmonics = 31;
   /// The effects to weigh (names of the vocabulary); empty: every candidate the form allows.
   std::vector<std::string> effects;
   int threads = 0;  // 0: all hardware threads

@@ -50,7 +50,7 @@ double noise_reduced_chi2(int dof) {
 }
 
 StopDecision stop_decision(const std::vector<ModelHypothesis>& hypotheses, const StopRule& rule,
-                           double shaker_time_s) {
+                           double shaker_time_s, double max_discrimination) {
   StopDecision out;
   out.leader = leading_hypothesis(hypotheses);
   char text[320];
@@ -59,14 +59,21 @@ StopDecision stop_decision(const std::vector<ModelHypothesis>& hypotheses, const
     out.leader_weight = leader.weight;
     out.reduced_chi2 = leader.reduced_edc_chi2();
     out.noise_reduced_chi2 = noise_reduced_chi2(leader.levels - leader.parameters());
-    out.gap_at_noise = out.reduced_chi2 <= out.noise_reduced_chi2;  // false for NaN
-    out.decided = out.leader_weight >= rule.leader_weight && out.gap_at_noise;
+    out.gap_at_noise = out.reduced_chi2 <= out.noise_reduced_chi2;    // false for NaN
+    out.nothing_left = max_discrimination < rule.min_discrimination;  // false for NaN
+    out.decided = out.gap_at_noise && (out.leader_weight >= rule.leader_weight || out.nothing_left);
     std::snprintf(text, sizeof text,
                   "leader %s, weight %.4f (stop at %.2f), chi2/dof %.3g against the noise level "
                   "%.3g",
                   leader.label().c_str(), out.leader_weight, rule.leader_weight, out.reduced_chi2,
                   out.noise_reduced_chi2);
     out.reason = text;
+    if (std::isfinite(max_discrimination)) {
+      std::snprintf(text, sizeof text,
+                    "; the best setting separates two plausible models by %.2g (stop below %.2g)",
+                    max_discrimination, rule.min_discrimination);
+      out.reason += text;
+    }
   } else {
     out.reason = "no hypothesis solved";
   }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,11 +19,18 @@ void update_weights(std::vector<ModelHypothesis>& hypotheses);
 /// The hypothesis of the largest weight (-1 when none is solved).
 int leading_hypothesis(const std::vector<ModelHypothesis>& hypotheses);
 
-/// When an adaptive test stops: the leading model has weight ≥ `leader_weight` and its own EDC
-/// misfit is at the noise level (χ²/ν ≤ 1 + 3√(2/ν), three standard deviations of a correct
-/// model's reduced χ², as the diagnosis's noise level), or the shaker time reached the budget.
+/// When an adaptive test stops. Decided: the leading model's own EDC misfit is at the noise level
+/// (χ²/ν ≤ 1 + 3√(2/ν), three standard deviations of a correct model's reduced χ², as the
+/// diagnosis's noise level) and either its weight is ≥ `leader_weight`, or no admissible setting
+/// is expected to tell two plausible models apart by more than `min_discrimination`
+/// (NextPoint::max_discrimination; 1: one σ of a measurement). The second is how a test whose
+/// truth is the baseline ends: nested candidates fitted to its data predict what it predicts,
+/// while BIC's Occam factor (√n per parameter) would need thousands of levels to give the
+/// baseline a weight of 0.99 over seven candidates. Otherwise the budget: the shaker time
+/// reached `budget_s`.
 struct StopRule {
   double leader_weight = 0.99;
+  double min_discrimination = 1.0;
   double budget_s = 600.0;  // shaker time, s
 };
 
@@ -34,13 +42,17 @@ struct StopDecision {
   double reduced_chi2 = 0.0;        // the leader's χ²_EDC / ν
   double noise_reduced_chi2 = 0.0;  // 1 + 3√(2/ν); NaN when ν ≤ 0
   bool gap_at_noise = false;
-  std::string reason;  // in words, always set
+  bool nothing_left = false;  // max_discrimination below the rule's minimum
+  std::string reason;         // in words, always set
 };
 
 /// The noise level of a reduced χ² with ν degrees of freedom: 1 + 3√(2/ν) (NaN for ν ≤ 0).
 double noise_reduced_chi2(int dof);
 
+/// `max_discrimination`: NextPoint::max_discrimination of the proposal at this point, NaN when
+/// none was made (then only the leader's weight decides).
 StopDecision stop_decision(const std::vector<ModelHypothesis>& hypotheses, const StopRule& rule,
-                           double shaker_time_s);
+                           double shaker_time_s,
+                           double max_discrimination = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace oscilab::analysis

@@ -114,23 +114,51 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
     for (double freq : settings.freq_grid()) slots.push_back({positive, freq});
   }
   // predictions[a][s]: plausible hypothesis a at slot s.
-  const std::size_t count = out.plausible.size();
+  std::size_t count = out.plausible.size();
   std::vector<std::vector<PredictedLevels>> predictions(count);
   std::mutex done_mutex;
   std::size_t done = 0;
+  std::vector<std::string> failures(count);
   parallel_for(count, options.threads, [&](std::size_t a) {
     const ModelHypothesis& h = hypotheses[static_cast<std::size_t>(out.plausible[a])];
-    const Eigen::MatrixXd cov = unit_covariance(*h.objective, h.theta, options.use_fingerprints,
-                                                options.difference_step, cancel);
-    for (const Slot& s : slots) {
-      if (cancel.cancelled()) return;
-      predictions[a].push_back(predict_levels(*h.objective, h.theta, cov, s.positive_well,
-                                              s.freq_hz, f0, options.difference_step, cancel));
+    // Nothing throws across threads: a failure leaves this hypothesis without predictions.
+    try {
+      const Eigen::MatrixXd cov = unit_covariance(*h.objective, h.theta, options.use_fingerprints,
+                                                  options.difference_step, cancel);
+      for (const Slot& s : slots) {
+        if (cancel.cancelled()) return;
+        predictions[a].push_back(predict_levels(*h.objective, h.theta, cov, s.positive_well,
+                                                s.freq_hz, f0, options.difference_step, cancel));
+      }
+    } catch (const std::exception& error) {
+      failures[a] = h.label() + ": " + error.what();
+      predictions[a].clear();
+      return;
     }
     const std::lock_guard lock(done_mutex);
     ++done;
     if (progress) progress(static_cast<double>(done) / count);
   });
+  // A hypothesis that could not be predicted is left out of the criterion, and said.
+  {
+    std::vector<int> kept;
+    std::vector<std::vector<PredictedLevels>> kept_predictions;
+    for (std::size_t a = 0; a < count; ++a) {
+      if (failures[a].empty()) {
+        kept.push_back(out.plausible[a]);
+        kept_predictions.push_back(std::move(predictions[a]));
+      } else {
+        out.message += (out.message.empty() ? "not predicted: " : "; ") + failures[a];
+      }
+    }
+    if (kept.empty() && !cancel.cancelled()) {
+      out.status = JobStatus::NumericalIssue;
+      return out;
+    }
+    out.plausible = std::move(kept);
+    predictions = std::move(kept_predictions);
+    count = out.plausible.size();
+  }
   if (cancel.cancelled()) {
     out.status = JobStatus::Cancelled;
     out.message = "cancelled";
@@ -191,26 +219,44 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
             std::pow(edc_mean * std::hypot(kEdcEstimatorBiasRel, noise.edc_rel), 2);
         const double var_z1 = std::pow(z1_mean * std::hypot(kAmplitudeBiasRel, noise.z1_rel), 2);
         double best_term = -1.0;
-        const auto add = [&](int i, int j, const char* quantity, double wij, double delta,
-                             double variance) {
-          if (!(variance > 0.0)) return;
-          const double separation2 = delta * delta / variance;
-          score.criterion += wij * separation2;
-          if (wij * separation2 > best_term) {
-            best_term = wij * separation2;
+        // One pair's Box–Hill term in one quantity: mean and variance differences over what a
+        // measurement of variance s2 would see (docs in next_point.h).
+        const auto add = [&](int i, int j, const char* quantity, double wij, double mu_i,
+                             double mu_j, double v_i, double v_j, double s2) {
+          if (!(s2 > 0.0)) return;
+          const double delta = mu_i - mu_j;
+          const double half_bracket = 0.5 * ((v_i - v_j) * (v_i - v_j) / ((s2 + v_i) * (s2 + v_j)) +
+                                             delta * delta * (1.0 / (s2 + v_i) + 1.0 / (s2 + v_j)));
+          score.criterion += wij * half_bracket;
+          score.pair_discrimination = std::max(score.pair_discrimination, half_bracket);
+          if (wij * half_bracket > best_term) {
+            best_term = wij * half_bracket;
             score.pair_i = i;
             score.pair_j = j;
             score.quantity = quantity;
-            score.separation_sigma = std::sqrt(separation2);
+            score.separation_sigma = std::abs(delta) / std::sqrt(s2 + v_i + v_j);
+            score.spread_sigma = std::sqrt(std::max(v_i, v_j) / s2);
+            score.uncertain = v_i >= v_j ? i : j;
           }
         };
+        const auto sq = [](double x) { return x * x; };
         if (count == 1) {
           // One plausible model: where its own prediction is least certain against what a level
           // measures, the setting that teaches its parameters most.
           const PredictedLevels& p = predictions[0][s];
           const int i = out.plausible[0];
-          add(i, i, "EDC", 1.0, p.edc_sigma_j[k], var_edc);
-          if (options.use_amplitude) add(i, i, "|Z1|", 1.0, p.z1_sigma_m[k], var_z1);
+          for (int q = 0; q < (options.use_amplitude ? 2 : 1); ++q) {
+            const double v = sq(q == 0 ? p.edc_sigma_j[k] : p.z1_sigma_m[k]);
+            const double s2 = q == 0 ? var_edc : var_z1;
+            if (!(s2 > 0.0)) continue;
+            score.criterion += v / s2;
+            if (v / s2 > best_term) {
+              best_term = v / s2;
+              score.pair_i = score.pair_j = i;
+              score.quantity = q == 0 ? "EDC" : "|Z1|";
+              score.separation_sigma = std::sqrt(v / s2);
+            }
+          }
         }
         for (std::size_t a = 0; a < count; ++a) {
           for (std::size_t b = a + 1; b < count; ++b) {
@@ -218,17 +264,16 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
             const PredictedLevels& pb = predictions[b][s];
             const int i = out.plausible[a], j = out.plausible[b];
             const double wij = weight(i) * weight(j);
-            add(i, j, "EDC", wij, pa.edc_j[k] - pb.edc_j[k],
-                var_edc + pa.edc_sigma_j[k] * pa.edc_sigma_j[k] +
-                    pb.edc_sigma_j[k] * pb.edc_sigma_j[k]);
+            add(i, j, "EDC", wij, pa.edc_j[k], pb.edc_j[k], sq(pa.edc_sigma_j[k]),
+                sq(pb.edc_sigma_j[k]), var_edc);
             if (options.use_amplitude) {
-              add(i, j, "|Z1|", wij, pa.z1_m[k] - pb.z1_m[k],
-                  var_z1 + pa.z1_sigma_m[k] * pa.z1_sigma_m[k] +
-                      pb.z1_sigma_m[k] * pb.z1_sigma_m[k]);
+              add(i, j, "|Z1|", wij, pa.z1_m[k], pb.z1_m[k], sq(pa.z1_sigma_m[k]),
+                  sq(pb.z1_sigma_m[k]), var_z1);
             }
           }
         }
         score.criterion_per_s = score.criterion / score.shaker_s;
+        out.max_discrimination = std::max(out.max_discrimination, score.pair_discrimination);
         if (!out.found || score.criterion_per_s > out.best.criterion_per_s) {
           out.found = true;
           out.best = score;
@@ -243,7 +288,7 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
     return out;
   }
   const SettingScore& b = out.best;
-  char text[400];
+  char text[600];
   const char* well = b.positive_well ? "positive" : "negative";
   if (b.pair_i == b.pair_j) {
     std::snprintf(text, sizeof text,
@@ -251,12 +296,24 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
                   "%.2f N, %.2f Hz, %s well",
                   hypotheses[static_cast<std::size_t>(b.pair_i)].label().c_str(),
                   b.quantity.c_str(), b.separation_sigma, b.f0_n, b.freq_hz, well);
-  } else {
+  } else if (b.separation_sigma >= 1.0 || b.spread_sigma < 1.0) {
     std::snprintf(text, sizeof text,
                   "%s vs %s differ by %.1f sigma in %s at %.2f N, %.2f Hz, %s well",
                   hypotheses[static_cast<std::size_t>(b.pair_i)].label().c_str(),
                   hypotheses[static_cast<std::size_t>(b.pair_j)].label().c_str(),
                   b.separation_sigma, b.quantity.c_str(), b.f0_n, b.freq_hz, well);
+  } else {
+    // The means agree; the spread of one model's prediction is what a level would settle.
+    const int other = b.uncertain == b.pair_i ? b.pair_j : b.pair_i;
+    std::snprintf(text, sizeof text,
+                  "%s vs %s agree within %.1f sigma in %s at %.2f N, %.2f Hz, %s well, but %s's "
+                  "prediction there is uncertain to %.1f sigma: a level would show its effect or "
+                  "rule it out",
+                  hypotheses[static_cast<std::size_t>(b.uncertain)].label().c_str(),
+                  hypotheses[static_cast<std::size_t>(other)].label().c_str(), b.separation_sigma,
+                  b.quantity.c_str(), b.f0_n, b.freq_hz, well,
+                  hypotheses[static_cast<std::size_t>(b.uncertain)].label().c_str(),
+                  b.spread_sigma);
   }
   out.reason = text;
   return out;

@@ -68,7 +68,12 @@ struct SettingScore {
   /// σ their predictions differ there.
   int pair_i = -1, pair_j = -1;
   std::string quantity;
-  double separation_sigma = 0.0;
+  double separation_sigma = 0.0;  // |μ_i − μ_j| / √(s² + v_i + v_j)
+  double spread_sigma = 0.0;      // √(max(v_i, v_j) / s²): how uncertain the vaguer one is
+  int uncertain = -1;             // which of i, j has the larger v
+  /// The largest unweighted pair term ½[…] of D here: ~(Δμ/s)² for well-known models, so 1 is an
+  /// expected separation of one measurement σ.
+  double pair_discrimination = 0.0;
 };
 
 struct NextPoint {
@@ -79,6 +84,9 @@ struct NextPoint {
   std::string reason;  // "quadratic-damping vs baseline differ by 7.1σ in EDC at 2.40 N, …"
   std::vector<SettingScore> settings;  // every setting, in grid order (well, frequency, f0)
   std::vector<int> plausible;          // the hypotheses predicted (weight ≥ min_weight)
+  /// The largest pair_discrimination over the admissible settings: what the best setting could
+  /// still tell apart (StopRule::min_discrimination).
+  double max_discrimination = 0.0;
 };
 
 /// The next level of an adaptive test: the admissible setting that best tells the plausible
@@ -89,19 +97,23 @@ struct NextPoint {
 /// correction) with the σ_i of its parameters' uncertainty propagated linearly
 /// (unit_covariance). The criterion is Box & Hill's (1967, "A discrimination criterion for
 /// Box–Hunter designs") in its Gaussian upper bound, the weighted sum over pairs of the squared
-/// difference of predictions over the variance a measurement would see:
+/// difference of predictions and of their variances over the variance a measurement would see:
 ///
-///   D(s) = Σ_{i<j} w_i w_j Σ_q (μ_i,q − μ_j,q)² / (σ_meas,q² + σ_i,q² + σ_j,q²),
+///   D(s) = Σ_{i<j} w_i w_j Σ_q ½ [ (v_i − v_j)² / ((s² + v_i)(s² + v_j))
+///                                  + (μ_i − μ_j)² (1/(s² + v_i) + 1/(s² + v_j)) ],
+///
+/// v_i = σ_i,q², s² = σ_meas,q². The second term separates models whose predictions differ;
+/// the first sends the test where one model's prediction is still uncertain (a candidate whose
+/// strength the levels so far do not constrain), where its effect could show.
 ///
 /// q ∈ {EDC, |Z1|}, w the BIC weights (floored at NextPointOptions::min_weight). With a single
-/// solved hypothesis D is instead Σ_q σ_i,q² / σ_meas,q²: where its own prediction is least
-/// certain. σ_meas is what one new level would measure: the
-/// estimator's bias floors (kEdcEstimatorBiasRel, kAmplitudeBiasRel) and the cycles' relative
-/// standard error typical of the levels measured so far (their median), at the predictions'
-/// weighted mean. A setting is scored by D / (dwell + settling (+ well change)). It is not
-/// admissible when any plausible model's response there reaches the saddle between the wells
-/// (or is not solved): the test never proposes a setting that would jump wells; nor, unless asked,
-/// one already measured (NextPointOptions::repeat_measured).
+/// solved hypothesis D is instead Σ_q v_i / s²: where its own prediction is least certain. σ_meas
+/// is what one new level would measure: the estimator's bias floors (kEdcEstimatorBiasRel,
+/// kAmplitudeBiasRel) and the cycles' relative standard error typical of the levels measured so far
+/// (their median), at the predictions' weighted mean. A setting is scored by D / (dwell + settling
+/// (+ well change)). It is not admissible when any plausible model's response there reaches the
+/// saddle between the wells (or is not solved): the test never proposes a setting that would jump
+/// wells; nor, unless asked, one already measured (NextPointOptions::repeat_measured).
 ///
 /// Progress is the fraction of hypotheses predicted; `cancel` returns status Cancelled.
 NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,

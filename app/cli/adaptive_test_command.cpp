@@ -58,6 +58,7 @@ struct AdaptiveOptions {
   double well_change_s = 10.0;
   double budget_s = 520.0;
   double leader_weight = 0.99;
+  double min_discrimination = 1.0;
   int max_levels = 40;
   std::string effects;
   long global_evaluations = 400;
@@ -96,6 +97,9 @@ void validate(const AdaptiveOptions& o) {
   if (!positive(o.budget_s)) throw InputError("--budget: must be a positive number of s");
   if (!(o.leader_weight > 0.5 && o.leader_weight < 1.0)) {
     throw InputError("--leader-weight: must be between 0.5 and 1");
+  }
+  if (!(o.min_discrimination >= 0.0) || !std::isfinite(o.min_discrimination)) {
+    throw InputError("--min-discrimination: must be >= 0");
   }
   if (o.max_levels < 1) throw InputError("--max-levels: must be at least 1");
   if (o.global_evaluations < 0 || o.global_evaluations > analysis::kMaxFitEvaluations ||
@@ -253,13 +257,35 @@ void run(const AdaptiveOptions& o) {
   std::printf("baseline and %zu candidate(s) fitted on the pilot and weighed in %.1f s\n",
               hypotheses.size() - 1, elapsed_s(started));
 
-  const analysis::StopRule rule{o.leader_weight, o.budget_s};
+  const analysis::StopRule rule{o.leader_weight, o.min_discrimination, o.budget_s};
   analysis::NextPointOptions next_options;
   next_options.threads = o.threads;
   int adaptive_levels = 0;
+  double refit_s = 0.0;  // of the refits after the last level (0 after the pilot)
   analysis::StopDecision decision;
   for (int decision_index = 0;; ++decision_index) {
+    // The proposal first: what the best setting could still tell apart is part of the stop rule.
     decision = analysis::stop_decision(hypotheses, rule, rig.shaker_time_s);
+    analysis::NextPoint next;
+    double proposal_s = 0.0;
+    if (!decision.stop && adaptive_levels < o.max_levels) {
+      settings.current_positive_well = current_positive;
+      const auto proposing = std::chrono::steady_clock::now();
+      next = analysis::propose_next_point(hypotheses, settings, next_options);
+      proposal_s = elapsed_s(proposing);
+      if (next.found) {
+        decision =
+            analysis::stop_decision(hypotheses, rule, rig.shaker_time_s, next.max_discrimination);
+      }
+    }
+    if (!decision.stop && adaptive_levels >= o.max_levels) {
+      decision.stop = true;
+      decision.reason = "max levels: " + std::to_string(o.max_levels) + " adaptive levels run; " +
+                        decision.reason;
+    } else if (!decision.stop && !next.found) {
+      decision.stop = true;
+      decision.reason = "no admissible setting: " + next.message + "; " + decision.reason;
+    }
     nlohmann::json line = {
         {"decision", decision_index},
         {"time_s", elapsed_s(started)},
@@ -272,23 +298,10 @@ void run(const AdaptiveOptions& o) {
         {"leader_weight", decision.leader_weight},
         {"reduced_chi2", decision.reduced_chi2},
         {"noise_reduced_chi2", decision.noise_reduced_chi2},
+        {"max_discrimination", next.found ? next.max_discrimination : 0.0},
+        {"proposal_s", proposal_s},
         {"stop", decision.stop}};
-    if (!decision.stop && adaptive_levels >= o.max_levels) {
-      decision.stop = true;
-      decision.reason = "max levels: " + std::to_string(o.max_levels) + " adaptive levels run; " +
-                        decision.reason;
-      line["stop"] = true;
-    }
-    analysis::NextPoint next;
-    if (!decision.stop) {
-      settings.current_positive_well = current_positive;
-      next = analysis::propose_next_point(hypotheses, settings, next_options);
-      if (!next.found) {
-        decision.stop = true;
-        decision.reason = "no admissible setting: " + next.message + "; " + decision.reason;
-        line["stop"] = true;
-      }
-    }
+    line["refit_s"] = refit_s;
     line["reason"] = decision.stop ? decision.reason : next.reason;
     if (!decision.stop) {
       line["proposal"] = setting_json(next.best);
@@ -307,7 +320,9 @@ void run(const AdaptiveOptions& o) {
     rig.run({p.f0_n}, p.freq_hz, p.positive_well, "level");
     current_positive = p.positive_well;
     ++adaptive_levels;
+    const auto refitting = std::chrono::steady_clock::now();
     analysis::refit_hypotheses(hypotheses, analysis::edc_dataset(rig.campaign), hypothesis_options);
+    refit_s = elapsed_s(refitting);
   }
 
   // The final diagnosis: the same as `diagnose` on the recordings made.
@@ -394,6 +409,11 @@ void add_adaptive_test_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--budget", o->budget_s, "shaker-time budget [s]")->capture_default_str();
   command->add_option("--leader-weight", o->leader_weight, "stop when the leader's weight >= this")
+      ->capture_default_str();
+  command
+      ->add_option("--min-discrimination", o->min_discrimination,
+                   "with the leader at the noise, stop when no setting separates two plausible "
+                   "models by more than this (1: one sigma of a measurement)")
       ->capture_default_str();
   command->add_option("--max-levels", o->max_levels, "adaptive levels at most")
       ->capture_default_str();

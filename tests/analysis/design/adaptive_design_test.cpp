@@ -97,6 +97,16 @@ TEST(StopRule, StopsOnAClearLeaderAtTheNoiseOrOnTheBudget) {
   EXPECT_TRUE(d.stop);
   EXPECT_FALSE(d.decided);
   EXPECT_NE(d.reason.find("budget"), std::string::npos) << d.reason;
+  // A leader at the noise without a clear weight stops when no setting could still separate two
+  // plausible models by a measurement's σ, and not while one could.
+  h[0].edc_chi2 = 29.0;
+  h[0].weight = 0.6;
+  h[1].weight = 0.4;
+  EXPECT_FALSE(stop_decision(h, {}, 100.0).stop);  // no proposal made: the weight alone decides
+  EXPECT_FALSE(stop_decision(h, {}, 100.0, 3.0).stop);
+  d = stop_decision(h, {}, 100.0, 0.5);
+  EXPECT_TRUE(d.decided);
+  EXPECT_TRUE(d.nothing_left);
 }
 
 TEST(UnitCovariance, MatchesTheFitUncertaintyOfAWellMeasuredParameter) {
@@ -158,6 +168,37 @@ TEST(NextPoint, ScoresNothingWhereTheModelsCoincide) {
       EXPECT_LT(s.criterion, 1e-12) << s.f0_n;
     }
   }
+}
+
+TEST(NextPoint, ExploresWhereAnUnconstrainedCandidateCouldShow) {
+  // The candidate's c₂ is free and fitted at 0 on three low levels, where |ż|ż barely acts: its
+  // mean predictions equal the baseline's everywhere, but its spread grows with the amplitude
+  // (8/3 c₂ ω² Z³). Box–Hill's variance term sends the test to the top, where a level would show
+  // whether c₂ is there.
+  const EdcDataset data = twin(paper_model(), {0.3, 0.6, 0.9});
+  std::vector<ModelHypothesis> h;
+  h.push_back(fixed_hypothesis("none", paper_model(), data, 0.5));
+  const Model candidate = with_quadratic_damping(0.0);
+  std::size_t viscous = 0;
+  while (candidate.terms()[viscous]->type() != "viscous-damping") ++viscous;
+  const std::size_t quadratic = candidate.terms().size() - 1;
+  const double c = candidate.terms()[viscous]->parameter("c_ns_m");
+  const ModelForm form =
+      ModelForm::of_terms(candidate, {{viscous, {"c_ns_m", 0.5 * c, 2.0 * c, false}},
+                                      {quadratic, {"c2_ns2_m2", 0.0, 20.0, false}}});
+  ModelHypothesis q("quadratic-damping", "added-term", form, form.initial());
+  q.objective = std::make_shared<const EdcObjective>(form, data, twin_cost());
+  q.solved = true;
+  q.weight = 0.5;
+  h.push_back(std::move(q));
+  AdmissibleSettings settings;
+  settings.negative_well = false;
+  const NextPoint next = propose_next_point(h, settings, {});
+  ASSERT_TRUE(next.found);
+  std::printf("%s; discrimination %.3g\n", next.reason.c_str(), next.best.pair_discrimination);
+  EXPECT_GE(next.best.f0_n, settings.f0_max_n - 0.1 * (settings.f0_max_n - settings.f0_min_n));
+  EXPECT_LT(next.best.separation_sigma, 1e-6);  // the means agree: only the spread speaks
+  EXPECT_GT(next.max_discrimination, 1.0);      // so the stop rule would not stop here
 }
 
 TEST(NextPoint, NeverProposesASettingWhoseResponseJumpsWells) {
