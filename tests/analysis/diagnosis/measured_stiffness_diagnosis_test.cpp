@@ -5,7 +5,7 @@
 // analysed by the pipeline; asserted against the truth only this test knows:
 // - the paper's model without a hidden effect says `none`, and the gap is explained;
 // - the friction's own presliding regime (its Coulomb part a Dahl state of presliding length
-//   δ = 30 µm) is named presliding-hysteresis and the final model reaches the noise;
+//   δ = 1 µm and 30 µm) is named presliding-hysteresis and the final model reaches the noise;
 // - a control whose six friction parameters are moved (±30 %), recorded with twice the sensor
 //   noise, with the fit started from the paper's values, says `none`;
 // - an effect outside the vocabulary (a damper that engages beyond the positive well, c (z − z₊*)²
@@ -75,10 +75,10 @@ TEST_P(FrictionRegimePresliding, IsNamedAndTheGapClosesToTheNoise) {
   EXPECT_LE(r.final_maps.reduced_chi2, r.final_noise_reduced_chi2);
 }
 
-// 30 µm here; 1 µm and 3 µm, where the stuck contact rings at 28 and 16 times the forcing and
-// every evaluation runs at H = 43 and 25 (minutes per diagnosis), are the study's
-// (scripts/diagnosis_power_study.sh, docs/diagnosis.md).
-INSTANTIATE_TEST_SUITE_P(Lengths, FrictionRegimePresliding, ::testing::Values(3e-5),
+// 30 µm, and 1 µm, where the stuck contact rings at 28 times the forcing (255 Hz, next to the
+// records' Nyquist frequency) and every evaluation runs at H = 43; the lengths between are the
+// study's (scripts/diagnosis_power_study.sh, docs/diagnosis.md).
+INSTANTIATE_TEST_SUITE_P(Lengths, FrictionRegimePresliding, ::testing::Values(1e-6, 3e-5),
                          [](const ::testing::TestParamInfo<double>& info) {
                            return "delta_" +
                                   std::to_string(static_cast<int>(info.param * 1e6 + 0.5)) + "um";
