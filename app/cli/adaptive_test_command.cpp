@@ -174,7 +174,9 @@ nlohmann::json chi2_json(const std::vector<analysis::ModelHypothesis>& h) {
     out[x.label()] = {{"edc", x.edc_chi2},
                       {"joint", x.joint_chi2},
                       {"bic", x.bic},
-                      {"parameters", x.parameters()}};
+                      {"parameters", x.parameters()},
+                      {"solved", x.solved}};
+    if (!x.message.empty()) out[x.label()]["message"] = x.message;
   }
   return out;
 }
