@@ -56,8 +56,12 @@ SearchResult run_cmaes(int dimension, const UnitCost& cost, const CmaesOptions& 
   if (!(options.sigma0 > 0.0 && options.sigma0 <= 1.0)) {
     throw InputError("CMA-ES: σ0 must lie in (0, 1]");
   }
+  if (options.streams < 1 || options.streams > 1024) {
+    throw InputError("CMA-ES: streams: " + std::to_string(options.streams) + " must be 1 to 1024");
+  }
   const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int streams = std::max(1, options.streams > 0 ? options.streams : hardware);
+  const int streams = options.streams;
+  const int threads = std::min(streams, options.threads > 0 ? options.threads : hardware);
   const int lambda0 = options.initial_population > 0
                           ? std::max(5, options.initial_population)
                           : std::max(8, 4 + static_cast<int>(3.0 * std::log(dimension)));
@@ -67,7 +71,7 @@ SearchResult run_cmaes(int dimension, const UnitCost& cost, const CmaesOptions& 
   SearchProgress global{0, std::numeric_limits<double>::infinity(), {}};
   std::atomic<long> spent_total{0};  // evaluations of all streams (each also counts its own)
 
-  parallel_for(static_cast<std::size_t>(streams), streams, [&](std::size_t s) {
+  parallel_for(static_cast<std::size_t>(streams), threads, [&](std::size_t s) {
     SearchResult& r = results[s];
     r.best_cost = std::numeric_limits<double>::infinity();
     const long budget = options.max_evaluations / streams +

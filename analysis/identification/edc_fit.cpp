@@ -104,7 +104,7 @@ FitResult fit_edc(const EdcObjective& objective, const FitOptions& options,
       polish_budget = static_cast<long>(options.polish_share * options.max_evaluations);
       cmaes.max_evaluations = options.max_evaluations - polish_budget;
       cmaes.seed = options.seed;
-      if (cmaes.streams <= 0) cmaes.streams = options.threads;
+      cmaes.threads = options.threads;
       best = cmaes_search(form.size(), cost, cmaes, reporter(FitStage::Search), cancel);
       // What the global search left of the budget goes to the polish.
       polish_budget = options.max_evaluations - best.evaluations;

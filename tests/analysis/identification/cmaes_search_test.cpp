@@ -112,6 +112,20 @@ TEST(CmaesSearch, SameSeedAndStreamCountReproduceTheResult) {
   EXPECT_NE(a.best_unit, c.best_unit);
 }
 
+// The threads run the streams, they do not make them: one thread and three give the same search
+// bit for bit (what a diagnosis on a laptop, a cluster node or at --threads 1 relies on).
+TEST(CmaesSearch, ThreadsDoNotChangeTheResult) {
+  const auto run = [](int threads) {
+    CmaesOptions o = options_with(1200, 5, 3);
+    o.threads = threads;
+    return cmaes_search(4, rosenbrock_unit, o);
+  };
+  const SearchResult one = run(1), three = run(3);
+  EXPECT_EQ(one.best_unit, three.best_unit);
+  EXPECT_EQ(one.best_cost, three.best_cost);
+  EXPECT_EQ(one.evaluations, three.evaluations);
+}
+
 // Cancellation is polled between generations: cancelled from a progress report, every stream
 // stops within a generation, so far fewer than the budget are spent; the best so far is kept.
 TEST(CmaesSearch, CancellationStopsTheSearchWithItsBestSoFar) {
@@ -158,6 +172,11 @@ TEST(CmaesSearch, ThrowsInputErrorForInvalidSettings) {
     EXPECT_NE(error_with(2, [&](CmaesOptions& o) { o.sigma0 = sigma0; }).find("σ0"),
               std::string::npos)
         << sigma0;
+  }
+  for (int streams : {0, -1, 1025}) {
+    EXPECT_NE(error_with(2, [&](CmaesOptions& o) { o.streams = streams; }).find("streams"),
+              std::string::npos)
+        << streams;
   }
   // The edges: a budget of 10, σ0 = 1.
   EXPECT_EQ(error_with(1,
