@@ -281,9 +281,15 @@ void for_each_group(std::size_t groups, bool long_work,
   for (std::future<void>& other : others) other.get();
 }
 
+// A model whose θ leaves it without a well is not long work: its levels fail at once (the
+// groups' own solves say why).
 bool has_stuck_contact(const Model& model) {
-  return small_loop_stiffness_n_m(model, model.well(true).z_m) > 0.0 ||
-         small_loop_stiffness_n_m(model, model.well(false).z_m) > 0.0;
+  try {
+    return small_loop_stiffness_n_m(model, model.well(true).z_m) > 0.0 ||
+           small_loop_stiffness_n_m(model, model.well(false).z_m) > 0.0;
+  } catch (const InputError&) {
+    return false;
+  }
 }
 
 }  // namespace
@@ -397,8 +403,13 @@ bool EdcObjective::evaluate_nearby(const Eigen::VectorXd& theta,
     // regular root of the balance (a landing exactly on a fold would make J singular: refused
     // below), so a small change of θ moves it along dx/dθ = −J⁻¹ ∂r/∂θ.
     const LevelResponse& base = *responses[g].response;
-    std::vector<LevelResponse> near =
-        nearby_level_responses(*model, models, data_.groups[g].freq_hz, base, settings_.hbm);
+    std::vector<LevelResponse> near;
+    try {
+      near = nearby_level_responses(*model, models, data_.groups[g].freq_hz, base, settings_.hbm);
+    } catch (const InputError&) {  // a nearby θ harmonic balance refuses: solve each instead
+      solved[g] = 0;
+      return;
+    }
     for (std::size_t j = 0; j < near.size(); ++j) {
       if (near[j].status != JobStatus::Ok) solved[g] = 0;
       nearby_responses[j][g].response = std::move(near[j]);

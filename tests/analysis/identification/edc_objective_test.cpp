@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include <gtest/gtest.h>
 
 #include "analysis/common/input_error.h"
+#include "analysis/model/polynomial_stiffness.h"
 #include "analysis/model/reference_models.h"
 #include "tests/analysis/identification/twin_data.h"
 
@@ -73,6 +75,29 @@ TEST(EdcObjective, UnsolvableThetaIsAFiniteCostNotAnError) {
   EXPECT_FALSE(e.ok);
   EXPECT_NE(e.message.find("ks"), std::string::npos) << e.message;
   EXPECT_NEAR(e.weighted_cost, 10 * 1e4, 1e-6);  // each residual is S / (0.01 S) = 100
+}
+
+// A θ whose K(z) has no stable equilibrium left (an added cubic stiffness that cancels the
+// form's): every level counts as S_mod = 0, with the reason, as for any unsolvable θ; the
+// evaluation and its nearby steps say so instead of throwing (a diagnosis's candidate grid
+// reaches such θ).
+TEST(EdcObjective, ThetaWithoutAWellIsAFiniteCostNotAnError) {
+  const Model truth = paper_model();
+  ModelForm form = ModelForm::paper(truth);
+  form.add_term(std::make_unique<PolynomialStiffness>(std::vector<double>{0, 0, 0, 0}),
+                {{"c3", -2e6, 2e6}});
+  const EdcObjective objective(form, testing::twin_dataset(truth, {}, testing::few_levels_n()),
+                               testing::twin_settings());
+  Eigen::VectorXd theta(form.size());
+  theta << form.initial().head(6), -1.5e6;  // k3 ≈ 7.3e5 N/m³ of Table 1 turned negative
+  const EdcEvaluation e = objective.evaluate(theta);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("equilibrium"), std::string::npos) << e.message;
+  EXPECT_NEAR(e.weighted_cost, 10 * 1e4, 1e-6);
+  EdcEvaluation at;
+  std::vector<EdcEvaluation> around;
+  EXPECT_FALSE(objective.evaluate_nearby(theta, {theta}, at, around));
+  EXPECT_TRUE(around.empty());
 }
 
 TEST(EdcObjective, WeightsMultiplyTheSquaredResiduals) {
