@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fixed campaign against adaptive test on the virtual rig (not run by CI):
-#   scripts/adaptive_test_study.sh OSCILAB_CLI OUT [small|full] [-j JOBS]
+#   scripts/adaptive_test_study.sh OSCILAB_CLI OUT [small|weak|full] [-j JOBS]
 # Each case is a rig whose truth is the paper's model with one effect of the vocabulary hidden at
 # a multiple of the diagnosis campaign's reference strengths (as
 # tests/analysis/diagnosis/hidden_effect_campaign.h builds them), or a control (the paper's model
@@ -10,8 +10,9 @@
 #   adaptive: `adaptive-test` on the same rig and seed, to its stop rule (budget 525 s).
 # OUT/results.csv: case,effect,scale,seed,mode,verdict,correct,shaker_time_s,levels,seconds
 # OUT/summary.txt: per mode the median shaker time, wrong verdicts and control false positives.
-# small: quadratic and cubic damping at 1x, 1 seed, 1 control. full: every effect at 0.3x and 1x,
-# 3 seeds, 20 controls (hours on 2 cores).
+# small: quadratic and cubic damping at 1x, 1 seed, 1 control. weak: quadratic and cubic damping
+# at 0.3x and presliding hysteresis at 1x, 1 seed. full: every effect at 0.3x and 1x, 3 seeds,
+# 20 controls (hours on 2 cores).
 set -euo pipefail
 cli=$(realpath "$1")
 out=$2
@@ -58,6 +59,9 @@ if [ "$size" = small ]; then
   seeds="1"
   for e in quadratic-damping cubic-damping; do cases+=("$e 1"); done
   cases+=("none 0")
+elif [ "$size" = weak ]; then
+  seeds="1"
+  cases+=("quadratic-damping 0.3" "cubic-damping 0.3" "presliding-hysteresis 1")
 else
   seeds="1 2 3"
   for e in quadratic-damping cubic-damping coulomb-friction stribeck-friction presliding-hysteresis quintic-stiffness; do
