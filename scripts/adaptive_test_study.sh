@@ -8,7 +8,8 @@
 #   fixed:    stepped sines of 26 levels (0.2:0.1:2.7 N, 10 s, 2.5 s lead-in) in both wells, then
 #             `diagnose` (525 s of shaker time);
 #   adaptive: `adaptive-test` on the same rig and seed, to its stop rule (budget 525 s).
-# OUT/results.csv: case,effect,scale,seed,mode,verdict,correct,shaker_time_s,levels,seconds
+# OUT/results.csv: case,effect,scale,seed,mode,verdict,correct,shaker_time_s,levels,seconds,leader
+# (leader: the adaptive loop's leading hypothesis; the fixed campaign's verdict for `fixed`)
 # OUT/summary.txt: per mode the median shaker time, wrong verdicts and control false positives.
 # small: quadratic and cubic damping at 1x, 1 seed, 1 control. weak: quadratic and cubic damping
 # at 0.3x and presliding hysteresis at 1x, 1 seed. full: every effect at 0.3x and 1x, 3 seeds,
@@ -90,7 +91,7 @@ try:
     levels = sum(1 for l in r["baseline"]["maps"]["levels"])
 except Exception:
     verdict, levels = "failed", 0
-print(f"{effect}_{scale},{effect},{scale},{seed},{mode},{verdict},{int(verdict == effect)},525.0,{levels},{float(seconds):.1f}")
+print(f"{effect}_{scale},{effect},{scale},{seed},{mode},{verdict},{int(verdict == effect)},525.0,{levels},{float(seconds):.1f},{verdict}")
 PY
   start=$(date +%s.%N)
   "$cli" adaptive-test --source rig --rig-model "$model" --seed "$seed" --budget 525 \
@@ -103,9 +104,10 @@ seconds = float(end) - float(start)
 try:
     r = json.load(open(path)); verdict = r["verdict"]
     shaker = r["shaker_time_s"]; levels = r["adaptive_test"]["levels"]
+    leader = r["adaptive_test"]["leader"]
 except Exception:
-    verdict, shaker, levels = "failed", float("nan"), 0
-print(f"{effect}_{scale},{effect},{scale},{seed},{mode},{verdict},{int(verdict == effect)},{shaker},{levels},{float(seconds):.1f}")
+    verdict, shaker, levels, leader = "failed", float("nan"), 0, "failed"
+print(f"{effect}_{scale},{effect},{scale},{seed},{mode},{verdict},{int(verdict == effect)},{shaker},{levels},{float(seconds):.1f},{leader}")
 PY
 }
 export -f run_case
@@ -122,7 +124,7 @@ for c in "${cases[@]}"; do
     echo "run_case $effect $scale $s $model $out/runs/${effect}_${scale}_$s" >> "$joblist"
   done
 done
-echo "case,effect,scale,seed,mode,verdict,correct,shaker_time_s,levels,seconds" > "$out/results.csv"
+echo "case,effect,scale,seed,mode,verdict,correct,shaker_time_s,levels,seconds,leader" > "$out/results.csv"
 if [ "$jobs" -gt 1 ] && command -v parallel > /dev/null; then
   parallel -j "$jobs" < "$joblist" >> "$out/results.csv"
 else
@@ -139,6 +141,7 @@ for mode in ("fixed", "adaptive"):
     times = [float(x["shaker_time_s"]) for x in r if x["shaker_time_s"] != "nan"]
     print(f"{mode}: {len(r)} runs, median shaker time {statistics.median(times) if times else float('nan'):.1f} s, "
           f"wrong verdicts {sum(1 for x in effects if x['correct'] == '0')}/{len(effects)}, "
-          f"control false positives {sum(1 for x in controls if x['verdict'] != 'none')}/{len(controls)}")
+          f"control false positives {sum(1 for x in controls if x['verdict'] != 'none')}/{len(controls)}, "
+          f"wrong leaders {sum(1 for x in r if x['leader'] != x['effect'])}/{len(r)}")
 PY
 cat "$out/summary.txt"

@@ -342,16 +342,20 @@ void run(const AdaptiveOptions& o) {
   report["notes"] = notes;
   report["shaker_time_s"] = rig.shaker_time_s;
   const int levels = analysis::edc_dataset(campaign).level_count();
-  report["adaptive_test"] = {
-      {"levels", levels},
-      {"pilot_levels_per_well", pilot.size()},
-      {"adaptive_levels", adaptive_levels},
-      {"decided", decision.decided},
-      {"stop_reason", decision.reason},
-      {"leader", decision.leader >= 0 ? hypotheses[static_cast<std::size_t>(decision.leader)].effect
-                                      : "none"},
-      {"weights", weights_json(hypotheses)},
-      {"seconds", elapsed_s(started)}};
+  // The loop's own answer beside the diagnosis's: on a few levels a diagnosis's candidate refits,
+  // started from its baseline, can miss a fit the loop's global searches found.
+  const std::string leader =
+      decision.leader >= 0 ? hypotheses[static_cast<std::size_t>(decision.leader)].effect : "none";
+  report["adaptive_test"] = {{"levels", levels},
+                             {"pilot_levels_per_well", pilot.size()},
+                             {"adaptive_levels", adaptive_levels},
+                             {"decided", decision.decided},
+                             {"stop_reason", decision.reason},
+                             {"leader", leader},
+                             {"leader_reduced_chi2", decision.reduced_chi2},
+                             {"agrees_with_diagnosis", leader == result.verdict},
+                             {"weights", weights_json(hypotheses)},
+                             {"seconds", elapsed_s(started)}};
   OutputFiles outputs;
   outputs.write(o.out_dir + "/report.json",
                 [&](std::ostream& out) { out << report.dump(2) << '\n'; });
@@ -364,6 +368,12 @@ void run(const AdaptiveOptions& o) {
   std::printf("verdict: %s, shaker time %.1f s over %d level(s) (%d adaptive), %.1f s\n",
               result.verdict.c_str(), rig.shaker_time_s, levels, adaptive_levels,
               elapsed_s(started));
+  if (leader != result.verdict) {
+    std::printf(
+        "note: the adaptive test's leader is %s (weight %.4f, chi2/dof %.3g); the diagnosis of "
+        "the same recordings says %s\n",
+        leader.c_str(), decision.leader_weight, decision.reduced_chi2, result.verdict.c_str());
+  }
   std::printf("recordings, decisions.jsonl and report.json written to %s/\n", o.out_dir.c_str());
 }
 
