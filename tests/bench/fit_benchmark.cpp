@@ -61,14 +61,21 @@ BENCHMARK(BM_CostEvaluation)
 // µm: range 0; 0 the sliding law): a stuck contact rings at √(f_d/(δ m)), and the levels near the
 // stick–slip transition that H = 7 cannot reach are solved with the ringing resolved
 // (level_response), the other levels at H = 7.
-void BM_CostEvaluationPreslidingRegime(benchmark::State& state) {
-  const double length_m = 1e-6 * static_cast<double>(state.range(0));
+// The paper's form with its friction in the presliding regime of length `length_um` (0: the
+// sliding law) on the paper model's twin data, at H = 7 (raised where the contact rings).
+EdcObjective presliding_regime_objective(double length_um) {
   Model truth = paper_model();
-  if (length_m > 0.0) truth.set_parameter(1, "presliding_length_m", length_m);
+  if (length_um > 0.0) truth.set_parameter(1, "presliding_length_m", 1e-6 * length_um);
   EdcCostSettings cost;
   cost.hbm.harmonics = 7;
   cost.adaptive_harmonics = false;
-  const EdcObjective o(ModelForm::paper(truth), testing::twin_dataset(paper_model()), cost);
+  return EdcObjective(ModelForm::paper(truth), testing::twin_dataset(paper_model()), cost);
+}
+
+void BM_CostEvaluationPreslidingRegime(benchmark::State& state) {
+  const double length_m = 1e-6 * static_cast<double>(state.range(0));
+  const EdcObjective o = presliding_regime_objective(static_cast<double>(state.range(0)));
+  const EdcCostSettings& cost = o.settings();
   const Eigen::VectorXd theta = o.form().initial();
   double chi2 = 0.0;
   for (auto _ : state) chi2 = o.evaluate(theta).weighted_cost;
@@ -96,14 +103,8 @@ BENCHMARK(BM_CostEvaluationPreslidingRegime)
 // sliding law): range 1 = 0 solves every shifted θ again (the reference), 1 takes the shifted
 // evaluations by one Newton step per level from θ's solutions (EdcObjective::evaluate_nearby).
 void BM_ResidualJacobianPreslidingRegime(benchmark::State& state) {
-  const double length_m = 1e-6 * static_cast<double>(state.range(0));
   const bool nearby_steps = state.range(1) == 1;
-  Model truth = paper_model();
-  if (length_m > 0.0) truth.set_parameter(1, "presliding_length_m", length_m);
-  EdcCostSettings cost;
-  cost.hbm.harmonics = 7;
-  cost.adaptive_harmonics = false;
-  const EdcObjective o(ModelForm::paper(truth), testing::twin_dataset(paper_model()), cost);
+  const EdcObjective o = presliding_regime_objective(static_cast<double>(state.range(0)));
   const Eigen::VectorXd theta = o.form().initial();
   std::vector<Eigen::VectorXd> shifted;
   for (int j = 0; j < theta.size(); ++j) {
