@@ -66,7 +66,7 @@ else
   fail "sbatch --wait: status $status$([ $status -eq 124 ] && echo ' (timed out after 600 s)'): $(cat "$work/sbatch.log")"
 fi
 
-# Every task: its row (19 fields, the case and seed of its line of the job list), its log opened by
+# Every task: its row (21 fields, the case and seed of its line of the job list), its log opened by
 # the node's task prolog with SLURM_ARRAY_TASK_ID, its record in the job-completion log.
 for n in 1 2 3 4; do
   read -r -a job <<< "$(sed -n "${n}p" "$out/jobs.txt")"
@@ -74,8 +74,8 @@ for n in 1 2 3 4; do
   [ "${job[0]}" = power ] && seed=${job[5]}
   row=$out/rows/$n.csv
   if [ -s "$row" ] && [ "$(wc -l < "$row")" -eq 1 ] &&
-    awk -F, -v c="${job[0]}" -v s="$seed" 'NF != 19 || ($1 != "control" && $1 != "power") ||
-      $1 != c || $6 != s || $10 !~ /^[0-9.]+$/ { exit 1 }' "$row"; then
+    awk -F, -v c="${job[0]}" -v s="$seed" 'NF != 21 || ($1 != "control" && $1 != "power") ||
+      $1 != c || $6 != s || $10 !~ /^[0-9.]+$/ || $21 !~ /^-?[01]$/ { exit 1 }' "$row"; then
     pass "task $n row: $(cut -d, -f1-10 "$row")"
   else
     fail "task $n row for '${job[*]}': $(cat "$row" 2>/dev/null || echo missing)"
@@ -99,7 +99,8 @@ else
 fi
 rows=$(($(wc -l < "$out/results.csv" 2>/dev/null || echo 1) - 1))
 [ "$rows" -eq 4 ] && pass "results.csv has 4 rows" || fail "results.csv has $rows rows"
-head -1 "$out/results.csv" 2>/dev/null | grep -q '^case,effect,scale,.*,embodiment$' &&
+head -1 "$out/results.csv" 2>/dev/null |
+  grep -q '^case,effect,scale,.*,embodiment,truth_reduced_chi2,baseline_reaches_truth$' &&
   pass "results.csv header" || fail "results.csv header: $(head -1 "$out/results.csv" 2>/dev/null)"
 [ -s "$out/summary.csv" ] && pass "summary.csv written" || fail "no summary.csv"
 [ "$(cat "$out"/rows/*.csv | md5sum)" = "$before" ] && pass "the summary ran no task again" ||
