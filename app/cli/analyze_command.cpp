@@ -11,6 +11,8 @@
 #include "analysis/edc/well.h"
 #include "analysis/identification/campaign_model.h"
 #include "analysis/model/model_json.h"
+#include "analysis/pipeline/cycle_table.h"
+#include "analysis/pipeline/edc_table.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "analysis/pipeline/result_units.h"
 #include "app/cli/campaign_input.h"
@@ -52,40 +54,13 @@ void close_output(std::FILE* file, const std::string& target) {
   }
 }
 
-void write_edc(const analysis::CampaignAnalysis& campaign, const std::string& path,
-               const std::string& target) {
+// Writes `rows` as CSV with a header of `columns`' names (docs/contracts.md §3).
+template <class Row>
+void write_table(const std::vector<analysis::TableColumn<Row>>& columns,
+                 const std::vector<Row>& rows, const std::string& path, const std::string& target) {
   std::FILE* out = open_output(path, target);
-  std::fprintf(out,
-               "well,f0_n,edc_mean_j,edc_std_j,cycles,record,edc_noise_floor_j,edc_eq13_mean_j,"
-               "edc_trapz_mean_j,z1_abs_m,lag_rad,z_mean_m,start_s,end_s,transient_cycles,"
-               "period1_change,usable,flags\n");
-  for (const auto& record : campaign.records) {
-    for (const auto& l : record.levels) {
-      std::fprintf(
-          out, "%s,%.6g,%.9g,%.6g,%d,%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6f,%.6f,%d,%.6g,%d,%s\n",
-          to_string(l.well).c_str(), l.f0_n, l.edc_mean_j, l.edc_std_j, l.cycles,
-          record.name.c_str(), l.edc_noise_floor_j, l.edc_eq13_mean_j, l.edc_trapz_mean_j,
-          l.z1_abs_m, l.lag_rad, l.z_mean_m, l.start_s, l.end_s, l.transient_cycles,
-          l.period1_change, l.usable() ? 1 : 0, analysis::level_flags(record, l).c_str());
-    }
-  }
-  close_output(out, target);
-}
-
-void write_cycles(const analysis::CampaignAnalysis& campaign, const std::string& path,
-                  const std::string& target) {
-  std::FILE* out = open_output(path, target);
-  std::fprintf(out,
-               "record,start_s,end_s,f0_n,edc_j,edc_eq13_j,edc_trapz_j,z1_abs_m,lag_rad,"
-               "z_mean_m,z_min_m,z_max_m\n");
-  for (const auto& record : campaign.records) {
-    for (const auto& c : record.cycles) {
-      std::fprintf(out, "%s,%.6f,%.6f,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
-                   record.name.c_str(), c.start_s, c.end_s, c.f0_n, c.edc_j, c.edc_eq13_j,
-                   c.edc_trapz_j, std::abs(c.z_h.front()), c.lag_rad, c.z_mean_m, c.z_min_m,
-                   c.z_max_m);
-    }
-  }
+  std::fprintf(out, "%s\n", analysis::csv_header(columns).c_str());
+  for (const Row& row : rows) std::fprintf(out, "%s\n", analysis::csv_line(columns, row).c_str());
   close_output(out, target);
 }
 
@@ -194,10 +169,12 @@ void run(const AnalyzeOptions& options) {
   // Every output complete before any is in place: a failure leaves none of them.
   OutputFiles outputs;
   if (!options.edc_path.empty()) {
-    write_edc(campaign, outputs.add(options.edc_path), options.edc_path);
+    write_table(analysis::edc_table_columns(), analysis::edc_table_rows(campaign),
+                outputs.add(options.edc_path), options.edc_path);
   }
   if (!options.cycles_path.empty()) {
-    write_cycles(campaign, outputs.add(options.cycles_path), options.cycles_path);
+    write_table(analysis::cycle_table_columns(), analysis::cycle_table_rows(campaign),
+                outputs.add(options.cycles_path), options.cycles_path);
   }
   if (!options.rfs_path.empty()) {
     if (!campaign.stiffness) throw InputError("--rfs: no stiffness slice: " + campaign.rfs_message);

@@ -9,7 +9,6 @@
 #include <set>
 
 #include "analysis/common/input_error.h"
-#include "analysis/pipeline/result_units.h"
 #include "daq/hdf5_module/hdf5_module_loader.h"
 #include "daq/recording/temporary_file.h"
 
@@ -97,6 +96,14 @@ class MatVariables {
   std::vector<OscilabMatVariableV1> variables_;
 };
 
+// A Real or an Integer cell as MATLAB's double (integers are counts, exact below 2⁵³).
+double number_of(const analysis::CellValue& value) {
+  if (const auto* integer = std::get_if<std::int64_t>(&value)) {
+    return static_cast<double>(*integer);
+  }
+  return std::get<double>(value);
+}
+
 }  // namespace
 
 std::string matlab_identifier(const std::string& name) {
@@ -167,61 +174,41 @@ void write_recording_mat(const Recording& recording, const std::string& path) {
   mat.write(path);
 }
 
-std::vector<EdcTableRow> edc_table_rows(const analysis::CampaignAnalysis& campaign) {
-  std::vector<EdcTableRow> rows;
-  for (const auto& record : campaign.records) {
-    for (const auto& level : record.levels) {
-      rows.push_back({record.name, level, analysis::level_flags(record, level)});
-    }
-  }
-  return rows;
-}
-
 void write_edc_mat(const std::vector<EdcTableRow>& rows, const std::string& path) {
   if (rows.empty()) {
     throw InputError(path + ": no EDC levels to write (no stepped-sine level was found)");
   }
-  const std::size_t n = rows.size();
-  std::vector<std::string> well(n);
-  std::vector<std::string> record(n);
-  std::vector<std::string> flags(n);
-  std::vector<std::uint8_t> usable(n);
-  // Numeric columns in the order they are written; names match the CSV of `analyze --edc`.
-  struct Column {
-    const char* name;
-    double (*value)(const analysis::LevelResult&);
-  };
-  static constexpr Column kColumns[] = {
-      {"f0_n", [](const analysis::LevelResult& l) { return l.f0_n; }},
-      {"edc_mean_j", [](const analysis::LevelResult& l) { return l.edc_mean_j; }},
-      {"edc_std_j", [](const analysis::LevelResult& l) { return l.edc_std_j; }},
-      {"cycles", [](const analysis::LevelResult& l) { return static_cast<double>(l.cycles); }},
-      {"edc_noise_floor_j", [](const analysis::LevelResult& l) { return l.edc_noise_floor_j; }},
-      {"edc_eq13_mean_j", [](const analysis::LevelResult& l) { return l.edc_eq13_mean_j; }},
-      {"edc_trapz_mean_j", [](const analysis::LevelResult& l) { return l.edc_trapz_mean_j; }},
-      {"z1_abs_m", [](const analysis::LevelResult& l) { return l.z1_abs_m; }},
-      {"z_mean_m", [](const analysis::LevelResult& l) { return l.z_mean_m; }},
-      {"start_s", [](const analysis::LevelResult& l) { return l.start_s; }},
-      {"end_s", [](const analysis::LevelResult& l) { return l.end_s; }},
-  };
-  std::vector<std::vector<double>> columns(std::size(kColumns), std::vector<double>(n));
-  for (std::size_t i = 0; i < n; ++i) {
-    const analysis::LevelResult& level = rows[i].level;
-    well[i] = analysis::to_string(level.well);
-    record[i] = rows[i].record;
-    flags[i] = rows[i].flags;
-    usable[i] = level.usable() ? 1 : 0;
-    for (std::size_t c = 0; c < std::size(kColumns); ++c) columns[c][i] = kColumns[c].value(level);
-  }
-
+  const auto& columns = analysis::edc_table_columns();
+  // Every column's values, held until the write: MatVariables keeps pointers to them.
+  std::deque<std::vector<double>> reals;
+  std::deque<std::vector<std::uint8_t>> flags;
+  std::deque<std::vector<std::string>> texts;
   MatVariables mat;
-  mat.texts("well", well);
-  for (std::size_t c = 0; c < std::size(kColumns); ++c) {
-    mat.doubles(kColumns[c].name, columns[c].data(), n);
+  for (const auto& column : columns) {
+    switch (column.kind) {
+      case analysis::ColumnKind::Real:
+      case analysis::ColumnKind::Integer: {
+        std::vector<double>& values = reals.emplace_back();
+        for (const EdcTableRow& row : rows) values.push_back(number_of(column.value(row)));
+        mat.doubles(column.name, values.data(), values.size());
+        break;
+      }
+      case analysis::ColumnKind::Flag: {
+        std::vector<std::uint8_t>& values = flags.emplace_back();
+        for (const EdcTableRow& row : rows) values.push_back(std::get<bool>(column.value(row)));
+        mat.logicals(column.name, values);
+        break;
+      }
+      case analysis::ColumnKind::Text: {
+        std::vector<std::string>& values = texts.emplace_back();
+        for (const EdcTableRow& row : rows) {
+          values.push_back(std::get<std::string>(column.value(row)));
+        }
+        mat.texts(column.name, values);
+        break;
+      }
+    }
   }
-  mat.texts("record", record);
-  mat.texts("flags", flags);
-  mat.logicals("usable", usable);
   mat.write(path);
 }
 

@@ -3,8 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/edc/level_tracker.h"
-#include "analysis/pipeline/offline_analysis.h"
+#include "analysis/pipeline/edc_table.h"
 #include "daq/recording/recording.h"
 
 namespace oscilab::daq {
@@ -38,23 +37,15 @@ std::vector<std::string> mat_channel_variables(const Sidecar& sidecar);
 /// half-written file. Throws InputError naming `path` on any failure.
 void write_recording_mat(const Recording& recording, const std::string& path);
 
-/// One row of the EDC table (docs/contracts.md §3) with the record it comes from.
-struct EdcTableRow {
-  std::string record;  // the recording's name; may be empty
-  analysis::LevelResult level;
-  std::string flags;  // analysis::level_flags: the level's, and per-unit-mass without a mass
-};
+/// The EDC table's rows and columns are the core's (analysis/pipeline/edc_table.h).
+using analysis::edc_table_rows;
+using analysis::EdcTableRow;
 
-/// Every level of every record of a campaign, in record then level order (the rows of
-/// `oscilab-cli analyze --edc`).
-std::vector<EdcTableRow> edc_table_rows(const analysis::CampaignAnalysis& campaign);
-
-/// Writes an EDC table to a MATLAB v5 MAT-file as column vectors of one row per level: the
-/// contract's columns `well` (n×1 cell of char: positive, negative, cross-well, unknown),
-/// `f0_n`, `edc_mean_j`, `edc_std_j`, `cycles` (n×1 double), then `record` and `flags` (n×1 cell
-/// of char), `edc_noise_floor_j`, `edc_eq13_mean_j`, `edc_trapz_mean_j`, `z1_abs_m`,
-/// `z_mean_m`, `start_s`, `end_s` (n×1 double) and `usable` (n×1 logical). Same atomic write
-/// as write_recording_mat. Throws InputError naming `path` on any failure, including an empty
+/// Writes an EDC table to a MATLAB v5 MAT-file as column vectors of one row per level: every
+/// column of analysis::edc_table_columns, named and ordered as the CSV of `analyze --edc`
+/// (docs/contracts.md §3). Real and integer columns are n×1 double, flags (`usable`) n×1
+/// logical, text (`well`, `record`, `flags`) n×1 cell of char. Same atomic write as
+/// write_recording_mat. Throws InputError naming `path` on any failure, including an empty
 /// table (no stepped-sine level).
 void write_edc_mat(const std::vector<EdcTableRow>& rows, const std::string& path);
 
