@@ -30,6 +30,9 @@ void ContinuationOptions::validate() const {
     fail("steps must satisfy 0 < min_step <= initial_step <= max_step");
   }
   if (max_corrector_iterations < 1 || target_iterations < 1) fail("iteration counts must be >= 1");
+  if (!(turn_back_limit >= 0.0) || !std::isfinite(turn_back_limit)) {
+    fail("turn_back_limit must be finite and non-negative");
+  }
   if (!(max_turn_rad > 0.0) || !(residual_tolerance > 0.0) || max_points < 2) {
     fail("max_turn_rad, residual_tolerance must be positive and max_points >= 2");
   }
@@ -456,7 +459,11 @@ Branch Continuer::run_steps(const ProgressFn& progress, const CancelToken& cance
     ds = std::clamp(ds * factor, options_.min_step, options_.max_step);
 
     const double behind = (lambda_start - y[n_]) * direction;  // > 0: behind the start value
-    if (behind > (options_.stop_when_turning_back ? 1e-12 : std::abs(lambda_end - lambda_start))) {
+    const double allowed_behind = options_.stop_when_turning_back ? 1e-12
+                                  : options_.turn_back_limit > 0.0
+                                      ? options_.turn_back_limit
+                                      : std::abs(lambda_end - lambda_start);
+    if (behind > allowed_behind) {
       branch.message = "the branch turned back past the start value";
       break;
     }

@@ -49,8 +49,14 @@ struct ContinuationOptions {
   /// Stop when the branch turns back past the start value (a branch from rest that does so has
   /// left the range for good). A branch switched onto near a pitchfork may dip below its first
   /// point before it bends away: branch_switching.h turns this off (the run then stops only once
-  /// it is further behind the start than the length of the range).
+  /// it is further behind the start than the length of the range, or than turn_back_limit).
   bool stop_when_turning_back = true;
+  /// With stop_when_turning_back off: how far behind the start the branch may turn back before
+  /// the run stops, in the parameter's unit; 0 (the default) means the length of the range. A
+  /// branch resumed at a level part-way up may fold back far below it before it rises to the
+  /// levels above (a softening well's jump up: the second fold can lie near rest), so
+  /// level_response lets it go back as far as f0 = 0.
+  double turn_back_limit = 0.0;
   /// z_ref, m; 0: force scale / well stiffness (the static deflection under the largest force).
   double displacement_scale_m = 0.0;
 

@@ -96,8 +96,10 @@ LevelResponse responses_at(const Model& model, double freq_hz, bool positive_wel
   if (solved > 0) {
     options.initial_coefficients = out.coefficients.back();
     // Past a fold the branch may turn back below the level it started from before it rises
-    // again; only a return further than the whole range ends it.
+    // again, as far as rest (the second fold of a softening well's jump can lie near f0 = 0);
+    // only a return past rest ends it.
     options.stop_when_turning_back = false;
+    options.turn_back_limit = options.start;
   }
   options.end = levels_n.back();
   options.stability = false;

@@ -14,24 +14,18 @@
 namespace oscilab::analysis {
 namespace {
 
-// The illustrative example of eq. (14) folds at 1.3778 N and 1.3477 N (H = 7): a sweep
-// up from rest jumps at the upper fold. Levels across it make the fast path stop at the fold and
-// hand over to arclength continuation from the last level it reached; the result must equal the
-// first crossings of one continuation from rest.
-TEST(LevelResponse, LevelsAcrossAFoldEqualFirstCrossingsFromRest) {
-  const Model model = illustrative_model();
-  const double freq_hz = 0.8 * std::sqrt(800.0 / 1.3) / (2.0 * M_PI);  // 80 % of √(k/m), §4.2
-  std::vector<double> levels;
-  for (int i = 1; i <= 20; ++i) levels.push_back(0.1 * i);
-  const LevelResponse response = level_response(model, freq_hz, true, levels);
+// Expects level_response's EDCs to be the first crossings of the levels by one continuation from
+// rest (the branch a sweep up follows, folds and all).
+void expect_first_crossings_from_rest(const Model& model, double freq_hz, bool positive_well,
+                                      const std::vector<double>& levels,
+                                      const LevelResponse& response) {
   ASSERT_EQ(response.status, JobStatus::Ok) << response.message;
-  EXPECT_TRUE(response.used_arclength);  // the fold at 1.3778 N is in range
   ASSERT_EQ(response.edc_j.size(), levels.size());
-
   ContinuationOptions options;
   options.freq_hz = freq_hz;
+  options.positive_well = positive_well;
   options.start = 0.0;
-  options.end = 2.0;
+  options.end = levels.back();
   options.stability = false;
   options.landing = levels;
   const Branch branch = continue_branch(model, options);
@@ -44,9 +38,39 @@ TEST(LevelResponse, LevelsAcrossAFoldEqualFirstCrossingsFromRest) {
     ++next;
   }
   EXPECT_EQ(next, levels.size());
+}
+
+// The illustrative example of eq. (14) folds at 1.3778 N and 1.3477 N (H = 7): a sweep
+// up from rest jumps at the upper fold. Levels across it make the fast path stop at the fold and
+// hand over to arclength continuation from the last level it reached; the result must equal the
+// first crossings of one continuation from rest.
+TEST(LevelResponse, LevelsAcrossAFoldEqualFirstCrossingsFromRest) {
+  const Model model = illustrative_model();
+  const double freq_hz = 0.8 * std::sqrt(800.0 / 1.3) / (2.0 * M_PI);  // 80 % of √(k/m), §4.2
+  std::vector<double> levels;
+  for (int i = 1; i <= 20; ++i) levels.push_back(0.1 * i);
+  const LevelResponse response = level_response(model, freq_hz, true, levels);
+  EXPECT_TRUE(response.used_arclength);  // the fold at 1.3778 N is in range
+  expect_first_crossings_from_rest(model, freq_hz, true, levels, response);
   // Past the jump the response is on the upper branch: the EDC at 1.4 N is several times that at
   // 1.3 N (the jump of Fig. 11b), not a smooth continuation of the levels below.
+  ASSERT_EQ(response.edc_j.size(), levels.size());
   EXPECT_GT(response.edc_j[13] / response.edc_j[12], 2.0);
+}
+
+// The paper's softer negative well at 10 Hz jumps up at a fold near 2.45 N and its branch turns
+// back to a second fold near 2.20 N before it rises (oscilab-cli hbm --freq 10 --well negative).
+// With the top two levels 2.4 and 2.5 N the arclength run resumes at 2.4 N and must follow the
+// branch back 0.2 N, twice the 0.1 N between the levels, to reach 2.5 N on the upper branch.
+TEST(LevelResponse, ResumedContinuationFollowsAJumpWhoseFoldLiesFarBelow) {
+  const Model model = paper_model();
+  const std::vector<double> levels = {1.0, 2.0, 2.4, 2.5};
+  const LevelResponse response = level_response(model, 10.0, false, levels);
+  EXPECT_TRUE(response.used_arclength);
+  expect_first_crossings_from_rest(model, 10.0, false, levels, response);
+  // On the upper branch: the 2.5 N EDC (about 0.09 J) is about twice that at 2.4 N (about 0.04 J).
+  ASSERT_EQ(response.edc_j.size(), levels.size());
+  EXPECT_GT(response.edc_j[3] / response.edc_j[2], 1.5);
 }
 
 TEST(LevelResponse, RejectsDecreasingLevels) {
