@@ -16,11 +16,15 @@
 //                                         one blind diagnosis of the paper's model with its
 //                                         friction parameters θ (eq. (9)) moved by up to ±30 %
 //
+//   diagnosis_study branches SEED FREQ NOISE [LEVELS]
+//                                         a control's measured levels beside the truth's level
+//                                         response (which branch each level was measured on)
 //   diagnosis_study header                the result rows' CSV header
 //
 // LEVELS: stepped-sine levels per well, 0.2 → 2.7 N evenly (26 by default). Every diagnosis is
 // run as a lab runs it, the stiffness identified from the records (`--stiffness identified`);
-// OSCILAB_STUDY_TRUE_STIFFNESS=1 gives it the truth's K(z) instead (labelled in the output).
+// OSCILAB_STUDY_TRUE_STIFFNESS=1 gives it the truth's K(z) instead (labelled in the output);
+// OSCILAB_STUDY_HARMONICS=H sets the H of the fit's model evaluations (7 by default).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -171,6 +175,9 @@ BlindRun run_blind(const Model& truth, int seed, double freq, double noise, int 
   options.seed = static_cast<std::uint64_t>(seed);
   const char* seconds = std::getenv("OSCILAB_DIAGNOSE_MAX_SECONDS");
   if (seconds) options.max_seconds = std::atof(seconds);
+  if (const char* h = std::getenv("OSCILAB_STUDY_HARMONICS")) {
+    options.cost.hbm.harmonics = std::clamp(std::atoi(h), 1, 63);
+  }
   // The study script runs JOBS diagnoses at once on cores / JOBS threads each (OMP_NUM_THREADS),
   // so that they do not compete for the cores and each one's time is its own.
   if (const char* threads = std::getenv("OMP_NUM_THREADS")) {
@@ -231,6 +238,42 @@ int moved_study(const std::string& effect, double scale, double freq, double noi
   return 0;
 }
 
+// A control's campaign (as `control` records it), each usable level's measurement beside the
+// truth's harmonic balance at that level: which branch the rig's steps reached.
+int branches_study(int seed, double freq, double noise, int levels) {
+  testing::CampaignSpec spec;
+  spec.freq_hz = freq;
+  spec.noise_scale = noise;
+  const Model truth = moved_friction(seed);
+  const CampaignAnalysis campaign =
+      testing::record_campaign(truth, static_cast<std::uint64_t>(seed), level_grid(levels), spec);
+  const EdcDataset data = edc_dataset(campaign);
+  std::printf(
+      "well,f0_n,edc_mes_j,sigma_j,edc_truth_j,edc_truth_h31_j,amp_mes_m,amp_truth_m,"
+      "z_mean_truth_m\n");
+  for (const EdcGroup& g : data.groups) {
+    std::vector<double> f0;
+    for (const MeasuredLevel& l : g.levels) f0.push_back(l.f0_n);
+    const LevelResponse r = level_response(truth, g.freq_hz, g.positive_well, f0);
+    HbmOptions fine;
+    fine.harmonics = 31;
+    const LevelResponse r31 = level_response(truth, g.freq_hz, g.positive_well, f0, fine);
+    for (const LevelResponse* response : {&r, &r31}) {
+      if (!response->message.empty())
+        std::printf("# H %d: %s\n", response->harmonics, response->message.c_str());
+    }
+    for (std::size_t i = 0; i < g.levels.size() && i < r.edc_j.size(); ++i) {
+      const MeasuredLevel& l = g.levels[i];
+      std::printf("%s,%.4f,%.6g,%.3g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                  to_string(well_of(g.positive_well)).c_str(), l.f0_n, l.edc_j, l.sigma_of_mean_j(),
+                  r.edc_j[i], i < r31.edc_j.size() ? r31.edc_j[i] : NAN, l.amplitude_m, r.amp_m[i],
+                  r.coefficients[i][0]);
+    }
+  }
+  for (const std::string& e : data.excluded) std::printf("# excluded: %s\n", e.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -257,9 +300,14 @@ int main(int argc, char** argv) {
     if (levels < 5) return 2;
     return control_study(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]), levels);
   }
+  if (mode == "branches" && (argc == 5 || argc == 6)) {
+    const int levels = argc == 6 ? std::atoi(argv[5]) : 26;
+    if (levels < 5) return 2;
+    return branches_study(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]), levels);
+  }
   std::fprintf(stderr,
                "usage: diagnosis_study header | bias SEEDS | power EFFECT SCALE FREQ NOISE SEED "
                "[LEVELS] | moved EFFECT SCALE FREQ NOISE SEED [LEVELS] | control SEED FREQ NOISE "
-               "[LEVELS]\n");
+               "[LEVELS] | branches SEED FREQ NOISE [LEVELS]\n");
   return 2;
 }
