@@ -1,11 +1,15 @@
 // Measurement analysis (§3, §4.1): the same daq::analyze_recordings / analysis::analyze_campaign
 // as `oscilab-cli analyze`, results as tables named like its CSV columns and JSON keys.
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/pipeline/cycle_table.h"
+#include "analysis/pipeline/edc_table.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "bindings.h"
 #include "daq/export/mat_export.h"
@@ -15,91 +19,71 @@
 
 namespace oscilab::python {
 
-py::dict level_table(const std::vector<analysis::LevelResult>& levels,
-                     const std::vector<std::string>* records) {
-  const std::size_t n = levels.size();
-  py::list well, record, flags;
-  std::vector<double> f0(n), mean(n), std_j(n), floor(n), eq13(n), trapz(n), z1(n), lag(n),
-      z_mean(n), start(n), end(n), change(n);
-  std::vector<int> cycles(n), transient(n), usable(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const analysis::LevelResult& l = levels[i];
-    well.append(analysis::to_string(l.well));
-    f0[i] = l.f0_n;
-    mean[i] = l.edc_mean_j;
-    std_j[i] = l.edc_std_j;
-    cycles[i] = l.cycles;
-    if (records) record.append((*records)[i]);
-    floor[i] = l.edc_noise_floor_j;
-    eq13[i] = l.edc_eq13_mean_j;
-    trapz[i] = l.edc_trapz_mean_j;
-    z1[i] = l.z1_abs_m;
-    lag[i] = l.lag_rad;
-    z_mean[i] = l.z_mean_m;
-    start[i] = l.start_s;
-    end[i] = l.end_s;
-    transient[i] = l.transient_cycles;
-    change[i] = l.period1_change;
-    usable[i] = l.usable() ? 1 : 0;
-    flags.append(l.flags());
+namespace {
+
+// One column of a table as a NumPy array of its kind's dtype (docs/python.md): float64, int64,
+// bool, or unicode (<U…, as wide as the longest text).
+template <class Row>
+py::array column_array(const analysis::TableColumn<Row>& column, const std::vector<Row>& rows) {
+  const auto n = static_cast<py::ssize_t>(rows.size());
+  switch (column.kind) {
+    case analysis::ColumnKind::Real: {
+      py::array_t<double> out(n);
+      double* data = out.mutable_data();
+      for (py::ssize_t i = 0; i < n; ++i) data[i] = std::get<double>(column.value(rows[i]));
+      return out;
+    }
+    case analysis::ColumnKind::Integer: {
+      py::array_t<std::int64_t> out(n);
+      std::int64_t* data = out.mutable_data();
+      for (py::ssize_t i = 0; i < n; ++i) data[i] = std::get<std::int64_t>(column.value(rows[i]));
+      return out;
+    }
+    case analysis::ColumnKind::Flag: {
+      py::array_t<bool> out(n);
+      bool* data = out.mutable_data();
+      for (py::ssize_t i = 0; i < n; ++i) data[i] = std::get<bool>(column.value(rows[i]));
+      return out;
+    }
+    case analysis::ColumnKind::Text:
+      break;
   }
-  py::dict t;
-  t["well"] = well;
-  t["f0_n"] = to_array(f0);
-  t["edc_mean_j"] = to_array(mean);
-  t["edc_std_j"] = to_array(std_j);
-  t["cycles"] = to_int_array(cycles);
-  if (records) t["record"] = record;
-  t["edc_noise_floor_j"] = to_array(floor);
-  t["edc_eq13_mean_j"] = to_array(eq13);
-  t["edc_trapz_mean_j"] = to_array(trapz);
-  t["z1_abs_m"] = to_array(z1);
-  t["lag_rad"] = to_array(lag);
-  t["z_mean_m"] = to_array(z_mean);
-  t["start_s"] = to_array(start);
-  t["end_s"] = to_array(end);
-  t["transient_cycles"] = to_int_array(transient);
-  t["period1_change"] = to_array(change);
-  t["usable"] = to_int_array(usable);
-  t["flags"] = flags;
-  return t;
+  py::list texts;
+  for (const Row& row : rows) texts.append(py::str(std::get<std::string>(column.value(row))));
+  return py::module_::import("numpy").attr("array")(texts, py::arg("dtype") = "U");
 }
 
-py::dict cycle_table(const std::vector<analysis::CycleFit>& cycles,
-                     const std::vector<std::string>* records) {
-  const std::size_t n = cycles.size();
-  py::list record;
-  std::vector<double> start(n), end(n), f0(n), edc(n), eq13(n), trapz(n), z1(n), lag(n), mean(n),
-      lo(n), hi(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const analysis::CycleFit& c = cycles[i];
-    if (records) record.append((*records)[i]);
-    start[i] = c.start_s;
-    end[i] = c.end_s;
-    f0[i] = c.f0_n;
-    edc[i] = c.edc_j;
-    eq13[i] = c.edc_eq13_j;
-    trapz[i] = c.edc_trapz_j;
-    z1[i] = c.z_h.empty() ? 0.0 : std::abs(c.z_h.front());
-    lag[i] = c.lag_rad;
-    mean[i] = c.z_mean_m;
-    lo[i] = c.z_min_m;
-    hi[i] = c.z_max_m;
+// A table as a dict of columns in `columns`' order (the CSV's), without the column `skip`.
+template <class Row>
+py::dict table_dict(const std::vector<analysis::TableColumn<Row>>& columns,
+                    const std::vector<Row>& rows, const char* skip = nullptr) {
+  py::dict table;
+  for (const analysis::TableColumn<Row>& column : columns) {
+    if (skip != nullptr && std::string_view(column.name) == skip) continue;
+    table[column.name] = column_array(column, rows);
   }
-  py::dict t;
-  if (records) t["record"] = record;
-  t["start_s"] = to_array(start);
-  t["end_s"] = to_array(end);
-  t["f0_n"] = to_array(f0);
-  t["edc_j"] = to_array(edc);
-  t["edc_eq13_j"] = to_array(eq13);
-  t["edc_trapz_j"] = to_array(trapz);
-  t["z1_abs_m"] = to_array(z1);
-  t["lag_rad"] = to_array(lag);
-  t["z_mean_m"] = to_array(mean);
-  t["z_min_m"] = to_array(lo);
-  t["z_max_m"] = to_array(hi);
-  return t;
+  return table;
+}
+
+}  // namespace
+
+py::dict level_table(const std::vector<analysis::EdcTableRow>& rows) {
+  return table_dict(analysis::edc_table_columns(), rows);
+}
+
+py::dict level_table(const std::vector<analysis::LevelResult>& levels) {
+  std::vector<analysis::EdcTableRow> rows;
+  rows.reserve(levels.size());
+  for (const analysis::LevelResult& level : levels) rows.push_back({"", level, level.flags()});
+  return table_dict(analysis::edc_table_columns(), rows, "record");
+}
+
+py::dict cycle_table(const std::vector<analysis::CycleTableRow>& rows) {
+  return table_dict(analysis::cycle_table_columns(), rows);
+}
+
+py::dict cycle_table(const std::vector<analysis::CycleFit>& cycles) {
+  return table_dict(analysis::cycle_table_columns(), analysis::cycle_table_rows(cycles), "record");
 }
 
 std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object& recordings,
@@ -172,20 +156,6 @@ std::shared_ptr<const analysis::CampaignAnalysis> run_analysis(const py::object&
 
 namespace {
 
-std::vector<std::string> record_per_level(const analysis::CampaignAnalysis& c) {
-  std::vector<std::string> names;
-  for (const auto& r : c.records) {
-    for (std::size_t i = 0; i < r.levels.size(); ++i) names.push_back(r.name);
-  }
-  return names;
-}
-
-std::vector<analysis::LevelResult> all_levels(const analysis::CampaignAnalysis& c) {
-  std::vector<analysis::LevelResult> levels;
-  for (const auto& r : c.records) levels.insert(levels.end(), r.levels.begin(), r.levels.end());
-  return levels;
-}
-
 const char* status_name(JobStatus status) {
   switch (status) {
     case JobStatus::Ok:
@@ -216,26 +186,25 @@ summary is the CLI's --summary JSON as a dict. Pass it to ``fit`` or ``diagnose`
       .def_property_readonly(
           "edc",
           [](const AnalysisHandle& h) {
-            const auto names = record_per_level(*h.campaign);
-            return level_table(all_levels(*h.campaign), &names);
+            return level_table(analysis::edc_table_rows(*h.campaign));
           },
-          "EDC table, one row per stepped-sine level of each record, records in order: columns "
-          "well, f0_n [N], edc_mean_j [J], edc_std_j [J], cycles, record, edc_noise_floor_j, "
-          "edc_eq13_mean_j, edc_trapz_mean_j, z1_abs_m [m], lag_rad, z_mean_m, start_s, end_s, "
-          "transient_cycles, period1_change, usable (1/0), flags. J/kg and N/kg without mass_kg.")
+          "EDC table, one row per stepped-sine level of each record, records in order: a dict of "
+          "NumPy arrays keyed and ordered like the CSV of `analyze --edc` (docs/contracts.md §3): "
+          "well, f0_n [N], edc_mean_j [J], edc_std_j [J], cycles, record, edc_noise_floor_j [J], "
+          "edc_eq13_mean_j [J], edc_trapz_mean_j [J], z1_abs_m [m], lag_rad [rad], z_mean_m [m], "
+          "start_s [s], end_s [s], transient_cycles, period1_change, usable, flags. dtypes: "
+          "float64 for reals, int64 for counts (cycles, transient_cycles), bool for usable, "
+          "unicode (<U...) for well, record and flags; pandas.DataFrame(a.edc) takes it as it is. "
+          "J/kg and N/kg without mass_kg (flag per-unit-mass).")
       .def_property_readonly(
           "cycles",
           [](const AnalysisHandle& h) {
-            std::vector<analysis::CycleFit> cycles;
-            std::vector<std::string> names;
-            for (const auto& r : h.campaign->records) {
-              cycles.insert(cycles.end(), r.cycles.begin(), r.cycles.end());
-              names.insert(names.end(), r.cycles.size(), r.name);
-            }
-            return cycle_table(cycles, &names);
+            return cycle_table(analysis::cycle_table_rows(*h.campaign));
           },
-          "Every fitted cycle (columns of `analyze --cycles`): record, start_s, end_s, f0_n, "
-          "edc_j, edc_eq13_j, edc_trapz_j, z1_abs_m, lag_rad, z_mean_m, z_min_m, z_max_m.")
+          "Every fitted cycle, records in order: a dict of NumPy arrays keyed and ordered like the "
+          "CSV of `analyze --cycles`: record (unicode <U...), start_s [s], end_s [s], f0_n [N], "
+          "edc_j [J], edc_eq13_j [J], edc_trapz_j [J], z1_abs_m [m], lag_rad [rad], z_mean_m [m], "
+          "z_min_m [m], z_max_m [m] (float64).")
       .def_property_readonly(
           "rfs",
           [](const AnalysisHandle& h) -> py::object {
@@ -351,8 +320,8 @@ summary is the CLI's --summary JSON as a dict. Pass it to ``fit`` or ``diagnose`
           },
           py::arg("path"),
           "Writes the EDC table as a MATLAB v5 .mat file (`oscilab-cli export --edc-mat`): one "
-          "column vector per contract column (well, f0_n, edc_mean_j, edc_std_j, cycles, record, "
-          "flags, ... usable).")
+          "column vector per column of the table (the keys of `edc`): double for numbers, "
+          "logical for usable, cell of char for well, record and flags.")
       .def("__repr__", [](const AnalysisHandle& h) {
         std::size_t levels = 0;
         for (const auto& r : h.campaign->records) levels += r.levels.size();

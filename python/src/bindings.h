@@ -2,6 +2,7 @@
 // of long jobs (GIL released, progress, Ctrl-C). Each bind_* adds one concept's functions.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <utility>
@@ -43,7 +44,8 @@ nlohmann::json json_argument(const py::handle& object, const std::string& where)
 py::array_t<double> to_array(const Eigen::VectorXd& v);
 py::array_t<double> to_array(const std::vector<double>& v);
 py::array_t<double> to_array(const Eigen::MatrixXd& m);  // 2-D, C order, copied
-py::array_t<int> to_int_array(const std::vector<int>& v);
+/// Integers as int64, the dtype of every integer column the module returns (docs/python.md).
+py::array_t<std::int64_t> to_int_array(const std::vector<int>& v);
 /// A 1-D float64 array (copied); throws InputError naming `where` otherwise.
 Eigen::VectorXd to_vector(const py::handle& object, const std::string& where);
 
@@ -100,17 +102,23 @@ ProgressFn fraction_reporter(const ReportFn& report);
 namespace oscilab::analysis {
 struct LevelResult;
 struct CycleFit;
+struct EdcTableRow;
+struct CycleTableRow;
 }  // namespace oscilab::analysis
 
 namespace oscilab::python {
 
-/// The EDC table as columns named like the CSV of `analyze --edc` (docs/contracts.md §3):
-/// well, f0_n, edc_mean_j, edc_std_j, cycles first, then the extra columns; numbers as arrays,
-/// text as lists. `records` (one name per level) adds the `record` column.
-py::dict level_table(const std::vector<analysis::LevelResult>& levels,
-                     const std::vector<std::string>* records);
-/// The fitted cycles as columns named like the CSV of `analyze --cycles`.
-py::dict cycle_table(const std::vector<analysis::CycleFit>& cycles,
-                     const std::vector<std::string>* records);
+/// The EDC table (analysis::edc_table_columns, docs/contracts.md §3) as a dict of NumPy arrays
+/// keyed and ordered like the CSV of `analyze --edc`: float64 for reals, int64 for counts, bool
+/// for `usable`, unicode (<U…) for text.
+py::dict level_table(const std::vector<analysis::EdcTableRow>& rows);
+/// Levels without a record (the live analysis's): the same columns but `record`, and each
+/// level's own flags.
+py::dict level_table(const std::vector<analysis::LevelResult>& levels);
+/// The fitted cycles (analysis::cycle_table_columns) as columns named like the CSV of
+/// `analyze --cycles`, with the same dtypes.
+py::dict cycle_table(const std::vector<analysis::CycleTableRow>& rows);
+/// Cycles without a record (the live analysis's): the same columns but `record`.
+py::dict cycle_table(const std::vector<analysis::CycleFit>& cycles);
 
 }  // namespace oscilab::python

@@ -1,4 +1,5 @@
 // JSON, array and path conversions between Python and the C++ core.
+#include <cstdint>
 #include <cstring>
 #include <optional>
 #include <string>
@@ -114,9 +115,10 @@ py::array_t<double> to_array(const Eigen::MatrixXd& m) {
   return out;
 }
 
-py::array_t<int> to_int_array(const std::vector<int>& v) {
-  py::array_t<int> out(static_cast<py::ssize_t>(v.size()));
-  if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), sizeof(int) * v.size());
+py::array_t<std::int64_t> to_int_array(const std::vector<int>& v) {
+  py::array_t<std::int64_t> out(static_cast<py::ssize_t>(v.size()));
+  std::int64_t* data = out.mutable_data();
+  for (std::size_t i = 0; i < v.size(); ++i) data[i] = v[i];
   return out;
 }
 

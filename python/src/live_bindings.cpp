@@ -129,16 +129,16 @@ py::dict collect(LiveSession& session, bool final_update) {
   }
   const std::vector<analysis::CycleFit> cycles = a.cycles_since(session.cycles_seen);
   session.cycles_seen += cycles.size();
-  update["cycles"] = cycle_table(cycles, nullptr);
+  update["cycles"] = cycle_table(cycles);
   const std::vector<analysis::LevelResult> levels = a.levels();
   const std::vector<analysis::LevelResult> fresh(
       levels.begin() + static_cast<std::ptrdiff_t>(std::min(session.levels_seen, levels.size())),
       levels.end());
   session.levels_seen = levels.size();
-  update["levels"] = level_table(fresh, nullptr);
+  update["levels"] = level_table(fresh);
   const auto current = a.current_level();
   if (current) {
-    py::dict c = level_table({*current}, nullptr);
+    py::dict c = level_table(std::vector<analysis::LevelResult>{*current});
     py::dict one;
     for (const auto& [key, value] : c) one[key] = value[py::int_(0)];
     update["current_level"] = one;
@@ -209,8 +209,7 @@ it on leaving. Made by oscilab.live().
       .def("stop", &LiveSession::stop,
            "Stops the source, processes what it delivered, closes the levels and the recording.")
       .def(
-          "levels",
-          [](const LiveSession& s) { return level_table(s.acquisition->levels(), nullptr); },
+          "levels", [](const LiveSession& s) { return level_table(s.acquisition->levels()); },
           "Every finished level so far: the live EDC table (well, f0_n, edc_mean_j, edc_std_j, "
           "cycles, ... flags), what `record --edc` writes.")
       .def(

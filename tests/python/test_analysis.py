@@ -1,13 +1,16 @@
 """analyze(): the EDC table, RFS slices, stiffness fit, cycles and summary equal oscilab-cli
 analyze's on the samples, to the last printed digit (the same code runs)."""
 
+import json
 import math
+import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import oscilab
-from conftest import STEPPED, cli_error
+from conftest import STEPPED, cli_error, read_csv, run_cli
 
 EDC_FORMATS = {
     "well": "%s", "f0_n": "%.6g", "edc_mean_j": "%.9g", "edc_std_j": "%.6g", "cycles": "%d",
@@ -57,6 +60,46 @@ def test_cycles_equal_cli_csv(cli_analysis, py_analysis):
     assert_table_prints_as(py_analysis.cycles, cli_analysis["cycles"], CYCLE_FORMATS)
 
 
+NON_REAL_DTYPES = {"cycles": np.int64, "transient_cycles": np.int64, "usable": np.bool_}
+TEXT_COLUMNS = {"well", "record", "flags"}
+
+
+@pytest.mark.parametrize("table", ["edc", "cycles"])
+def test_tables_are_numpy_arrays_of_their_kinds_dtypes(py_analysis, table):
+    columns = getattr(py_analysis, table)
+    for name, column in columns.items():
+        assert isinstance(column, np.ndarray) and column.ndim == 1, name
+        if name in TEXT_COLUMNS:
+            assert column.dtype.kind == "U", (name, column.dtype)  # <U…, as wide as the longest
+            assert column.dtype.itemsize == 4 * max(1, max(len(str(v)) for v in column))
+        else:
+            assert column.dtype == NON_REAL_DTYPES.get(name, np.float64), (name, column.dtype)
+
+
+def test_a_record_without_mass_and_a_level_past_its_end_gives_the_clis_table(tmp_path):
+    # No mass_kg: every level flagged per-unit-mass; a sidecar level past the record's end: a
+    # row without cycles, not usable.
+    sidecar = json.loads(Path(STEPPED[0][:-5] + ".json").read_text())
+    del sidecar["mass_kg"]
+    sidecar["excitation"]["levels"].append({"f0_n": 3.0, "start_s": 300.0, "end_s": 310.0})
+    (tmp_path / "nomass.json").write_text(json.dumps(sidecar))
+    shutil.copy(STEPPED[0], tmp_path / "nomass.flac")
+    run_cli("analyze", tmp_path / "nomass.flac", "--edc", tmp_path / "edc.csv")
+    edc = oscilab.analyze(tmp_path / "nomass.flac").edc
+    assert_table_prints_as(edc, read_csv(tmp_path / "edc.csv"), EDC_FORMATS)
+    assert all(flags.endswith("per-unit-mass") for flags in edc["flags"])
+    assert edc["flags"][-1] == "few-cycles;beyond-record;per-unit-mass"
+    assert edc["well"][-1] == "" and edc["cycles"][-1] == 0
+    # docs/contracts.md §3: no steady cycle, not period-1, crossing wells and the degenerate-data
+    # flags make a level unusable; few-cycles and per-unit-mass alone do not.
+    unusable = {"not-period-1", "cross-well", "base-constant", "mass-constant", "negative-edc",
+                "non-finite"}
+    expected = [bool(cycles > 0) and not unusable & set(flags.split(";"))
+                for cycles, flags in zip(edc["cycles"], edc["flags"])]
+    assert edc["usable"].tolist() == expected
+    assert edc["usable"].sum() == len(expected) - 1
+
+
 def test_stiffness_slice_and_damping_slices_equal_cli_csv(cli_analysis, py_analysis):
     assert_table_prints_as(py_analysis.rfs, cli_analysis["rfs"],
                            {"z_m": "%.9g", "restoring_force_n": "%.9g", "samples": "%d"})
@@ -76,11 +119,9 @@ def test_summary_and_stiffness_fit_equal_cli_json_exactly(cli_analysis, py_analy
 def test_analysis_of_recordings_in_memory_equals_analysis_of_files(py_analysis):
     recordings = [oscilab.read_recording(p) for p in STEPPED]
     again = oscilab.analyze(recordings)
+    assert list(again.edc) == list(py_analysis.edc)
     for name, column in py_analysis.edc.items():
-        if isinstance(column, list):
-            assert again.edc[name] == column
-        else:
-            np.testing.assert_array_equal(again.edc[name], column)
+        np.testing.assert_array_equal(again.edc[name], column, err_msg=name)
 
 
 def test_records_and_motion_describe_each_record(py_analysis):
