@@ -22,8 +22,8 @@ enum class ColumnKind {
 /// "real", "integer", "flag", "text": as docs/contracts.md names the kinds.
 const char* to_string(ColumnKind kind);
 
-/// One cell: the alternative ColumnKind names (Real: double, Integer: std::int64_t, Flag: bool,
-/// Text: std::string).
+/// One cell: the alternative ColumnKind names, in its order (Real: double, Integer:
+/// std::int64_t, Flag: bool, Text: std::string), so that index() == static_cast<int>(kind).
 using CellValue = std::variant<double, std::int64_t, bool, std::string>;
 
 /// A column of a table whose rows are `Row`s.

@@ -425,6 +425,9 @@ std::vector<EdcTableRow> edc_rows() {
     level.edc_noise_floor_j = 3e-7;
     level.start_s = 3.0 + 10.0 * i;
     level.end_s = 12.5 + 10.0 * i;
+    level.lag_rad = 1.5 + 0.25 * i;
+    level.transient_cycles = 3 - i;
+    level.period1_change = 0.01 * (i + 1);
     level.period1 = i != 1;  // the middle level is not period-1: unusable
     rows.push_back({i == 2 ? "neg.flac" : "pos.flac", level, level.flags()});
   }
@@ -438,13 +441,23 @@ TEST(EdcMatExport, WritesTheContractColumnsAsColumnVectors) {
   write_edc_mat(rows, path);
 
   const RawFile file = parse_mat5(read_file(path));
-  for (const char* name : {"well", "f0_n", "edc_mean_j", "edc_std_j", "cycles", "record", "flags",
-                           "usable", "edc_noise_floor_j", "start_s", "end_s"}) {
-    const RawVariable* variable = find(file, name);
-    ASSERT_NE(variable, nullptr) << name;
-    EXPECT_EQ(variable->dims, (std::vector<std::int32_t>{3, 1})) << name;
+  // Every column of the table, in its order (the CSV's), and nothing else; each n×1.
+  std::vector<std::string> names;
+  for (const RawVariable& variable : file.variables) {
+    names.push_back(variable.name);
+    EXPECT_EQ(variable.dims, (std::vector<std::int32_t>{3, 1})) << variable.name;
   }
-  EXPECT_EQ(find(file, "well")->class_id, kMxCellClass);
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"well", "f0_n", "edc_mean_j", "edc_std_j", "cycles", "record",
+                                      "edc_noise_floor_j", "edc_eq13_mean_j", "edc_trapz_mean_j",
+                                      "z1_abs_m", "lag_rad", "z_mean_m", "start_s", "end_s",
+                                      "transient_cycles", "period1_change", "usable", "flags"}));
+  for (const char* text : {"well", "record", "flags"}) {
+    EXPECT_EQ(find(file, text)->class_id, kMxCellClass) << text;
+  }
+  for (const char* number : {"f0_n", "cycles", "lag_rad", "transient_cycles", "period1_change"}) {
+    EXPECT_EQ(find(file, number)->class_id, kMxDoubleClass) << number;
+  }
   // Doubles, bit for bit, in row order.
   const auto column = [&](double analysis::LevelResult::*member) {
     std::vector<double> values;
@@ -455,7 +468,11 @@ TEST(EdcMatExport, WritesTheContractColumnsAsColumnVectors) {
   EXPECT_EQ(doubles_of(*find(file, "edc_mean_j")), column(&analysis::LevelResult::edc_mean_j));
   EXPECT_EQ(doubles_of(*find(file, "edc_std_j")), column(&analysis::LevelResult::edc_std_j));
   EXPECT_EQ(doubles_of(*find(file, "start_s")), column(&analysis::LevelResult::start_s));
+  EXPECT_EQ(doubles_of(*find(file, "lag_rad")), column(&analysis::LevelResult::lag_rad));
+  EXPECT_EQ(doubles_of(*find(file, "period1_change")),
+            column(&analysis::LevelResult::period1_change));
   EXPECT_EQ(doubles_of(*find(file, "cycles")), (std::vector<double>{80, 81, 82}));
+  EXPECT_EQ(doubles_of(*find(file, "transient_cycles")), (std::vector<double>{3, 2, 1}));
   const RawVariable* usable = find(file, "usable");
   EXPECT_EQ(usable->class_id, kMxUint8Class);
   EXPECT_TRUE(usable->logical);
