@@ -180,8 +180,9 @@ void bind_analysis(py::module_& m) {
   py::class_<AnalysisHandle>(m, "Analysis", R"doc(
 The offline analysis of one or more recordings (what `oscilab-cli analyze` computes): the EDC of
 every stepped-sine level, the restoring-force surface (stiffness slice with its cubic fit, damping
-slices), every fitted cycle. Tables are dicts of columns named like the CLI's CSV columns; the
-summary is the CLI's --summary JSON as a dict. Pass it to ``fit`` or ``diagnose`` to reuse it.
+slices), every fitted cycle. Tables are dicts of NumPy arrays named and ordered like the CLI's
+CSV columns (float64, int64, bool, unicode: docs/python.md); the summary is the CLI's --summary
+JSON as a dict. Pass it to ``fit`` or ``diagnose`` to reuse it.
 )doc")
       .def_property_readonly(
           "edc",
