@@ -50,6 +50,23 @@ std::string layout_difference(const Sidecar& expected, const Sidecar& offered) {
   return "";
 }
 
+std::string NetSource::sequence_problem(std::uint64_t sequence, double rate_hz) const {
+  // Every block holds at least one row, so a stream that opens a gap of at most kMaxGapS skips at
+  // most that many samples' worth of blocks. A sequence further ahead is refused: the blocks it
+  // skips would be counted lost and the monitor would wait on them.
+  const std::uint64_t expected = next_sequence_ - static_cast<std::uint64_t>(sequence_offset_);
+  const double max_ahead = std::ceil(kMaxGapS * rate_hz);
+  if (sequence <= expected || static_cast<double>(sequence - expected) <= max_ahead) return "";
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "DATA frame refused: sequence %llu is %llu blocks past the next expected %llu "
+                "(at most %.0f, %g s of one-row blocks)",
+                static_cast<unsigned long long>(sequence),
+                static_cast<unsigned long long>(sequence - expected),
+                static_cast<unsigned long long>(expected), max_ahead, kMaxGapS);
+  return text;
+}
+
 NetSource::NetSource(Options options) : options_(std::move(options)) {
   listener_ = TcpSocket::listen_on(options_.host, options_.port);
   port_ = listener_.local_port();
@@ -155,6 +172,12 @@ bool NetSource::serve(TcpSocket& peer) {
                           static_cast<unsigned long long>(frame.first_sample), ahead_s,
                           static_cast<unsigned long long>(expected), kMaxGapS);
             post_event({kNoTime, EventKind::MalformedFrame, text});
+            break;
+          }
+          if (const std::string problem = sequence_problem(frame.sequence, rate_hz);
+              !problem.empty()) {
+            malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+            post_event({kNoTime, EventKind::MalformedFrame, problem});
             break;
           }
           const std::uint64_t first =

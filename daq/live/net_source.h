@@ -45,6 +45,8 @@ class NetSource final : public SampleSource {
   void interrupt() override;
   /// Serves one sender; true when it ended the stream (BYE).
   bool serve(TcpSocket& peer);
+  /// Why a DATA frame's sequence (the sender's numbering) is refused, or "" when it is not.
+  std::string sequence_problem(std::uint64_t sequence, double rate_hz) const;
 
   Options options_;
   TcpSocket listener_;

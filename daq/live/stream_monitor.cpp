@@ -76,9 +76,14 @@ void StreamMonitor::give_up_missing() {
     }
   }
   if (oldest == held_.size()) return;
-  for (std::uint64_t s = next_sequence_; s < held_[oldest].sequence; ++s) {
-    ++counters_.lost_blocks;
-    if (lost_.size() == kLostMemory) lost_.erase(lost_.begin());
+  // Counted at once and only the newest kLostMemory remembered: a sequence far ahead (a peer's
+  // 2^63) costs no more than a near one.
+  const std::uint64_t missing = held_[oldest].sequence - next_sequence_;
+  counters_.lost_blocks += missing;
+  const std::uint64_t remembered = std::min<std::uint64_t>(missing, kLostMemory);
+  const std::size_t keep = std::min(lost_.size(), kLostMemory - remembered);
+  lost_.erase(lost_.begin(), lost_.end() - static_cast<std::ptrdiff_t>(keep));
+  for (std::uint64_t s = held_[oldest].sequence - remembered; s < held_[oldest].sequence; ++s) {
     lost_.push_back(s);
   }
   next_sequence_ = held_[oldest].sequence;

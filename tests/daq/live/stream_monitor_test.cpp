@@ -87,5 +87,23 @@ TEST(StreamMonitor, FlushDeliversWhatIsHeldAfterTheLastGap) {
   EXPECT_EQ(log.gaps[0], std::make_pair(std::uint64_t{4}, std::uint64_t{8}));
 }
 
+// A sequence far ahead (a peer's 2^63) costs what a near one costs: the missing blocks are
+// counted at once, not walked one by one, and a block from before the jump is still told late.
+TEST(StreamMonitor, ASequenceFarAheadIsCountedAtOnceWithoutWalkingTheGap) {
+  Log log;
+  StreamMonitor m = monitor(log, 2);
+  constexpr std::uint64_t kFar = std::uint64_t{1} << 63;
+  m.push(block(0, 0));
+  m.push(block(kFar, 4));
+  m.push(block(kFar + 1, 8));  // the window is full: what lies before kFar is declared lost
+  ASSERT_EQ(log.blocks.size(), 3u);
+  EXPECT_EQ(m.counters().lost_blocks, kFar - 1);
+  EXPECT_TRUE(log.gaps.empty()) << "the sample clock did not jump";
+  m.push(block(kFar - 1, 12));  // among the newest lost sequences remembered
+  m.push(block(1, 12));         // too old to be remembered: a duplicate, still dropped
+  EXPECT_EQ(log.anomalies, (std::vector<std::string>{"late", "duplicate"}));
+  EXPECT_EQ(log.blocks.size(), 3u);
+}
+
 }  // namespace
 }  // namespace oscilab::daq
