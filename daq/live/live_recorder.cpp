@@ -66,8 +66,11 @@ LiveRecorder::LiveRecorder(const std::string& path, const Sidecar& layout,
   if (file_fd_ < 0) throw InputError(path + ": cannot write: " + std::strerror(errno));
   file_ = sf_open_fd(file_fd_, SFM_WRITE, &info, SF_TRUE);
   if (file_ == nullptr) {
+    // Its header could not be written (a full disk): no empty file is left behind.
+    const std::string why = sf_strerror(nullptr);
     ::close(file_fd_);
-    throw InputError(path + ": cannot write: " + sf_strerror(nullptr));
+    ::unlink(path.c_str());
+    throw InputError(path + ": cannot write: " + why);
   }
   last_sync_ = std::chrono::steady_clock::now();
   sf_command(file_, SFC_SET_UPDATE_HEADER_AUTO, nullptr, SF_TRUE);

@@ -428,5 +428,89 @@ TEST(LiveRecorder, ARecordingCutAnywhereInItsLastSecondKeepsEverythingBeforeTheC
   EXPECT_EQ(input_error_of([&] { recover_live_recording(cut); }).rfind(cut, 0), 0u);
 }
 
+// The durability policy (docs/live.md) tested where it matters, at every block boundary:
+// - a crash: the file on disk after each block, copied while the recorder still has it open,
+//   opens with read_recording as it is, holding exactly the blocks written so far;
+// - a power cut: the finished file cut at every block boundary, at offsets inside blocks and
+//   inside its header. read_recording never crashes on it: it opens with exactly the samples
+//   before the cut or refuses it with an InputError naming the file; recover_live_recording
+//   then makes it open with exactly those samples, bit for bit (or names the file when not one
+//   whole sample is left).
+TEST(LiveRecorder, ACutAtEveryBlockBoundaryOpensWithTheSamplesBeforeIt) {
+  constexpr int kBlocks = 96, kRows = 16;
+  constexpr std::int64_t kFrameBytes = 24;  // 3 float64 channels
+  const TempDir dir;
+  const std::string path = dir.file("blocks.wav");
+  const std::string copy = dir.file("copy.wav");
+  const auto copy_as = [&](const std::string& to) {
+    std::filesystem::copy_file(path, to, std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(sidecar_path_for(path), sidecar_path_for(to),
+                               std::filesystem::copy_options::overwrite_existing);
+  };
+  std::mt19937_64 rng(31);
+  std::vector<RawBlock> blocks;
+  {
+    LiveRecorder recorder(path, layout(), 0);
+    recorder.add_level(0.5, 9.0, 0.0, 0.5, 2.5);
+    for (int i = 0; i < kBlocks; ++i) {
+      blocks.push_back(block(i, kRows * i, kRows, rng));
+      ASSERT_TRUE(recorder.write(blocks.back()));
+      copy_as(copy);
+      const Recording open = read_recording(copy);
+      ASSERT_EQ(open.sample_count(), kRows * (i + 1)) << "after block " << i;
+      ASSERT_TRUE(same_bits(open.samples_stored(kRows * i, 1), blocks.back().value(0, 1)));
+    }
+    recorder.close();
+  }
+  const Recording whole = read_recording(path);
+  ASSERT_EQ(whole.sample_count(), kBlocks * kRows);
+  const auto size = static_cast<std::int64_t>(std::filesystem::file_size(path));
+  const std::int64_t data_begin = size - kBlocks * kRows * kFrameBytes;
+  std::vector<std::int64_t> cuts = {0, 4, 12, 36, data_begin - 1};  // inside the header
+  for (int b = 0; b <= kBlocks; ++b) {
+    const std::int64_t boundary = data_begin + b * kRows * kFrameBytes;
+    cuts.push_back(boundary);
+    if (b % 17 == 3) {  // a few inside blocks: within a value, between values, a row past
+      for (const std::int64_t inside :
+           {std::int64_t{1}, std::int64_t{8}, std::int64_t{23}, kFrameBytes * 5 + 13}) {
+        cuts.push_back(boundary + inside);
+      }
+    }
+  }
+  int opened_as_cut = 0, recovered = 0;
+  for (const std::int64_t at : cuts) {
+    copy_as(copy);
+    std::filesystem::resize_file(copy, static_cast<std::uintmax_t>(at));
+    const std::int64_t expected = std::max<std::int64_t>(0, (at - data_begin) / kFrameBytes);
+    try {
+      const Recording as_cut = read_recording(copy);
+      ASSERT_EQ(as_cut.sample_count(), expected) << "cut at byte " << at;
+      ++opened_as_cut;
+    } catch (const InputError& error) {
+      ASSERT_EQ(std::string(error.what()).rfind(copy, 0), 0u) << error.what();
+    }
+    if (expected == 0) {
+      EXPECT_EQ(input_error_of([&] { recover_live_recording(copy); }).rfind(copy, 0), 0u)
+          << "cut at byte " << at;
+      continue;
+    }
+    ASSERT_EQ(recover_live_recording(copy), expected) << "cut at byte " << at;
+    const Recording kept = read_recording(copy);
+    ASSERT_TRUE(kept.samples_stored == whole.samples_stored.topRows(expected))
+        << "cut at byte " << at;
+    // The level's steady window (0.5 to 2.5 s) is kept once the cut passes its start, clipped.
+    const double end_s = static_cast<double>(expected) / kRateHz;
+    const auto& levels = kept.sidecar.excitation->levels;
+    ASSERT_EQ(levels.size(), end_s > 0.5 ? 1u : 0u) << "cut at byte " << at;
+    if (!levels.empty()) {
+      ASSERT_EQ(levels[0].end_s, std::min(end_s, 2.5));
+    }
+    ++recovered;
+  }
+  EXPECT_EQ(cuts.size(), 5u + (kBlocks + 1) + 6u * 4u);
+  EXPECT_EQ(opened_as_cut, 1) << "only the uncut length has a header that matches";
+  EXPECT_EQ(recovered, kBlocks + 6 * 4);  // every cut but those before the first sample
+}
+
 }  // namespace
 }  // namespace oscilab::daq
