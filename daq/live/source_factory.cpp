@@ -1,5 +1,8 @@
 #include "daq/live/source_factory.h"
 
+#include <cctype>
+#include <filesystem>
+
 #include "analysis/common/input_error.h"
 #include "analysis/model/model_json.h"
 #include "daq/live/jack_source.h"
@@ -25,6 +28,21 @@ std::vector<std::string> split_ports(const std::string& text) {
     if (comma == std::string::npos) return out;
     from = comma + 1;
   }
+}
+
+// "usb" for "usb:3": the scheme a description names when it looks like SCHEME:REST (two or more
+// letters, digits, '+', '-' or '.', starting with a letter), or "" when it does not.
+std::string scheme_of(const std::string& spec) {
+  const std::size_t colon = spec.find(':');
+  if (colon == std::string::npos || colon < 2 ||
+      !std::isalpha(static_cast<unsigned char>(spec[0]))) {
+    return "";
+  }
+  for (std::size_t i = 0; i < colon; ++i) {
+    const auto c = static_cast<unsigned char>(spec[i]);
+    if (!std::isalnum(c) && c != '+' && c != '-' && c != '.') return "";
+  }
+  return spec.substr(0, colon);
 }
 
 ReplaySource::Options replay_options(const SourceOptions& o) {
@@ -89,6 +107,14 @@ std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceO
     }
     case SourceKind::Replay:
       break;
+  }
+  // A description of an unknown kind ("usb:3") is not a missing file; a recording whose name
+  // holds a colon still plays.
+  if (const std::string scheme = scheme_of(spec);
+      !scheme.empty() && scheme != "file" && !std::filesystem::exists(spec)) {
+    throw InputError(o.what + " " + spec + ": unknown source kind \"" + scheme +
+                     ":\" (rig, net:HOST:PORT, jack:PORT_BASE,PORT_MASS, file:REC or a "
+                     "recording's path)");
   }
   const std::string path = starts_with(spec, "file:") ? spec.substr(5) : spec;
   if (path.empty()) throw InputError(o.what + " file: needs a recording path");

@@ -49,6 +49,13 @@ TEST(SourceFactory, RefusesBadDescriptionsNamingTheOption) {
   EXPECT_EQ(input_error_of([&] { make_source("jack:a,b", o); }),
             "source jack:a,b: a JACK source needs its calibration (a sidecar with one channel per "
             "port)");
+  // A kind it does not know is named as such, not taken for a missing file.
+  o.what = "--source";
+  EXPECT_EQ(input_error_of([&] { make_source("usb:3", o); }),
+            "--source usb:3: unknown source kind \"usb:\" (rig, net:HOST:PORT, "
+            "jack:PORT_BASE,PORT_MASS, file:REC or a recording's path)");
+  const std::string missing = input_error_of([&] { make_source("run.wav", o); });
+  EXPECT_NE(missing.find("run.wav: file not found"), std::string::npos) << missing;
 }
 
 }  // namespace
