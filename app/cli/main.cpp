@@ -1,8 +1,10 @@
 // oscilab-cli: every headless capability of Oscilab as a subcommand (contract §2).
 #include <malloc.h>
 
+#include <algorithm>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -38,7 +40,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    // --help and --version print and succeed; a wrong option is bad input like any other:
+    // exit status 2 and one line (contracts.md §2).
+    if (error.get_exit_code() == 0) return app.exit(error);
+    std::string message = error.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    std::cerr << "oscilab-cli: " << message << " (see --help)\n";
+    return 2;
   } catch (const oscilab::InputError& error) {
     std::cerr << "oscilab-cli: " << error.what() << '\n';
     return 2;
