@@ -37,6 +37,19 @@ FitSettingsForm::FitSettingsForm(QWidget* parent)
   generations_box_->setObjectName("generations");
   generations_box_->setRange(0, 10000);
   generations_box_->setValue(defaults.genetic.generations);
+  // The GA's budget, population × (generations + 1), stays within the evaluations a fit accepts
+  // (analysis::validate, as `oscilab-cli fit` refuses more): each box's maximum follows the other.
+  const auto bound_budget = [this] {
+    const long population = population_box_->value();
+    const long generations = generations_box_->value();
+    generations_box_->setMaximum(
+        static_cast<int>(std::min(10000L, analysis::kMaxFitEvaluations / population - 1)));
+    population_box_->setMaximum(
+        static_cast<int>(std::min(10000L, analysis::kMaxFitEvaluations / (generations + 1))));
+  };
+  bound_budget();
+  connect(population_box_, &QSpinBox::valueChanged, this, bound_budget);
+  connect(generations_box_, &QSpinBox::valueChanged, this, bound_budget);
   // What `oscilab-cli fit` offers besides the search: the base model, the stiffness source and
   // how the levels are weighed (analysis::FitSetup).
   model_edit_ = new QLineEdit(QStringLiteral("paper"));

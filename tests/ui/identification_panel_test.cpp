@@ -282,6 +282,30 @@ class IdentificationPanelTest : public QObject {
             QString::fromStdString(objective->form().base().to_json().dump()));
   }
 
+  // The form offers no GA budget the analysis (and `oscilab-cli fit`) refuses: population ×
+  // (generations + 1) stays within kMaxFitEvaluations whichever box moves last.
+  void gaBudgetStaysWithinWhatAFitAccepts() {
+    IdentificationPanel panel;
+    auto* population = panel.findChild<QSpinBox*>("population");
+    auto* generations = panel.findChild<QSpinBox*>("generations");
+    QVERIFY(population && generations);
+    const auto within = [&] {
+      return static_cast<long>(population->value()) * (generations->value() + 1) <=
+             oscilab::analysis::kMaxFitEvaluations;
+    };
+    population->setValue(population->maximum());
+    generations->setValue(generations->maximum());
+    QCOMPARE(population->value(), 10000);
+    QCOMPARE(generations->value(), 999);
+    QVERIFY(within());
+    population->setValue(2);
+    generations->setValue(generations->maximum());
+    QCOMPARE(generations->value(), 10000);
+    population->setValue(population->maximum());
+    QCOMPARE(population->value(), 999);
+    QVERIFY(within());
+  }
+
   void badRecordingIsReportedNotFatal() {
     IdentificationPanel panel;
     panel.set_recordings({kSamples + "no_such_file.flac"});
