@@ -35,7 +35,8 @@ expect_error "hbm: a depth bomb in a model" "bomb_model.json: JSON nested deeper
 expect_absent "hbm: no branch after a refused model" "$work/bomb_branch.csv"
 
 # --- A network sender (the stream protocol, docs/stream-protocol.md) whose frames are given as
-# arguments: hello, data:FIRST_SAMPLE:ROWS (sequence numbers counted), event:JSON, bomb-hello,
+# arguments: hello, data:FIRST_SAMPLE:ROWS[:SEQUENCE] (sequence numbers counted on from the last,
+# or as given), event:JSON, bomb-hello,
 # bomb-event, bye. It connects as soon as the recorder listens.
 cat > "$work/send.py" <<'PY'
 import json, socket, struct, sys, time
@@ -58,7 +59,8 @@ for item in sys.argv[3:]:
     elif item.startswith("event:"):
         out += frame(3, item[6:].encode())
     elif item.startswith("data:"):
-        _, first, rows = item.split(":")
+        _, first, rows, *given = item.split(":")
+        sequence = int(given[0]) if given else sequence
         values = [0.001 * i for i in range(2 * int(rows))]
         out += frame(2, struct.pack("<QQII", sequence, int(first), int(rows), 2) +
                      struct.pack("<%dd" % len(values), *values))
@@ -142,6 +144,17 @@ expect_absent "diagnose: no folder made for a recording it cannot read" "$work/d
 expect_error "record --wait -1" "--wait: -1 s must be >= 0" \
   "$cli" record --source "net:127.0.0.1:$((20000 + RANDOM % 30000))" --wait -1 --out "$work/w.wav"
 expect_absent "record --wait -1: nothing written" "$work/w.wav" "$work/w.json"
+expect_error "record --source usb:3: an unknown kind, not a missing file" \
+  "--source usb:3: unknown source kind \"usb:\"" "$cli" record --source usb:3 --out "$work/u.wav"
+expect_absent "record --source usb:3: nothing written" "$work/u.wav" "$work/u.json"
+# Options the parser refuses (unknown, not a number, missing) are bad input like any other.
+expect_error "fit --evaluations abc" "oscilab-cli: .*--evaluations.*abc" \
+  "$cli" fit "$pos" --evaluations abc --out "$work/p1.json"
+expect_error "fit --no-such-option" "oscilab-cli: .*--no-such-option" \
+  "$cli" fit "$pos" --no-such-option --out "$work/p2.json"
+expect_error "record without --out" "oscilab-cli: .*--out.*required" "$cli" record --source rig
+expect_absent "refused options: nothing written" "$work/p1.json" "$work/p2.json"
+"$cli" --help > /dev/null 2>&1 && pass "--help still exits 0" || fail "--help: exit $?"
 
 # --- Absurd network fields: each frame refused alone (one malformed-frame event), the stream
 # goes on, the clock never jumps, nothing beyond Nyquist reaches the analysis or the sidecar.
@@ -175,6 +188,26 @@ assert [level["f0_n"] for level in excitation["levels"]] == [0.5], excitation
 PY
 "$cli" info "$work/net_fields.wav" 2>&1 | grep -q "samples: *1536$" \
   && pass "the three valid DATA frames recorded" || fail "net_fields.wav samples"
+
+# A DATA sequence far ahead (2^63, and 2^64 - 1 where the next one would wrap): each frame
+# refused with one event, no hang, no blocks counted lost, the stream and its clock go on.
+if record_from net_sequence hello data:0:512 data:512:512:9223372036854775808 \
+    data:512:512:18446744073709551615 data:512:512:1 bye; then
+  pass "record --source net: DATA sequences 2^63 and 2^64-1, exit 0 (no hang)"
+else
+  fail "record net sequence: status $?, $(tail -3 "$work/net_sequence.log")"
+fi
+events=$work/net_sequence.events.jsonl
+for text in "sequence 9223372036854775808 is 9223372036854775807 blocks past the next expected 1" \
+    "sequence 18446744073709551615 is"; do
+  grep -q "\"malformed-frame\".*DATA frame refused: $text" "$events" && pass "refused: $text" \
+    || fail "not refused: $text: $(cut -c1-160 "$events")"
+done
+grep -q '"kind":"\(gap\|late\|duplicate\)"' "$events" && fail "a refused sequence counted: $(grep -m1 '"kind":"\(gap\|late\|duplicate\)"' "$events")" \
+  || pass "no gap, late or duplicate block from a refused sequence"
+grep -q '"kind":"source-ended","t_s":2.0' "$events" && "$cli" info "$work/net_sequence.wav" 2>&1 \
+  | grep -q "samples: *1024$" && pass "both valid DATA frames recorded, the clock at 2 s" \
+  || fail "net_sequence: $(grep source-ended "$events")"
 
 # --- Degenerate data said, not scored: a dead or constant channel, swapped roles, a steady
 # window shorter than a cycle, levels past the record's end. Each level gets a flag and the
@@ -293,6 +326,10 @@ mkdir -p "$small"
 if mount -t tmpfs -o size=256k tmpfs "$small" 2> /dev/null; then
   trap 'umount "$small" 2> /dev/null; kill $(jobs -p) 2> /dev/null; rm -rf "$work"' EXIT
   cat /dev/zero > "$small/fill" 2> /dev/null  # until the file system is full
+  expect_error "record on a disk already full" "x0.wav: cannot write: .*No space left on device" \
+    "$cli" record --source rig --speed 0 --duration 5 --out "$small/x0.wav"
+  [ "$(ls "$small")" = "fill" ] && pass "record on a disk already full: no empty WAV left" \
+    || fail "left: $(ls -l "$small")"
   expect_error "analyze on a full disk" "No space left on device" \
     "$cli" analyze "$pos" --edc "$small/e.csv" --cycles "$small/c.csv"
   expect_absent "analyze on a full disk: neither table nor temporary left" "$small/e.csv" "$small/c.csv"
