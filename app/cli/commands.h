@@ -16,6 +16,7 @@ void add_fit_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
 void add_record_command(CLI::App& app);
+void add_recover_command(CLI::App& app);
 void add_stream_command(CLI::App& app);
 void add_export_command(CLI::App& app);
 void add_adaptive_test_command(CLI::App& app);

@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   oscilab::cli::add_merge_command(app);
   oscilab::cli::add_diagnose_command(app);
   oscilab::cli::add_record_command(app);
+  oscilab::cli::add_recover_command(app);
   oscilab::cli::add_stream_command(app);
   oscilab::cli::add_export_command(app);
   oscilab::cli::add_adaptive_test_command(app);

@@ -301,6 +301,24 @@ status=$?
   && pass "record: no status line on a stderr that is not a terminal" \
   || fail "record status: exit $status, stderr $(head -c 200 "$work/quiet.err")"
 
+# --- A recording cut short (a power cut before its header caught up, a copy stopped short): the
+# readers refuse it naming the repair, and recover keeps every whole sample before the cut.
+cp "$work/quiet.wav" "$work/cut.wav"
+cp "$work/quiet.json" "$work/cut.json"
+truncate -s $(($(stat -c %s "$work/cut.wav") - 16 * 100 - 5)) "$work/cut.wav"  # 2 channels
+expect_error "info: a recording cut short" "cut.wav: truncated: .*(oscilab-cli recover" \
+  "$cli" info "$work/cut.wav"
+"$cli" recover "$work/cut.wav" > "$work/recover.out" 2>&1 \
+  && grep -q "recovered 1435 samples per channel" "$work/recover.out" \
+  && "$cli" info "$work/cut.wav" 2>&1 | grep -q "samples: *1435$" \
+  && pass "recover: the cut recording opens with the 1435 whole samples before the cut" \
+  || fail "recover: $(cat "$work/recover.out")"
+"$cli" recover "$work/quiet.wav" 2>&1 | grep -q "whole (1536 samples per channel); nothing to" \
+  && pass "recover: a whole recording is left as it is" || fail "recover of a whole recording"
+expect_error "recover: not even a header" "header.wav: not a sound file" \
+  bash -c "head -c 40 '$work/quiet.wav' > '$work/header.wav' && cp '$work/quiet.json' \
+    '$work/header.json' && '$cli' recover '$work/header.wav'"
+
 # --- Outputs never over inputs, and all or nothing.
 "$cli" fit "$pos" "$neg" --evaluations 20 --threads 1 --out "$work/fit1.json" > /dev/null 2>&1
 cp "$work/fit1.json" "$work/fit1.before"

@@ -67,7 +67,8 @@ std::string truncation_in_log(SNDFILE* file) {
         std::strtoll(std::string(text.substr(should + 11)).c_str(), nullptr, 10);
     if (declared <= present || declared == 0 || declared == 0xFFFFFFFFLL) continue;
     return "truncated: the header promises " + std::to_string(declared) +
-           " bytes of samples, the file holds " + std::to_string(present);
+           " bytes of samples, the file holds " + std::to_string(present) +
+           " (oscilab-cli recover keeps the whole samples it holds)";
   }
   return "";
 }
@@ -124,7 +125,8 @@ Recording read_sound(const std::string& path, const Sidecar& sidecar,
   if (frames == 0) throw InputError(path + ": no samples (empty recording)");
   if (info.frames != std::numeric_limits<sf_count_t>::max() && frames < info.frames) {
     throw InputError(path + ": truncated: the header promises " + std::to_string(info.frames) +
-                     " samples per channel, the file holds " + std::to_string(frames));
+                     " samples per channel, the file holds " + std::to_string(frames) +
+                     " (oscilab-cli recover keeps the whole samples it holds)");
   }
 
   Recording recording;
