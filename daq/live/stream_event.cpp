@@ -122,6 +122,16 @@ std::string stream_event_problem(const StreamEvent& event, double sample_rate_hz
       return problem(key, "is not a stream time in [0, 1e9] s", value);
     }
   }
+  // A steady window that ends before it starts holds no cycle: said, not taken as a level.
+  const auto from = event.data.find("steady_from_s");
+  const auto to = event.data.find("steady_to_s");
+  if (event.kind == EventKind::Level && from != event.data.end() && to != event.data.end() &&
+      to->get<double>() < from->get<double>()) {
+    std::snprintf(text, sizeof text,
+                  "level event: the steady window [%g, %g) s ends before it starts",
+                  from->get<double>(), to->get<double>());
+    return text;
+  }
   return "";
 }
 

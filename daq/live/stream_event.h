@@ -99,8 +99,8 @@ inline constexpr double kMaxStreamTimeS = 1e9;
 /// when it can): a `level` whose f0_n is not a finite number >= 0 or whose frequency_hz is not a
 /// finite number in (0, sample_rate_hz / 2) (beyond Nyquist no cycle can be resolved); a `level`,
 /// `invalid`, `clipped` or `discontinuity` whose t_s, steady_from_s, steady_to_s, from_s or to_s
-/// is not a number in [0, kMaxStreamTimeS] (t_s may be NaN: no time). Other kinds are only
-/// logged and always pass.
+/// is not a number in [0, kMaxStreamTimeS] (t_s may be NaN: no time); a `level` whose
+/// steady_to_s comes before its steady_from_s. Other kinds are only logged and always pass.
 std::string stream_event_problem(const StreamEvent& event, double sample_rate_hz);
 
 }  // namespace oscilab::daq

@@ -164,6 +164,7 @@ if record_from net_fields hello data:0:512 \
     "$(level '{"f0_n": 0.5, "frequency_hz": 300}')" \
     "$(level '{"f0_n": "x", "frequency_hz": 9}')" \
     "$(level '{"f0_n": 0.5, "frequency_hz": 9, "steady_from_s": 1e300}')" \
+    "$(level '{"f0_n": 0.5, "frequency_hz": 9, "steady_from_s": 2.5, "steady_to_s": 1.5}')" \
     "$(level '{"f0_n": 0.5, "frequency_hz": 9}')" \
     data:512:512 data:9223372036854775808:512 data:1024:512 bye; then
   pass "record --source net: absurd level events and a DATA clock jump, exit 0 (no hang)"
@@ -173,6 +174,7 @@ fi
 events=$work/net_fields.events.jsonl
 for text in "frequency_hz 1e+09 is not in (0, 256) Hz" "frequency_hz 300 is not in (0, 256) Hz" \
     "f0_n is not a number" "steady_from_s 1e+300 is not a stream time" \
+    "the steady window \[2.5, 1.5) s ends before it starts" \
     "DATA frame refused: first_sample 9223372036854775808 is 1.8e+16 s past"; do
   grep -q "\"malformed-frame\".*$text" "$events" && pass "refused: $text" \
     || fail "not refused: $text: $(cut -c1-160 "$events")"

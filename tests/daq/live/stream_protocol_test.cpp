@@ -209,6 +209,9 @@ TEST(StreamEvent, ProblemNamesLevelsBeyondNyquistAndTimesBeyondAnyClock) {
             "level event: f0_n is not a number: \"x\"");
   EXPECT_EQ(stream_event_problem(level({{"steady_to_s", 1e300}}), 512.0),
             "level event: steady_to_s 1e+300 is not a stream time in [0, 1e9] s");
+  EXPECT_EQ(stream_event_problem(level({{"steady_from_s", 2.5}, {"steady_to_s", 1.5}}), 512.0),
+            "level event: the steady window [2.5, 1.5) s ends before it starts");
+  EXPECT_EQ(stream_event_problem(level({{"steady_from_s", 1.5}, {"steady_to_s", 2.5}}), 512.0), "");
   EXPECT_NE(stream_event_problem({1e300, EventKind::Discontinuity}, 512.0), "");
   EXPECT_NE(stream_event_problem({1.0, EventKind::Invalid, "", {{"from_s", -5.0}}}, 512.0), "");
   // No time (NaN) is allowed; kinds only logged are never refused.
