@@ -43,6 +43,9 @@ class DiagnosisJob : public QObject {
 
  Q_SIGNALS:
   void progress(double fraction_done);
+  /// What the diagnosis is doing, in words (analysis::DiagnosisProgress::describe), when it
+  /// changes (UI thread).
+  void stage(const QString& text);
   /// The diagnosis ended (UI thread).
   void finished(std::shared_ptr<const oscilab::ui::DiagnosisOutcome> outcome);
 

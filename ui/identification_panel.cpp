@@ -83,6 +83,10 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
           Qt::QueuedConnection);
   diagnosis_job_ = new DiagnosisJob(this);
   connect(diagnosis_job_, &DiagnosisJob::progress, this, show_progress);
+  connect(diagnosis_job_, &DiagnosisJob::stage, this, [this](const QString& text) {
+    progress_->setFormat(text + QStringLiteral(" \u2014 %p%"));
+    progress_->setTextVisible(true);
+  });
   connect(diagnosis_job_, &DiagnosisJob::finished, this,
           &IdentificationPanel::on_diagnosis_finished);
   figure_data_job_ = new FigureDataJob(this);
@@ -372,6 +376,7 @@ void IdentificationPanel::start_diagnosis() {
 void IdentificationPanel::begin_job(const QString& status) {
   convergence_plot_->graph(0)->data()->clear();
   progress_->setRange(0, 1000);
+  progress_->setTextVisible(false);  // a diagnosis says its stage on the bar once it has one
   set_busy(true);
   status_label_->setText(status);
 }

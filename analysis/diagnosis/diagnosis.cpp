@@ -7,11 +7,14 @@
 #include <cmath>
 #include <condition_variable>
 #include <limits>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "analysis/common/input_error.h"
 #include "analysis/common/parallel_for.h"
+#include "analysis/diagnosis/candidate_trial.h"
 #include "analysis/diagnosis/effect_candidates.h"
 #include "analysis/diagnosis/joint_refit.h"
 #include "analysis/diagnosis/settled_model.h"
@@ -37,37 +40,6 @@ double fingerprint_score(const EffectCandidate& c, const DiscrepancyMaps& maps) 
   const LogSlope& slope = maps.slopes.missing_all;
   if (!slope.valid() || !std::isfinite(slope.standard_error)) return 5.0;
   return std::abs(slope.slope - c.expected_slope) / std::max(slope.standard_error, 0.25);
-}
-
-// The grid over a candidate's own parameters: per parameter 10 values (one parameter) or 5
-// (two), log-spaced over its bounds (from 1e-3 of the upper bound when the lower is 0; both signs
-// when the bounds straddle 0).
-std::vector<Eigen::VectorXd> candidate_grid(const EffectCandidate& c) {
-  const int per_axis = c.free.size() == 1 ? 10 : 5;
-  std::vector<std::vector<double>> axes;
-  for (const FreeParameter& p : c.free) {
-    std::vector<double> axis;
-    const double hi = p.upper;
-    const double lo = p.lower > 0.0 ? p.lower : 1e-3 * std::abs(hi);
-    const int count = p.lower < 0.0 ? per_axis / 2 : per_axis;
-    for (int i = 0; i < count; ++i) {
-      const double v = lo * std::pow(std::abs(hi) / lo, static_cast<double>(i) / (count - 1));
-      axis.push_back(v);
-      if (p.lower < 0.0) axis.push_back(-v);
-    }
-    axes.push_back(axis);
-  }
-  std::vector<Eigen::VectorXd> grid;
-  std::vector<std::size_t> index(axes.size(), 0);
-  for (;;) {
-    Eigen::VectorXd point(static_cast<Eigen::Index>(axes.size()));
-    for (std::size_t a = 0; a < axes.size(); ++a) point(a) = axes[a][index[a]];
-    grid.push_back(point);
-    std::size_t a = 0;
-    while (a < axes.size() && ++index[a] == axes[a].size()) index[a++] = 0;
-    if (a == axes.size()) break;
-  }
-  return grid;
 }
 
 std::vector<std::pair<std::string, double>> named(const ModelForm& form,
@@ -124,42 +96,6 @@ class DeadlineToken {
   std::thread watcher_;
 };
 
-// The evidence a candidate's refit moved: the EDC's χ² and each response fingerprint's.
-std::vector<EvidenceChange> evidence_changes(double edc_before, double edc_after,
-                                             const ResponseFingerprints& before,
-                                             const ResponseFingerprints& after) {
-  std::vector<EvidenceChange> out = {{"edc", edc_before, edc_after}};
-  for (std::size_t i = 0; i < before.items.size() && i < after.items.size(); ++i) {
-    if (before.items[i].levels == 0) continue;
-    out.push_back({before.items[i].name, before.items[i].chi2, after.items[i].chi2});
-  }
-  return out;
-}
-
-// Scores a candidate's refit against the current model: ΔBIC of the EDC alone and jointly with
-// the fingerprints, and how each piece of evidence moved. `dispersion` φ ≥ 1 divides the Δχ²
-// (quasi-likelihood: σ inflated by √φ when the current model still misses the data by more than
-// its noise), so that a term must explain a real share of what is left.
-void score_trial(CandidateTrial& trial, const JointRefit& fit, const EdcEvaluation& current,
-                 const ResponseFingerprints& current_fingerprints, int added, int levels,
-                 bool use_fingerprints, double dispersion) {
-  trial.theta = fit.theta;
-  trial.joint_chi2 = fit.joint_chi2;
-  trial.weighted_cost = fit.evaluation.weighted_cost;
-  trial.cost_j = fit.evaluation.cost_j;
-  trial.solved = fit.evaluation.ok;
-  trial.delta_bic = (fit.evaluation.weighted_cost - current.weighted_cost) / dispersion +
-                    added * std::log(static_cast<double>(levels));
-  trial.evidence = evidence_changes(current.weighted_cost, fit.evaluation.weighted_cost,
-                                    current_fingerprints, fit.fingerprints);
-  trial.delta_bic_joint = trial.delta_bic;
-  if (use_fingerprints && fit.fingerprints.count > 0) {
-    trial.delta_bic_joint =
-        (fit.joint_chi2 - joint_chi2(current, current_fingerprints, true)) / dispersion +
-        added * std::log(static_cast<double>(levels + fit.fingerprints.count));
-  }
-}
-
 // The reduced joint χ² of the current model (EDC, and the fingerprints when they are weighed).
 double joint_reduced_chi2(const EdcEvaluation& evaluation, const DiscrepancyMaps& maps,
                           bool use_fingerprints, int levels, int parameters) {
@@ -179,9 +115,6 @@ double halton(int k, int base) {
 }
 constexpr std::array<int, 8> kPrimes = {2, 3, 5, 7, 11, 13, 17, 19};
 constexpr int kBoundRestarts = 4;
-// A friction parameter farther than this from the form's start (a share of its range) makes the
-// candidates' refits start from the form's friction as well.
-constexpr double kLabStartDistance = 0.05;
 
 // Whether a parameter other than the stiffness's sits within 1e-3 of a bound (unit cube).
 bool at_a_bound(const ModelForm& form, const Eigen::VectorXd& theta) {
@@ -194,8 +127,485 @@ bool at_a_bound(const ModelForm& form, const Eigen::VectorXd& theta) {
 
 }  // namespace
 
+const char* to_string(DiagnosisPhase phase) {
+  switch (phase) {
+    case DiagnosisPhase::Baseline:
+      return "baseline";
+    case DiagnosisPhase::Settling:
+      return "settling";
+    case DiagnosisPhase::Candidates:
+      return "candidates";
+    case DiagnosisPhase::Finalists:
+      return "finalists";
+    case DiagnosisPhase::Accepting:
+      return "accepting";
+    case DiagnosisPhase::Done:
+      return "done";
+  }
+  return "unknown";
+}
+
+std::string DiagnosisProgress::describe() const {
+  const std::string step_text =
+      "step " + std::to_string(step) + " of at most " + std::to_string(max_steps) + ": ";
+  switch (phase) {
+    case DiagnosisPhase::Baseline:
+      return "baseline: global search, " + std::to_string(evaluations) + " of " +
+             std::to_string(baseline_budget) + " evaluations";
+    case DiagnosisPhase::Settling:
+      return step == 0 ? "settling the baseline" : step_text + "settling the model";
+    case DiagnosisPhase::Candidates:
+      return step_text + std::to_string(candidates_done) + " of " + std::to_string(candidates) +
+             " candidates refitted" + (candidate.empty() ? "" : " (last: " + candidate + ")");
+    case DiagnosisPhase::Finalists:
+      return step_text + "longer refits of the leading candidates";
+    case DiagnosisPhase::Accepting:
+      return step_text + "settling the model with " + candidate;
+    case DiagnosisPhase::Done:
+      return "done";
+  }
+  return {};
+}
+
+namespace {
+
+// Shares of a step's part of the progress: refitting the candidates, the finalists' longer
+// refits, settling the model with the accepted effect.
+constexpr double kCandidatesShare = 0.85, kFinalistsShare = 0.10;
+constexpr double kBaselineSearchEnd = 0.20, kBaselineEnd = 0.25;
+
+// The diagnosis's progress: serialises the reports of its threads, counts the evaluations of the
+// running candidates and keeps the fraction from going back.
+class ProgressTracker {
+ public:
+  ProgressTracker(DiagnosisProgressFn report, const DiagnosisOptions& options)
+      : report_(std::move(report)) {
+    state_.max_steps = options.max_steps;
+    state_.baseline_budget = options.baseline_evaluations;
+  }
+
+  void baseline_search(long evaluations) {
+    update([&](DiagnosisProgress& p) {
+      p.evaluations = evaluations;
+      p.fraction = kBaselineSearchEnd *
+                   std::min(1.0, static_cast<double>(evaluations) /
+                                     static_cast<double>(std::max(1L, p.baseline_budget)));
+    });
+  }
+  // A phase that starts at `step` (0: the baseline's) with `evaluations` done so far.
+  void phase(DiagnosisPhase phase, int step, long evaluations, const std::string& candidate = {}) {
+    update([&](DiagnosisProgress& p) {
+      p.phase = phase;
+      p.step = step;
+      p.evaluations = evaluations;
+      if (!candidate.empty()) p.candidate = candidate;
+      done_before_ = evaluations;
+      if (phase == DiagnosisPhase::Done) {
+        p.fraction = 1.0;
+      } else if (step == 0) {
+        p.fraction = phase == DiagnosisPhase::Settling ? kBaselineSearchEnd : 0.0;
+      } else if (phase == DiagnosisPhase::Finalists) {
+        p.fraction = step_start(step) + kCandidatesShare * step_width();
+      } else if (phase == DiagnosisPhase::Accepting) {
+        p.fraction = step_start(step) + (kCandidatesShare + kFinalistsShare) * step_width();
+      }
+    });
+  }
+  void baseline_settled() {
+    update([&](DiagnosisProgress& p) { p.fraction = kBaselineEnd; });
+  }
+  void candidates(int step, int count, long evaluations) {
+    spent_.assign(static_cast<std::size_t>(count), 0);
+    budget_ = 1;
+    phase(DiagnosisPhase::Candidates, step, evaluations);
+    update([&](DiagnosisProgress& p) {
+      p.candidates = count;
+      p.candidates_done = 0;
+      p.candidate.clear();
+      p.fraction = step_start(step);
+    });
+  }
+  void set_trial_budget(long budget) { budget_ = std::max(1L, budget); }
+  // Candidate `slot` has spent `evaluations` so far.
+  void candidate_spent(std::size_t slot, long evaluations) {
+    update([&](DiagnosisProgress& p) {
+      if (slot < spent_.size()) spent_[slot] = evaluations;
+      account(p);
+    });
+  }
+  void candidate_done(std::size_t slot, const std::string& label) {
+    update([&](DiagnosisProgress& p) {
+      ++p.candidates_done;
+      p.candidate = label;
+      if (slot < spent_.size()) spent_[slot] = std::max(spent_[slot], budget_);
+      account(p);
+    });
+  }
+
+ private:
+  double step_width() const { return (1.0 - kBaselineEnd) / std::max(1, state_.max_steps); }
+  double step_start(int step) const { return kBaselineEnd + (step - 1) * step_width(); }
+  // The candidates' evaluations and share of the step from what each has spent.
+  void account(DiagnosisProgress& p) const {
+    long total = 0;
+    double share = 0.0;
+    for (long s : spent_) {
+      total += s;
+      share += std::min(1.0, static_cast<double>(s) / static_cast<double>(budget_));
+    }
+    p.evaluations = done_before_ + total;
+    p.fraction =
+        step_start(p.step) + kCandidatesShare * step_width() * share /
+                                 static_cast<double>(std::max<std::size_t>(1, spent_.size()));
+  }
+  template <class Change>
+  void update(Change change) {
+    const std::lock_guard lock(mutex_);
+    const double before = state_.fraction;
+    change(state_);
+    state_.fraction = std::clamp(std::max(before, state_.fraction), 0.0, 1.0);
+    if (report_) report_(state_);
+  }
+
+  DiagnosisProgressFn report_;
+  std::mutex mutex_;
+  DiagnosisProgress state_;
+  std::vector<long> spent_;
+  long budget_ = 1, done_before_ = 0;
+};
+
+}  // namespace
+
+namespace {
+
+// One diagnosis: the baseline, then steps of candidates until nothing is accepted or the model
+// explains the data within its noise. The current model (form, θ, its shared σ budget, its
+// evaluation and discrepancy maps) is what each step measures its candidates against.
+class DiagnosisRun {
+ public:
+  DiagnosisRun(const CampaignAnalysis& campaign, const ModelForm& form,
+               const DiagnosisOptions& options, const CancelToken& cancel,
+               ProgressTracker& progress)
+      : campaign_(campaign),
+        form_(form),
+        options_(options),
+        cancel_(cancel),
+        progress_(progress),
+        data_(edc_dataset(campaign)),
+        n_(data_.level_count()),
+        current_(form),
+        use_fp_(options.use_fingerprints) {
+    result_.excluded_levels = data_.excluded;
+    base_cost_ = options.cost;
+    base_cost_.cancel = cancel;  // the calibrations stop with the job
+  }
+
+  void baseline();
+  // One step of the candidate search (1, 2 …); false when the search ends with it.
+  bool step(int number);
+  // Withdraws accepted effects whose strength vanished and names the verdict.
+  void withdraw_vanished();
+  DiagnosisResult finish();
+
+ private:
+  double noise_level(int parameters) const {
+    const int dof = std::max(1, n_ - parameters);
+    return 1.0 + 3.0 * std::sqrt(2.0 / dof);
+  }
+  void settle();
+  void restart_at_bound();
+  // The step's candidates with their fingerprint scores, best-ranked first; effects accepted
+  // before are not offered again (stiffness powers share one term type).
+  std::vector<std::pair<EffectCandidate, double>> ranked_candidates() const;
+  // The slots of the solved trials by joint ΔBIC, best first, and of those the finalists: very
+  // strong joint evidence and at least 70 % of the best one's (at most three).
+  std::pair<std::vector<std::size_t>, std::vector<std::size_t>> finalists(
+      const DiagnosisStep& record, const std::vector<TrialOutcome>& outcomes) const;
+  // The trial in `slot` of the record (after its finalist's refit) becomes the current model.
+  void accept(DiagnosisStep& record, std::size_t slot, const ModelForm& extended,
+              const EffectCandidate& candidate, int form_size_before);
+
+  const CampaignAnalysis& campaign_;
+  const ModelForm& form_;
+  const DiagnosisOptions& options_;
+  const CancelToken& cancel_;
+  ProgressTracker& progress_;
+  const EdcDataset data_;
+  const int n_;
+  EdcCostSettings base_cost_;
+  DiagnosisResult result_;
+  // The current model.
+  ModelForm current_;
+  Eigen::VectorXd theta_;
+  EdcCostSettings cost_;
+  std::shared_ptr<const EdcObjective> objective_;
+  EdcEvaluation evaluation_;
+  DiscrepancyMaps maps_;
+  const bool use_fp_;
+  std::vector<std::string> accepted_effects_;
+};
+
+// Baseline: the form as given, searched globally, its σ budget calibrated at the form's initial
+// θ. An identified stiffness is held at its start (the slice's cubic or the model's) in the
+// global search on the EDC, which barely sees it, and freed when the model is settled on the EDC
+// and the fingerprints, which pin it.
+void DiagnosisRun::baseline() {
+  const bool identified_stiffness = form_.identifies_stiffness();
+  const ModelForm search_form =
+      identified_stiffness ? form_.holding_stiffness(form_.initial()) : form_;
+  const EdcObjective baseline_objective(search_form, data_, base_cost_);
+  FitOptions fit_options;
+  fit_options.max_evaluations = options_.baseline_evaluations;
+  fit_options.seed = options_.seed;
+  fit_options.threads = options_.threads;
+  fit_options.compute_uncertainty = false;
+  fit_options.check_truncation = false;
+  progress_.phase(DiagnosisPhase::Baseline, 0, 0);
+  result_.baseline = fit_edc(
+      baseline_objective, fit_options,
+      [this](const FitProgress& p) { progress_.baseline_search(p.evaluations); }, cancel_);
+  result_.evaluations += result_.baseline.evaluations;
+  theta_ = identified_stiffness ? form_.expand(result_.baseline.theta, form_.initial())
+                                : result_.baseline.theta;
+  current_ = form_.with_initial(theta_);
+  progress_.phase(DiagnosisPhase::Settling, 0, result_.evaluations);
+  settle();
+  restart_at_bound();
+  result_.baseline.theta = theta_;
+  result_.baseline.names = current_.names();
+  result_.baseline.evaluation = evaluation_;
+  result_.baseline_maps = maps_;
+  result_.noise_reduced_chi2 = noise_level(current_.size());
+  progress_.baseline_settled();
+}
+
+// Settling (settle_model): the σ budget calibrated at θ, the joint refit repeated while θ moves.
+// The σ budget is then shared by every objective of the step, so that the χ² of the current
+// model and of all its candidates are comparable. A candidate's gain is measured against the
+// settled model, so that a baseline search that stopped short of its optimum (the paper's form
+// has a weakly identified f_d(0), §5) does not credit an added term with the rest.
+void DiagnosisRun::settle() {
+  SettledModel settled = settle_model(current_, theta_, data_, campaign_, base_cost_, use_fp_,
+                                      static_cast<int>(options_.candidate_evaluations), cancel_);
+  result_.evaluations += settled.evaluations;
+  current_ = std::move(settled.form);
+  theta_ = std::move(settled.theta);
+  cost_ = std::move(settled.cost);
+  objective_ = std::move(settled.objective);
+  evaluation_ = std::move(settled.evaluation);
+  maps_ = std::move(settled.maps);
+}
+
+// A baseline at a bound: the weakly identified f_d(0) of §5 (or another friction parameter) can
+// be pushed onto its bound by a search that stopped in the wrong basin, and nothing after it
+// recovers. Then the refit is restarted from space-filling points of the friction's unit cube
+// (Halton, bases 2, 3, 5 …; the stiffness at its settled values) and the best is settled.
+void DiagnosisRun::restart_at_bound() {
+  if (cancel_.cancelled() || !at_a_bound(current_, theta_)) return;
+  const double before = joint_chi2(evaluation_, maps_.response, use_fp_);
+  JointRefit best;
+  best.joint_chi2 = before;
+  const Eigen::VectorXd unit = current_.to_unit(theta_);
+  for (int k = 1; k <= kBoundRestarts && !cancel_.cancelled(); ++k) {
+    Eigen::VectorXd start = unit;
+    int dimension = 0;
+    for (int i = 0; i < current_.size(); ++i) {
+      if (!current_.is_stiffness(i)) start(i) = halton(k, kPrimes[dimension++ % kPrimes.size()]);
+    }
+    JointRefit fit = joint_refit(*objective_, current_.from_unit(start), use_fp_,
+                                 static_cast<int>(options_.candidate_evaluations), cancel_);
+    result_.evaluations += fit.evaluations;
+    if (fit.theta.size() > 0 && fit.joint_chi2 < best.joint_chi2) best = std::move(fit);
+  }
+  ++result_.baseline_restarts;
+  if (best.theta.size() > 0 && best.joint_chi2 < before) {
+    theta_ = best.theta;
+    current_ = current_.with_initial(theta_);
+    settle();
+    result_.baseline_restart_improved = true;
+  }
+}
+
+std::vector<std::pair<EffectCandidate, double>> DiagnosisRun::ranked_candidates() const {
+  std::vector<std::pair<EffectCandidate, double>> ranked;
+  for (EffectCandidate& c : effect_candidates(current_, data_)) {
+    if (std::find(accepted_effects_.begin(), accepted_effects_.end(), c.effect) !=
+        accepted_effects_.end()) {
+      continue;
+    }
+    const double score = fingerprint_score(c, maps_);
+    ranked.emplace_back(std::move(c), score);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.second < b.second; });
+  return ranked;
+}
+
+bool DiagnosisRun::step(int number) {
+  if (maps_.reduced_chi2 <= noise_level(current_.size())) return false;  // explained
+  const std::vector<std::pair<EffectCandidate, double>> ranked = ranked_candidates();
+  DiagnosisStep record;
+  const int form_size_before = current_.size();
+  // Quasi-likelihood after the first accepted effect: the misfit the extended model leaves (its
+  // reduced joint χ², at least 1) inflates σ, so a further term must explain a share of what is
+  // left, not a few per cent of a large misfit. The first step compares at the stated σ: the
+  // baseline may be far from the data because an effect is missing.
+  record.dispersion =
+      accepted_effects_.empty()
+          ? 1.0
+          : std::max(1.0, joint_reduced_chi2(evaluation_, maps_, use_fp_, n_, current_.size()));
+  record.maps_before = maps_;
+  record.cost_before_j = evaluation_.cost_j;
+  record.weighted_before = evaluation_.weighted_cost;
+  record.reduced_chi2_before = maps_.reduced_chi2;
+  const TrialContext context{form_,
+                             current_,
+                             theta_,
+                             data_,
+                             cost_,
+                             base_cost_,
+                             evaluation_,
+                             maps_.response,
+                             use_fp_,
+                             n_,
+                             record.dispersion,
+                             options_.candidate_evaluations,
+                             options_.cost.max_harmonics};
+  progress_.candidates(number, static_cast<int>(ranked.size()), result_.evaluations);
+  progress_.set_trial_budget(trial_budget(options_.candidate_evaluations));
+  std::vector<TrialOutcome> outcomes(ranked.size());
+  parallel_for(ranked.size(), options_.threads, [&](std::size_t slot) {
+    const EffectCandidate& c = ranked[slot].first;
+    outcomes[slot] = try_candidate(
+        c, ranked[slot].second, context,
+        [&, slot](long spent) { progress_.candidate_spent(slot, spent); }, cancel_);
+    progress_.candidate_done(slot, candidate_label(c.effect, c.embodiment));
+  });
+  if (cancel_.cancelled()) return false;  // an interrupted step accepts nothing
+  record.trials.resize(outcomes.size());
+  for (std::size_t slot = 0; slot < outcomes.size(); ++slot) {
+    record.trials[slot] = outcomes[slot].trial;
+  }
+
+  // Finalists get the longer refit before they are compared again: short refits from a large
+  // misfit stop at different distances from their optima, and a law that mimics the true one
+  // (quadratic for cubic damping) can lead by a few per cent there.
+  const auto [ranked_slots, chosen] = finalists(record, outcomes);
+  progress_.phase(DiagnosisPhase::Finalists, number, result_.evaluations);
+  parallel_for(chosen.size(), options_.threads, [&](std::size_t i) {
+    const std::size_t slot = chosen[i];
+    refine_finalist(record.trials[slot], *outcomes[slot].form, outcomes[slot].own_cost, context,
+                    options_.accepted_evaluations, cancel_);
+  });
+  if (cancel_.cancelled()) return false;
+  std::optional<std::size_t> best;
+  for (std::size_t slot : ranked_slots) {
+    if (!best || record.trials[slot].delta_bic_joint < record.trials[*best].delta_bic_joint) {
+      best = slot;
+    }
+  }
+  // Accepted: very strong joint evidence, and the EDC itself is explained better (an effect that
+  // helps the fingerprints while the EDC gets worse is not a missing damping or stiffness law of
+  // this model).
+  if (!best || !(record.trials[*best].delta_bic_joint < -options_.bic_threshold) ||
+      !(record.trials[*best].weighted_cost < evaluation_.weighted_cost)) {
+    record.effect = "none";  // tried, nothing accepted
+    result_.steps.push_back(std::move(record));
+    return false;
+  }
+  accept(record, *best, *outcomes[*best].form, ranked[*best].first, form_size_before);
+  return true;
+}
+
+std::pair<std::vector<std::size_t>, std::vector<std::size_t>> DiagnosisRun::finalists(
+    const DiagnosisStep& record, const std::vector<TrialOutcome>& outcomes) const {
+  constexpr std::size_t kFinalists = 3;
+  std::vector<std::size_t> ranked;
+  for (std::size_t slot = 0; slot < outcomes.size(); ++slot) {
+    if (record.trials[slot].solved && outcomes[slot].form) ranked.push_back(slot);
+  }
+  std::sort(ranked.begin(), ranked.end(), [&](std::size_t a, std::size_t b) {
+    return record.trials[a].delta_bic_joint < record.trials[b].delta_bic_joint;
+  });
+  std::vector<std::size_t> chosen;
+  for (std::size_t slot : ranked) {
+    const double joint = record.trials[slot].delta_bic_joint;
+    if (chosen.size() < kFinalists && joint < -options_.bic_threshold &&
+        joint <= 0.7 * record.trials[ranked.front()].delta_bic_joint) {
+      chosen.push_back(slot);
+    }
+  }
+  return {ranked, chosen};
+}
+
+// The accepted candidate becomes the current model, settled; the step records how the model
+// changed.
+void DiagnosisRun::accept(DiagnosisStep& record, std::size_t slot, const ModelForm& extended,
+                          const EffectCandidate& candidate, int form_size_before) {
+  const CandidateTrial accepted = record.trials[slot];
+  progress_.phase(DiagnosisPhase::Accepting, static_cast<int>(result_.steps.size()) + 1,
+                  result_.evaluations, candidate_label(accepted.effect, accepted.embodiment));
+  theta_ = accepted.theta;
+  current_ = extended.with_initial(theta_);
+  settle();
+  record.effect = accepted.effect;
+  record.embodiment = accepted.embodiment;
+  record.can_vanish = candidate.can_vanish;
+  record.strength_parameter = candidate.free.front().name;
+  record.evidence = accepted.evidence;
+  record.delta_bic_joint = accepted.delta_bic_joint;
+  record.cost_after_j = evaluation_.cost_j;
+  record.weighted_after = evaluation_.weighted_cost;
+  record.reduced_chi2_after = maps_.reduced_chi2;
+  record.delta_bic =
+      (evaluation_.weighted_cost - record.weighted_before) / record.dispersion +
+      static_cast<double>(current_.size() - form_size_before) * std::log(static_cast<double>(n_));
+  record.parameters_after = named(current_, theta_);
+  accepted_effects_.push_back(accepted.effect);
+  result_.steps.push_back(std::move(record));
+}
+
+// An effect accepted early can lose its part to effects accepted after it (a cubic damping that
+// stood in for a quadratic one and a presliding hysteresis together): its strength vanishes in
+// the final refit. It is withdrawn, and the verdict is the first effect that stands. A trailing
+// "none" step records what was tried last; it is not an accepted effect.
+void DiagnosisRun::withdraw_vanished() {
+  for (DiagnosisStep& s : result_.steps) {
+    if (s.effect == "none") continue;
+    if (!s.can_vanish) {
+      if (result_.verdict == "none") result_.verdict = s.effect;
+      continue;
+    }
+    for (int i = 0; i < current_.size(); ++i) {
+      const FreeParameter& p = current_.parameters()[i];
+      if (p.name != s.strength_parameter) continue;
+      // A log-scale strength (a Dahl force, a presliding length) vanishes at its lower bound,
+      // within a decade of it; a linear one at 0, within 1e-3 of its bound.
+      const double scale = std::max(std::abs(p.lower), std::abs(p.upper));
+      s.withdrawn = p.log_scale ? theta_(i) <= 10.0 * p.lower : std::abs(theta_(i)) <= 1e-3 * scale;
+    }
+    if (!s.withdrawn && result_.verdict == "none") result_.verdict = s.effect;
+  }
+}
+
+// The final model and how well it explains the data.
+DiagnosisResult DiagnosisRun::finish() {
+  result_.final_form = current_;
+  result_.final_theta = theta_;
+  result_.final_evaluation = evaluation_;
+  result_.final_maps = maps_;
+  result_.sigma_budget = sigma_budget_json(*objective_);
+  result_.final_cost = cost_;
+  result_.final_noise_reduced_chi2 = noise_level(current_.size());
+  result_.gap_explained = maps_.reduced_chi2 <= result_.final_noise_reduced_chi2;
+  result_.largest_residual_levels = largest_residual_levels(maps_, 3);
+  return std::move(result_);
+}
+
+}  // namespace
+
 DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form,
-                         const DiagnosisOptions& options, const ProgressFn& progress,
+                         const DiagnosisOptions& options, const DiagnosisProgressFn& progress,
                          const CancelToken& outer_cancel) {
   if (options.max_steps < 0) throw InputError("diagnose: max steps must be ≥ 0");
   if (!(options.bic_threshold >= 0.0)) throw InputError("diagnose: the ΔBIC threshold must be ≥ 0");
@@ -212,339 +622,15 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   const auto start = std::chrono::steady_clock::now();
   const DeadlineToken deadline(outer_cancel, options.max_seconds);
   const CancelToken& cancel = deadline.token();
-  DiagnosisResult result;
-  const EdcDataset data = edc_dataset(campaign);
-  result.excluded_levels = data.excluded;
-  const int n = data.level_count();
-  const auto report = [&](double fraction) {
-    if (progress) progress(std::clamp(fraction, 0.0, 1.0));
-  };
-
-  // Baseline: the form as given, searched globally, its σ budget calibrated at the form's
-  // initial θ. An identified stiffness is held at its start (the slice's cubic or the model's)
-  // in the global search on the EDC, which barely sees it, and freed when the model is settled
-  // on the EDC and the fingerprints, which pin it.
-  const bool identified_stiffness = form.identifies_stiffness();
-  const ModelForm search_form =
-      identified_stiffness ? form.holding_stiffness(form.initial()) : form;
-  EdcCostSettings base_cost = options.cost;
-  base_cost.cancel = cancel;  // the calibrations stop with the job
-  const EdcObjective baseline_objective(search_form, data, base_cost);
-  FitOptions baseline_options;
-  baseline_options.max_evaluations = options.baseline_evaluations;
-  baseline_options.seed = options.seed;
-  baseline_options.threads = options.threads;
-  baseline_options.compute_uncertainty = false;
-  baseline_options.check_truncation = false;
-  result.baseline = fit_edc(baseline_objective, baseline_options, {}, cancel);
-  result.evaluations += result.baseline.evaluations;
-  report(0.25);
-  Eigen::VectorXd theta = identified_stiffness ? form.expand(result.baseline.theta, form.initial())
-                                               : result.baseline.theta;
-  ModelForm current = form.with_initial(theta);
-  const bool use_fp = options.use_fingerprints;
-
-  // Settling (settle_model): the σ budget calibrated at θ, the joint refit repeated while θ moves.
-  // The σ budget is then shared by every objective of the step, so that the χ² of the current
-  // model and of all its candidates are comparable. A candidate's gain is measured against the
-  // settled model, so that a baseline search that stopped short of its optimum (the paper's form
-  // has a weakly identified f_d(0), §5) does not credit an added term with the rest.
-  EdcCostSettings cost = base_cost;
-  std::shared_ptr<const EdcObjective> objective;
-  EdcEvaluation evaluation;
-  DiscrepancyMaps maps;
-  const auto settle = [&] {
-    SettledModel settled = settle_model(current, theta, data, campaign, base_cost, use_fp,
-                                        static_cast<int>(options.candidate_evaluations), cancel);
-    result.evaluations += settled.evaluations;
-    current = std::move(settled.form);
-    theta = std::move(settled.theta);
-    cost = std::move(settled.cost);
-    objective = std::move(settled.objective);
-    evaluation = std::move(settled.evaluation);
-    maps = std::move(settled.maps);
-  };
-  settle();
-  // A baseline at a bound: the weakly identified f_d(0) of §5 (or another friction parameter)
-  // can be pushed onto its bound by a search that stopped in the wrong basin, and nothing after
-  // it recovers. Then the refit is restarted from space-filling points of the friction's unit
-  // cube (Halton, bases 2, 3, 5 …; the stiffness at its settled values) and the best is settled.
-  if (!cancel.cancelled() && at_a_bound(current, theta)) {
-    const double before = joint_chi2(evaluation, maps.response, use_fp);
-    JointRefit best;
-    best.joint_chi2 = before;
-    const Eigen::VectorXd unit = current.to_unit(theta);
-    for (int k = 1; k <= kBoundRestarts && !cancel.cancelled(); ++k) {
-      Eigen::VectorXd start = unit;
-      int dimension = 0;
-      for (int i = 0; i < current.size(); ++i) {
-        if (!current.is_stiffness(i)) start(i) = halton(k, kPrimes[dimension++ % kPrimes.size()]);
-      }
-      JointRefit fit = joint_refit(*objective, current.from_unit(start), use_fp,
-                                   static_cast<int>(options.candidate_evaluations), cancel);
-      result.evaluations += fit.evaluations;
-      if (fit.theta.size() > 0 && fit.joint_chi2 < best.joint_chi2) best = std::move(fit);
-    }
-    ++result.baseline_restarts;
-    if (best.theta.size() > 0 && best.joint_chi2 < before) {
-      theta = best.theta;
-      current = current.with_initial(theta);
-      settle();
-      result.baseline_restart_improved = true;
-    }
+  ProgressTracker tracker(progress, options);
+  DiagnosisRun run(campaign, form, options, cancel, tracker);
+  run.baseline();
+  for (int step = 1; step <= options.max_steps && !cancel.cancelled(); ++step) {
+    if (!run.step(step)) break;
   }
-  result.baseline.theta = theta;
-  result.baseline.names = current.names();
-  result.baseline.evaluation = evaluation;
-  result.baseline_maps = maps;
-  const auto noise_level = [&](int parameters) {
-    const int dof = std::max(1, n - parameters);
-    return 1.0 + 3.0 * std::sqrt(2.0 / dof);
-  };
-  result.noise_reduced_chi2 = noise_level(current.size());
-  std::vector<std::string> accepted_effects;
-
-  for (int step = 0; step < options.max_steps && !cancel.cancelled(); ++step) {
-    if (maps.reduced_chi2 <= noise_level(current.size())) break;  // explained within its noise
-    std::vector<EffectCandidate> candidates = effect_candidates(current, data);
-    // An effect already accepted is not offered again (stiffness powers share one term type).
-    std::erase_if(candidates, [&](const EffectCandidate& c) {
-      return std::find(accepted_effects.begin(), accepted_effects.end(), c.effect) !=
-             accepted_effects.end();
-    });
-    std::vector<double> scores;
-    for (const auto& c : candidates) scores.push_back(fingerprint_score(c, maps));
-    std::vector<std::size_t> order(candidates.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return scores[a] < scores[b]; });
-
-    DiagnosisStep record;
-    const int form_size_before = current.size();
-    // Quasi-likelihood after the first accepted effect: the misfit the extended model leaves
-    // (its reduced joint χ², at least 1) inflates σ, so a further term must explain a share of
-    // what is left, not a few per cent of a large misfit. The first step compares at the stated
-    // σ: the baseline may be far from the data because an effect is missing.
-    record.dispersion =
-        accepted_effects.empty()
-            ? 1.0
-            : std::max(1.0, joint_reduced_chi2(evaluation, maps, use_fp, n, current.size()));
-    const double dispersion = record.dispersion;
-    record.maps_before = maps;
-    record.cost_before_j = evaluation.cost_j;
-    record.weighted_before = evaluation.weighted_cost;
-    record.reduced_chi2_before = maps.reduced_chi2;
-    record.trials.resize(order.size());
-    std::vector<std::optional<ModelForm>> forms(order.size());
-    std::vector<EdcCostSettings> own_costs(order.size(), cost);
-    std::mutex done_mutex;
-    int done = 0;
-    parallel_for(order.size(), options.threads, [&](std::size_t slot) {
-      const EffectCandidate& c = candidates[order[slot]];
-      CandidateTrial& trial = record.trials[slot];
-      trial.effect = c.effect;
-      trial.embodiment = c.embodiment;
-      trial.fingerprint_score = scores[order[slot]];
-      const ModelForm extended = c.extend(current, c.scan.front());
-      const EdcObjective extended_objective(extended, data, cost);
-      // Two stages. (1) A grid over the new term's own parameters, and its scan points spread
-      // over the plausible range, with the others at the current θ (one evaluation each).
-      // (2) Levenberg–Marquardt refits of all parameters from the two best grid points and the
-      // two best scan points: a new term that starts too strong or too weak, or whose effect the
-      // current parameters partly mimic, needs more than one start.
-      const auto scored_at = [&](const Eigen::VectorXd& others,
-                                 const std::vector<Eigen::VectorXd>& own) {
-        std::vector<std::pair<double, Eigen::VectorXd>> out;
-        for (const Eigen::VectorXd& s : own) {
-          if (cancel.cancelled()) break;
-          Eigen::VectorXd point(extended.size());
-          point << others, s;
-          point = extended.clamp(point);
-          const EdcEvaluation e = extended_objective.evaluate(point);
-          out.emplace_back(joint_chi2(e, response_fingerprints(data, e), use_fp), point);
-        }
-        std::sort(out.begin(), out.end(),
-                  [](const auto& x, const auto& y) { return x.first < y.first; });
-        return out;
-      };
-      const auto scored = [&](const std::vector<Eigen::VectorXd>& own) {
-        return scored_at(theta, own);
-      };
-      const auto grid = scored(candidate_grid(c));
-      const auto scan = scored(c.scan);
-      std::vector<Eigen::VectorXd> starts;
-      for (std::size_t i = 0; i < std::min<std::size_t>(2, grid.size()); ++i) {
-        starts.push_back(grid[i].second);
-      }
-      for (std::size_t i = 0; i < std::min<std::size_t>(2, scan.size()); ++i) {
-        starts.push_back(scan[i].second);
-      }
-      long spent = static_cast<long>(grid.size() + scan.size());
-      // The form's starting friction (the lab's model) with the current stiffness and accepted
-      // terms: a baseline bends its friction to stand in for a missing effect (a sliding law
-      // pushed to its bounds for a stiff presliding regime), and an effect that changes that
-      // law needs the friction to move back, which a refit from the bent θ may not find. One
-      // more start, from the best grid point about that friction, when it differs.
-      Eigen::VectorXd lab_start = theta;
-      bool differs = false;
-      const Eigen::VectorXd form_unit = form.to_unit(form.initial()),
-                            current_unit = current.to_unit(theta);
-      for (int i = 0; i < form.size(); ++i) {
-        if (form.is_stiffness(i)) continue;
-        lab_start(i) = form.initial()(i);
-        differs = differs || std::abs(form_unit(i) - current_unit(i)) > kLabStartDistance;
-      }
-      if (differs) {
-        const auto lab_grid = scored_at(lab_start, candidate_grid(c));
-        if (!lab_grid.empty()) starts.push_back(lab_grid.front().second);
-        spent += static_cast<long>(lab_grid.size());
-      }
-      JointRefit fit;
-      fit.joint_chi2 = std::numeric_limits<double>::infinity();
-      const long per_start = std::max<long>(
-          40, (options.candidate_evaluations - spent) / std::max<long>(1, starts.size()));
-      for (const Eigen::VectorXd& point : starts) {
-        if (cancel.cancelled()) break;
-        JointRefit attempt =
-            joint_refit(extended_objective, point, use_fp, static_cast<int>(per_start), cancel);
-        spent += attempt.evaluations;
-        if (attempt.theta.size() > 0 && attempt.joint_chi2 < fit.joint_chi2)
-          fit = std::move(attempt);
-      }
-      if (fit.theta.size() == 0 || cancel.cancelled()) {
-        trial.solved = false;
-        return;
-      }
-      // The current model's defect correction does not hold for a new term that changes the
-      // response's harmonics (a strong presliding or Stribeck term): the candidate gets its own
-      // correction at its refitted θ (reference up to H = 31 here; the accepted model is settled
-      // up to the full reference) and one more refit with it. Its σ stays the shared budget's, so
-      // that the candidates' χ² remain comparable.
-      EdcCostSettings& own = own_costs[slot];
-      {
-        EdcCostSettings reference = base_cost;
-        reference.max_harmonics = std::min(options.cost.max_harmonics, 31);
-        const SigmaBudget calibrated =
-            EdcObjective::calibrate_budget(extended, data, reference, fit.theta);
-        own.budget->correction_j = calibrated.correction_j;
-        own.budget->correction_z1_m = calibrated.correction_z1_m;
-        own.budget->correction_h2 = calibrated.correction_h2;
-        own.budget->correction_h3 = calibrated.correction_h3;
-      }
-      if (!cancel.cancelled()) {
-        const EdcObjective own_objective(extended, data, own);
-        JointRefit again = joint_refit(own_objective, fit.theta, use_fp,
-                                       static_cast<int>(options.candidate_evaluations / 2), cancel);
-        if (again.theta.size() > 0) fit = std::move(again);
-      }
-      score_trial(trial, fit, evaluation, maps.response, static_cast<int>(c.free.size()), n, use_fp,
-                  dispersion);
-      forms[slot] = extended;
-      const std::lock_guard lock(done_mutex);
-      ++done;
-      report(0.25 + 0.75 * (step + static_cast<double>(done) / order.size()) / options.max_steps);
-    });
-    if (cancel.cancelled()) break;  // an interrupted step accepts nothing
-
-    // Finalists: every candidate with very strong joint evidence and at least 70 % of the best
-    // one's (at most kFinalists) gets the longer refit before they are compared again. Short
-    // refits from a large misfit stop at different distances from their optima, and a law that
-    // mimics the true one (quadratic for cubic damping) can lead by a few per cent there.
-    constexpr std::size_t kFinalists = 3;
-    std::vector<std::size_t> ranked_slots;
-    for (std::size_t slot = 0; slot < order.size(); ++slot) {
-      if (record.trials[slot].solved && forms[slot]) ranked_slots.push_back(slot);
-    }
-    std::sort(ranked_slots.begin(), ranked_slots.end(), [&](std::size_t a, std::size_t b) {
-      return record.trials[a].delta_bic_joint < record.trials[b].delta_bic_joint;
-    });
-    std::vector<std::size_t> finalists;
-    for (std::size_t slot : ranked_slots) {
-      const double joint = record.trials[slot].delta_bic_joint;
-      if (finalists.size() < kFinalists && joint < -options.bic_threshold &&
-          joint <= 0.7 * record.trials[ranked_slots.front()].delta_bic_joint) {
-        finalists.push_back(slot);
-      }
-    }
-    parallel_for(finalists.size(), options.threads, [&](std::size_t i) {
-      CandidateTrial& trial = record.trials[finalists[i]];
-      const ModelForm& extended = *forms[finalists[i]];
-      const JointRefit fit =
-          joint_refit(EdcObjective(extended, data, own_costs[finalists[i]]), trial.theta, use_fp,
-                      static_cast<int>(options.accepted_evaluations), cancel);
-      if (fit.theta.size() == 0 || !(fit.joint_chi2 < trial.joint_chi2) || !fit.evaluation.ok) {
-        return;
-      }
-      score_trial(trial, fit, evaluation, maps.response, extended.size() - current.size(), n,
-                  use_fp, dispersion);
-    });
-    if (cancel.cancelled()) break;
-    std::size_t best = order.size();
-    for (std::size_t slot : ranked_slots) {
-      const CandidateTrial& t = record.trials[slot];
-      if (best == order.size() || t.delta_bic_joint < record.trials[best].delta_bic_joint) {
-        best = slot;
-      }
-    }
-    // Accepted: very strong joint evidence, and the EDC itself is explained better (an effect
-    // that helps the fingerprints while the EDC gets worse is not a missing damping or
-    // stiffness law of this model).
-    if (best == order.size() || !(record.trials[best].delta_bic_joint < -options.bic_threshold) ||
-        !(record.trials[best].weighted_cost < evaluation.weighted_cost)) {
-      result.steps.push_back(std::move(record));  // tried, nothing accepted
-      result.steps.back().effect = "none";
-      break;
-    }
-    const CandidateTrial& accepted = record.trials[best];
-    theta = accepted.theta;
-    current = forms[best]->with_initial(theta);
-    settle();
-    record.effect = accepted.effect;
-    record.embodiment = accepted.embodiment;
-    record.can_vanish = candidates[order[best]].can_vanish;
-    record.strength_parameter = candidates[order[best]].free.front().name;
-    record.evidence = accepted.evidence;
-    record.delta_bic_joint = accepted.delta_bic_joint;
-    record.cost_after_j = evaluation.cost_j;
-    record.weighted_after = evaluation.weighted_cost;
-    record.reduced_chi2_after = maps.reduced_chi2;
-    record.delta_bic =
-        (evaluation.weighted_cost - record.weighted_before) / dispersion +
-        static_cast<double>(current.size() - form_size_before) * std::log(static_cast<double>(n));
-    record.parameters_after = named(current, theta);
-    accepted_effects.push_back(accepted.effect);
-    result.steps.push_back(std::move(record));
-  }
-  // An effect accepted early can lose its part to effects accepted after it (a cubic damping
-  // that stood in for a quadratic one and a presliding hysteresis together): its strength
-  // vanishes in the final refit. It is withdrawn, and the verdict is the first effect that stands.
-  for (DiagnosisStep& s : result.steps) {
-    if (s.effect == "none") continue;
-    if (!s.can_vanish) {
-      if (result.verdict == "none") result.verdict = s.effect;
-      continue;
-    }
-    for (int i = 0; i < current.size(); ++i) {
-      const FreeParameter& p = current.parameters()[i];
-      if (p.name != s.strength_parameter) continue;
-      // A log-scale strength (a Dahl force, a presliding length) vanishes at its lower bound,
-      // within a decade of it; a linear one at 0, within 1e-3 of its bound.
-      const double scale = std::max(std::abs(p.lower), std::abs(p.upper));
-      s.withdrawn = p.log_scale ? theta(i) <= 10.0 * p.lower : std::abs(theta(i)) <= 1e-3 * scale;
-    }
-    if (!s.withdrawn && result.verdict == "none") result.verdict = s.effect;
-  }
-  // A trailing "none" step records what was tried last; it is not an accepted effect.
-  result.final_form = current;
-  result.final_theta = theta;
-  result.final_evaluation = evaluation;
-  result.final_maps = maps;
-  result.sigma_budget = sigma_budget_json(*objective);
-  result.final_cost = cost;
+  run.withdraw_vanished();
+  DiagnosisResult result = run.finish();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.final_noise_reduced_chi2 = noise_level(current.size());
-  result.gap_explained = maps.reduced_chi2 <= result.final_noise_reduced_chi2;
-  result.largest_residual_levels = largest_residual_levels(maps, 3);
   if (deadline.expired()) {
     result.incomplete = true;
     result.message = "stopped at the " + std::to_string(options.max_seconds) +
@@ -557,7 +643,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
     if (!result.message.empty()) result.message += "; ";
     result.message += gap_open_message(result);
   }
-  report(1.0);
+  tracker.phase(DiagnosisPhase::Done, 0, result.evaluations);
   return result;
 }
 

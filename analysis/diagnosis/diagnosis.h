@@ -115,15 +115,43 @@ struct DiagnosisResult {
   long evaluations = 0;
 };
 
+/// Where a diagnosis is: its phases in the order they run. The global search of the baseline,
+/// settling a model (σ budget calibrated at θ, joint refit), refitting the candidates of a step,
+/// the finalists' longer refit, settling the model with the accepted effect.
+enum class DiagnosisPhase { Baseline, Settling, Candidates, Finalists, Accepting, Done };
+/// "baseline", "settling", "candidates", "finalists", "accepting", "done".
+const char* to_string(DiagnosisPhase phase);
+
+/// A progress report of a diagnosis (from its worker threads, one at a time).
+struct DiagnosisProgress {
+  DiagnosisPhase phase = DiagnosisPhase::Baseline;
+  int step = 0;              // 1, 2 … of the candidate search (0 before the first step)
+  int max_steps = 0;         // DiagnosisOptions::max_steps
+  int candidates_done = 0;   // candidates of this step refitted so far
+  int candidates = 0;        // candidates of this step
+  std::string candidate;     // the candidate that finished last, or the accepted one
+  long evaluations = 0;      // model evaluations so far (the running fits' included)
+  long baseline_budget = 0;  // DiagnosisOptions::baseline_evaluations
+  /// Share of the work done, never decreasing: the baseline's search 0 → 0.2 by its evaluations,
+  /// its settling to 0.25, then each of at most max_steps steps an equal share (its candidates by
+  /// the evaluations they spent, the finalists, the accepted model's settling). A diagnosis that
+  /// stops early jumps to 1.
+  double fraction = 0.0;
+  /// In words: "step 1 of at most 3: 4 of 9 candidates refitted (last: cubic-damping)".
+  std::string describe() const;
+};
+using DiagnosisProgressFn = std::function<void(const DiagnosisProgress&)>;
+
 /// The model-gap workflow: fit `form` to the campaign's EDCs, map the discrepancies,
 /// refit the current model alone (the control every candidate is measured against), rank the
 /// candidate effects by their fingerprints, refit every candidate with all parameters free,
 /// accept the best by ΔBIC when the evidence is very strong, and repeat from the extended model
 /// while something is accepted and the residual is above the noise. The verdict is `none`
 /// when the baseline already explains the data within its noise or no candidate is accepted.
-/// Progress is the fraction of the steps' work; `cancel` is polled inside every fit.
+/// Progress reports the phase, step and candidates (DiagnosisProgress); `cancel` is polled inside
+/// every fit.
 DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form,
-                         const DiagnosisOptions& options, const ProgressFn& progress = {},
+                         const DiagnosisOptions& options, const DiagnosisProgressFn& progress = {},
                          const CancelToken& cancel = {});
 
 /// A candidate as people read it: the effect, and for an embodiment other than an added term how

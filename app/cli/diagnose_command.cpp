@@ -162,7 +162,9 @@ void run(const DiagnoseOptions& o) {
   analysis::DiagnosisResult result;
   {
     ProgressBar bar("diagnose");
-    result = analysis::diagnose(campaign, form, options, bar.callback());
+    result = analysis::diagnose(
+        campaign, form, options,
+        [&bar](const analysis::DiagnosisProgress& p) { bar.show(p.fraction, p.describe()); });
   }
 
   print_result(result, analysis::edc_dataset(campaign), o.bic_threshold);

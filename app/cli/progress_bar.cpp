@@ -18,15 +18,18 @@ ProgressFn ProgressBar::callback() {
   return [this](double fraction) { draw(fraction); };
 }
 
-void ProgressBar::draw(double fraction) {
+void ProgressBar::show(double fraction, const std::string& detail) {
   if (!enabled_) return;
   const int percent = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100.0);
-  if (percent == last_percent_) return;
+  if (percent == last_percent_ && detail == detail_) return;
   last_percent_ = percent;
+  detail_ = detail;
   constexpr int kWidth = 40;
   const int filled = percent * kWidth / 100;
-  std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%", label_.c_str(), filled,
-               "########################################", kWidth - filled, "", percent);
+  // \033[K clears what a longer text drawn before left at the end of the line.
+  std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%%s%s\033[K", label_.c_str(), filled,
+               "########################################", kWidth - filled, "", percent,
+               detail_.empty() ? "" : "  ", detail_.c_str());
   std::fflush(stderr);
 }
 

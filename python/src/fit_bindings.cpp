@@ -335,8 +335,22 @@ status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
         analysis::DiagnosisResult result;
         run_job(
             [&](const ReportFn& report, const CancelToken& cancel) {
-              result =
-                  analysis::diagnose(*campaign, *form, options, fraction_reporter(report), cancel);
+              result = analysis::diagnose(
+                  *campaign, *form, options,
+                  [&report](const analysis::DiagnosisProgress& p) {
+                    ProgressReport r;
+                    r.fraction = p.fraction;
+                    r.extra = {{"phase", analysis::to_string(p.phase)},
+                               {"step", p.step},
+                               {"max_steps", p.max_steps},
+                               {"candidates_done", p.candidates_done},
+                               {"candidates", p.candidates},
+                               {"candidate", p.candidate},
+                               {"evaluations", p.evaluations},
+                               {"message", p.describe()}};
+                    report(r);
+                  },
+                  cancel);
             },
             progress);
         nlohmann::json report = analysis::diagnosis_report_json(result, records, bic_threshold);
@@ -362,7 +376,10 @@ max_seconds: wall-clock bound [s] (0: none); edc_only: compare on the EDC alone;
 accept when ΔBIC < −this; max_steps: effects added at most; baseline_evaluations,
 candidate_evaluations: model evaluations of those fits; stiffness: 'identified' (K(z)'s
 coefficients identified with the friction, starting from the records' stiffness slice or the
-model's), 'rfs' or 'model' (held); other arguments as fit().
+model's), 'rfs' or 'model' (held); progress: callable(info) with fraction (never decreasing),
+phase ('baseline', 'settling', 'candidates', 'finalists', 'accepting', 'done'), step, max_steps,
+candidates_done, candidates, candidate (the last refitted), evaluations and message (in words);
+return False to cancel; other arguments as fit().
 Returns report.json as a dict: baseline {cost_j ...}, steps [{effect, evidence, cost_before_j,
 cost_after_j}], verdict (an effect name of contract §3, or 'none'), final_model, notes; and
 final_model_object (a Model) when there is one. Ctrl-C stops it (KeyboardInterrupt).)doc");

@@ -17,7 +17,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -38,7 +41,8 @@ struct Case {
   double scale = 1.0;  // × the reference strength; the control's seed otherwise
 };
 
-DiagnosisResult diagnose_blind(const Model& truth, std::uint64_t seed) {
+DiagnosisResult diagnose_blind(const Model& truth, std::uint64_t seed,
+                               std::vector<DiagnosisProgress>* reports = nullptr) {
   const CampaignAnalysis campaign =
       testing::record_campaign(truth, seed, testing::paper_levels_n());
   std::vector<std::string> notes;
@@ -48,7 +52,65 @@ DiagnosisResult diagnose_blind(const Model& truth, std::uint64_t seed) {
   // No wall-clock bound here: this test checks what is named, not how fast (the study and its
   // timings say that); under a loaded CI machine a bound would make the verdict timing-dependent.
   options.max_seconds = 0.0;
-  return diagnose(campaign, ModelForm::paper(base), options);
+  std::mutex mutex;
+  return diagnose(campaign, ModelForm::paper(base), options, [&](const DiagnosisProgress& p) {
+    const std::lock_guard lock(mutex);  // the reports are serialised; the test checks it too
+    if (reports) reports->push_back(p);
+  });
+}
+
+// The progress a diagnosis reported: its fraction never goes back and ends at 1; its phases come
+// in their order (the baseline's search and settling, then per step the candidates, the
+// finalists and the accepted model's settling); every candidate of a step is reported done; the
+// baseline's evaluations are counted, at most what the baseline spent; an accepted effect is named
+// while its model is settled.
+void expect_honest_progress(const std::vector<DiagnosisProgress>& reports,
+                            const DiagnosisResult& r) {
+  ASSERT_FALSE(reports.empty());
+  EXPECT_EQ(reports.back().phase, DiagnosisPhase::Done);
+  EXPECT_DOUBLE_EQ(reports.back().fraction, 1.0);
+  long baseline_evaluations = 0;
+  std::vector<std::string> accepting;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    const DiagnosisProgress& p = reports[i];
+    EXPECT_FALSE(p.describe().empty());
+    if (i > 0) {
+      EXPECT_GE(p.fraction, reports[i - 1].fraction);
+      const bool same_step = p.step == reports[i - 1].step;
+      if (p.phase != DiagnosisPhase::Done && same_step) {
+        EXPECT_GE(static_cast<int>(p.phase), static_cast<int>(reports[i - 1].phase))
+            << to_string(reports[i - 1].phase) << " then " << to_string(p.phase);
+      }
+      if (p.phase != DiagnosisPhase::Done) {
+        EXPECT_GE(p.step, reports[i - 1].step);
+      }
+    }
+    if (p.phase == DiagnosisPhase::Baseline) baseline_evaluations = p.evaluations;
+    if (p.phase == DiagnosisPhase::Accepting &&
+        (accepting.empty() || accepting.back() != p.candidate)) {
+      accepting.push_back(p.candidate);
+    }
+    if (p.phase == DiagnosisPhase::Finalists) {
+      // The step's candidates all reported done before its finalists.
+      EXPECT_EQ(reports[i - 1].candidates_done, reports[i - 1].candidates);
+    }
+  }
+  EXPECT_GT(baseline_evaluations, 0);
+  EXPECT_LE(baseline_evaluations, r.baseline.evaluations);
+  // The global search moves the bar in fine steps (CMA-ES reports every generation), not from
+  // 0 to its end at once.
+  std::vector<double> baseline_fractions;
+  for (const DiagnosisProgress& p : reports) {
+    if (p.phase == DiagnosisPhase::Baseline) baseline_fractions.push_back(p.fraction);
+  }
+  baseline_fractions.erase(std::unique(baseline_fractions.begin(), baseline_fractions.end()),
+                           baseline_fractions.end());
+  EXPECT_GE(baseline_fractions.size(), 10u);
+  std::vector<std::string> accepted;
+  for (const DiagnosisStep& s : r.steps) {
+    if (s.effect != "none") accepted.push_back(candidate_label(s.effect, s.embodiment));
+  }
+  EXPECT_EQ(accepting, accepted);
 }
 
 class HiddenEffectDetection : public ::testing::TestWithParam<Case> {};
@@ -68,7 +130,9 @@ TEST_P(HiddenEffectDetection, NamesTheEffectAndClosesTheGap) {
   } else {
     truth = testing::truth_with_effect(c.effect, c.scale);
   }
-  const DiagnosisResult r = diagnose_blind(truth, seed);
+  std::vector<DiagnosisProgress> reports;
+  const DiagnosisResult r = diagnose_blind(truth, seed, &reports);
+  expect_honest_progress(reports, r);
   std::printf("%s %g: verdict %s, reduced chi2 %.4g -> %.4g, %zu steps, %.1f s\n", c.effect.c_str(),
               c.scale, r.verdict.c_str(), r.baseline_maps.reduced_chi2, r.final_maps.reduced_chi2,
               r.steps.size(), r.seconds);
