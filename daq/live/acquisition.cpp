@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <utility>
 
@@ -18,6 +19,12 @@ namespace oscilab::daq {
 namespace {
 
 constexpr auto kIdleWait = std::chrono::milliseconds(2);  // queue empty: look again after this
+// The most memory the history ring takes: 600 s of 7 traces at 80 kHz (17 MB at 512 Hz).
+constexpr std::size_t kMaxHistoryBytes = std::size_t{256} << 20;
+// The fastest stream the live analysis (EDC, derived traces) follows: its filters and buffers
+// are sized by the rate, and a 100 MHz stream (which a sidecar may declare) would need gigabytes.
+// Faster streams are recorded, and analysed offline.
+constexpr double kMaxLiveAnalysisRateHz = 200e3;
 
 }  // namespace
 
@@ -259,7 +266,14 @@ bool Acquisition::Impl::setup_layout() {
                             }});
 
   std::string edc_message;
-  if (calibration.analysed()) {
+  if (calibration.analysed() && rate_hz > kMaxLiveAnalysisRateHz) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "live analysis off: the stream's %g Hz is above the %g Hz it runs at (the "
+                  "recording is analysed offline)",
+                  rate_hz, kMaxLiveAnalysisRateHz);
+    edc_message = text;
+  } else if (calibration.analysed()) {
     // The excitation frequency (0: not known), the option's before the stream's.
     double freq_hz = 0.0;
     if (options.excitation_freq_hz) {
@@ -299,8 +313,12 @@ bool Acquisition::Impl::setup_layout() {
         "live analysis off: the stream needs a base and a mass (or relative) motion "
         "channel";
   }
-  const std::size_t history_samples =
-      std::max<std::size_t>(16, static_cast<std::size_t>(std::ceil(options.history_s * rate_hz)));
+  // history_s at the stream's rate, within kMaxHistoryBytes: a stream at 1 MHz (which a sidecar
+  // may declare) keeps its last 4.8 s instead of asking for 34 GB.
+  const std::size_t history_samples = std::max<std::size_t>(
+      16, static_cast<std::size_t>(std::min(
+              std::ceil(options.history_s * rate_hz),
+              static_cast<double>(kMaxHistoryBytes / (HistoryRing::kTraces * sizeof(double))))));
   history_ring = std::make_unique<HistoryRing>(history_samples, rate_hz);
   history.store(history_ring.get(), std::memory_order_release);
 

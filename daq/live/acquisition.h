@@ -27,7 +27,7 @@ struct AcquisitionOptions {
   analysis::PipelineSettings settings;  // the same analysis as offline
   std::size_t queue_blocks = 256;       // source → acquisition queue (8 s of 16-row blocks)
   int reorder_window_blocks = 8;        // StreamMonitor
-  double history_s = 600.0;             // traces kept for scroll-back (10 minutes)
+  double history_s = 600.0;             // traces kept for scroll-back (10 minutes, 256 MB at most)
   /// Derived traces (b, z, ż, R) by the live zero-phase filters (StreamingIntegrator); they
   /// lag the measured channels by this much. Off: only measured channels and f.
   bool derived_signals = true;

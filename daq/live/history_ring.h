@@ -53,6 +53,8 @@ class HistoryRing {
   /// One past the newest measured sample.
   std::uint64_t end() const;
   double sample_rate_hz() const { return rate_hz_; }
+  /// Traces kept per sample, a double each: base, mass, f, b, z, ż, R.
+  static constexpr int kTraces = 7;
 
   /// Traces over [from_s, to_s] (stream time) thinned to at most 2 × buckets points each: every
   /// sample when there are no more than `buckets`, else each bucket's min and max in the order
@@ -60,8 +62,7 @@ class HistoryRing {
   void read(double from_s, double to_s, int buckets, TraceHistory& out) const;
 
  private:
-  static constexpr int kTraces = 7;  // base, mass, f, b, z, ż, R
-  struct Summary {                   // of one trace over one chunk
+  struct Summary {  // of one trace over one chunk
     double lo, hi;
     std::uint64_t lo_at, hi_at;
   };

@@ -470,6 +470,30 @@ TEST(Acquisition, NetSourceListensOnLocalhostAndNamesABusyPort) {
   EXPECT_NE(first.describe().find("127.0.0.1"), std::string::npos);
 }
 
+// A stream at a rate its sidecar may declare but no live analysis can follow (100 MHz: the live
+// filters and ten minutes of history would need terabytes) is recorded whole with the live
+// analysis off and said so, and the history ring stays within its memory bound.
+TEST(Acquisition, AStreamTooFastToAnalyseLiveIsRecordedWithTheAnalysisOff) {
+  const fs::path dir = temp_dir("fast");
+  const Recording clean = clean_recording(dir);
+  Sidecar layout = clean.sidecar;
+  layout.sample_rate_hz = 1e8;
+  std::vector<ScriptedSource::Block> blocks = ScriptedSource::cut(clean, 32);
+  blocks.resize(4);
+  Acquisition acquisition(std::make_unique<ScriptedSource>(layout, blocks), {});
+  const std::string path = (dir / "fast.wav").string();
+  acquisition.start_recording(path);
+  run_to_end(acquisition);
+  const AcquisitionStatus s = acquisition.status();
+  EXPECT_EQ(s.edc_message.rfind("live analysis off: the stream's 1e+08 Hz is above", 0), 0u)
+      << s.edc_message;
+  EXPECT_EQ(s.recorded_samples, 128u);
+  const Recording recorded = read_recording(path);
+  EXPECT_EQ(recorded.sample_count(), 128);
+  EXPECT_EQ(recorded.sidecar.sample_rate_hz, 1e8);
+  fs::remove_all(dir);
+}
+
 TEST(Acquisition, StartRecordingRejectsAContainerThatCannotBeCrashSafe) {
   Acquisition acquisition(std::make_unique<RigSource>(analysis::paper_model(), stepped_rig(0)), {});
   try {
