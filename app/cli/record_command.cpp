@@ -96,8 +96,20 @@ void run(const RecordOptions& o) {
     if (!status.layout_known && o.wait_s > 0 &&
         std::chrono::steady_clock::now() - started > std::chrono::duration<double>(o.wait_s)) {
       acquisition->stop();
-      throw InputError(o.source + ": no sender connected within " + std::to_string(o.wait_s) +
-                       " s");
+      // A sender that came but was refused is said with the reason, not as no sender at all.
+      std::string refused;
+      for (const daq::StreamEvent& event : acquisition->events_since(0)) {
+        if (event.kind == daq::EventKind::MalformedFrame ||
+            event.kind == daq::EventKind::LayoutMismatch) {
+          refused = event.text;
+        }
+      }
+      char waited[64];
+      std::snprintf(waited, sizeof waited, "%g s", o.wait_s);
+      throw InputError(o.source + (refused.empty()
+                                       ? ": no sender connected within " + std::string(waited)
+                                       : ": no usable sender within " + std::string(waited) +
+                                             "; the last was refused: " + refused));
     }
     if (!status.recorder_error.empty()) break;
     if (o.live.duration_s && status.stream_time_s >= *o.live.duration_s) break;

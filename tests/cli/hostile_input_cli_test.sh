@@ -156,6 +156,23 @@ expect_error "record without --out" "oscilab-cli: .*--out.*required" "$cli" reco
 expect_absent "refused options: nothing written" "$work/p1.json" "$work/p2.json"
 "$cli" --help > /dev/null 2>&1 && pass "--help still exits 0" || fail "--help: exit $?"
 
+# A sender whose HELLO is refused (a rate no sidecar can have) is named with the reason when the
+# wait ends, not taken for no sender at all; nothing is left.
+python3 - "$src/samples/stepped_positive.json" "$work/fast_hello.json" <<'PY'
+import json, sys
+sidecar = json.load(open(sys.argv[1]))
+sidecar["sample_rate_hz"] = 1e9
+json.dump(sidecar, open(sys.argv[2], "w"))
+PY
+port=$((20000 + RANDOM % 30000))
+timeout 60 python3 "$work/send.py" "$port" "$work/fast_hello.json" hello data:0:512 bye &
+expect_error "record: a refused HELLO named when the wait ends" \
+  "no usable sender within 3 s; the last was refused: .*sample_rate_hz: 1000000000.0 Hz is outside" \
+  timeout 60 "$cli" record --source "net:127.0.0.1:$port" --wait 3 --out "$work/fast.wav"
+wait
+expect_absent "record: a refused HELLO leaves no file" "$work/fast.wav" "$work/fast.json" \
+  "$work/fast.events.jsonl"
+
 # --- Absurd network fields: each frame refused alone (one malformed-frame event), the stream
 # goes on, the clock never jumps, nothing beyond Nyquist reaches the analysis or the sidecar.
 level() { echo "event:{\"t_s\": 1.0, \"kind\": \"level\", \"data\": $1}"; }
