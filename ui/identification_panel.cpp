@@ -159,6 +159,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   buttons->addWidget(branch_button_);
   buttons->addWidget(map_button_);
   progress_ = new QProgressBar;
+  progress_->setObjectName("job_progress");
   progress_->setRange(0, 1000);
   progress_->setTextVisible(false);
   progress_->hide();  // shown while a job runs: its height goes to the results otherwise
@@ -386,9 +387,9 @@ QString IdentificationPanel::ended_text(const std::string& error, bool cancelled
   return cancelled ? tr("Cancelled.") : QString();
 }
 
-void IdentificationPanel::end_job() {
+void IdentificationPanel::end_job(bool completed) {
   set_busy(false);
-  progress_->setValue(1000);
+  if (completed) progress_->setValue(1000);  // a cancelled or failed job keeps what it reached
 }
 
 void IdentificationPanel::on_fit_finished(std::shared_ptr<const FitOutcome> outcome) {
@@ -397,7 +398,7 @@ void IdentificationPanel::on_fit_finished(std::shared_ptr<const FitOutcome> outc
     fitted_ = outcome;  // the figures and dialogs follow the new fit
     figure_data_.reset();
   }
-  end_job();
+  end_job(fitted_ == outcome);
   QString message = ended_text(outcome->error, outcome->cancelled);
   if (message.isEmpty()) {
     show_fit(*outcome);
@@ -427,7 +428,7 @@ void IdentificationPanel::on_fit_finished(std::shared_ptr<const FitOutcome> outc
 }
 
 void IdentificationPanel::on_diagnosis_finished(std::shared_ptr<const DiagnosisOutcome> outcome) {
-  end_job();
+  end_job(!outcome->cancelled && outcome->error.empty());
   QString message = ended_text(outcome->error, outcome->cancelled);
   if (message.isEmpty()) {
     show_diagnosis(*outcome);
@@ -595,7 +596,7 @@ void IdentificationPanel::on_figure_data_finished(
     std::shared_ptr<const FigureDataOutcome> outcome) {
   progress_->setRange(0, 1000);
   set_busy(false);
-  progress_->setValue(1000);
+  if (outcome->error.empty() && !outcome->cancelled) progress_->setValue(1000);
   const bool exporting = !outcome->export_dir.empty();
   std::function<void()> then = std::move(after_figure_data_);
   after_figure_data_ = nullptr;

@@ -144,7 +144,7 @@ class IdentificationPanel : public QWidget {
   void on_diagnosis_finished(std::shared_ptr<const DiagnosisOutcome> outcome);
   /// The buttons and the progress bar after a fit or a diagnosis.
   void begin_job(const QString& status);  // a search starts: plots cleared, buttons busy
-  void end_job();
+  void end_job(bool completed);           // completed: finished, not cancelled and without error
   /// "Error: …" or "Cancelled." for a job that ended so; empty when it finished.
   QString ended_text(const std::string& error, bool cancelled) const;
   /// Runs `then` once the figure data of the last fit exists (at once, or after the worker

@@ -14,6 +14,7 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QLabel>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QSpinBox>
@@ -65,6 +66,7 @@ class IdentificationPanelTest : public QObject {
     QVERIFY(panel.cancel_button()->isEnabled());
     QVERIFY(done.wait(120000));
     QVERIFY(!panel.busy());
+    QCOMPARE(panel.findChild<QProgressBar*>("job_progress")->value(), 1000);  // finished: full
     QVERIFY2(panel.status_label()->text().startsWith("Fit: 11 evaluations"),
              qPrintable(panel.status_label()->text()));
     QCOMPARE(panel.parameter_table()->rowCount(), 6);
@@ -98,6 +100,10 @@ class IdentificationPanelTest : public QObject {
     QVERIFY(done.wait(60000));
     QCOMPARE(done.takeFirst().at(0).toString(), QString("Cancelled."));
     QVERIFY(panel.fit_button()->isEnabled());
+    // The bar keeps the fraction the fit reached: full is for a fit that finished.
+    auto* bar = panel.findChild<QProgressBar*>("job_progress");
+    QVERIFY(bar != nullptr);
+    QVERIFY2(bar->value() < bar->maximum(), qPrintable(QString::number(bar->value())));
   }
 
   void livePreviewDrawsTheBestModelWhileFitting() {
@@ -167,6 +173,9 @@ class IdentificationPanelTest : public QObject {
     QVERIFY(!panel.busy());
     QVERIFY(panel.fit_button()->isEnabled());
     QCOMPARE(panel.parameter_table()->rowCount(), 0);
+    auto* bar = panel.findChild<QProgressBar*>("job_progress");
+    QVERIFY(bar != nullptr);
+    QVERIFY2(bar->value() < bar->maximum(), qPrintable(QString::number(bar->value())));
   }
 
   void diagnosisOfThePapersOwnModelSaysNone() {
@@ -316,6 +325,8 @@ class IdentificationPanelTest : public QObject {
     QVERIFY2(message.startsWith("Error: ") && message.contains("no_such_file.flac"),
              qPrintable(message));
     QVERIFY(panel.fit_button()->isEnabled());
+    auto* bar = panel.findChild<QProgressBar*>("job_progress");
+    QVERIFY(bar != nullptr && bar->value() < bar->maximum());  // a failed job is not full
   }
 
   void openedRecordingsFeedThePanel() {
