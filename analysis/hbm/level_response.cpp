@@ -129,6 +129,71 @@ LevelResponse responses_at(const Model& model, double freq_hz, bool positive_wel
   return out;
 }
 
+// |Z1| of a solution: the amplitude of the forcing harmonic.
+double z1_abs(const HarmonicBalance& hbm, const Eigen::VectorXd& x) {
+  return std::hypot(x[hbm.forcing_cos_index()], x[hbm.forcing_sin_index()]);
+}
+
+// Where the swept responses are off the measured |Z1| by more than kBranchMismatch, follows the
+// top level's branch down by natural continuation (linear extrapolation from the last two
+// solutions, as the sweep up does) and takes its solution at each such level when it is another
+// branch (|Z1| apart by more than kBranchMismatch) closer to the measurement. Stops at the first
+// level where Newton fails or the Jacobian's sign flips (the branch's fold: below it the branch is
+// unstable or gone).
+void prefer_measured_branch(const Model& model, double freq_hz, const HbmOptions& hbm_options,
+                            const std::vector<double>& measured, LevelResponse& out) {
+  const std::size_t n = out.coefficients.size();
+  // Only a sweep that crossed a fold (it handed over to arclength continuation) has levels with
+  // a second stable response below it; elsewhere the branch followed down is the swept one.
+  if (out.status != JobStatus::Ok || !out.used_arclength || measured.size() != n || n < 2) return;
+  HarmonicBalance hbm(model, freq_hz, hbm_options);
+  const auto off = [&](const Eigen::VectorXd& x, std::size_t k) {
+    return std::abs(z1_abs(hbm, x) - measured[k]);
+  };
+  std::size_t lowest = n;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    if (measured[k] > 0.0 && off(out.coefficients[k], k) > kBranchMismatch * measured[k]) {
+      lowest = k;
+      break;
+    }
+  }
+  if (lowest == n) return;
+  Eigen::VectorXd previous = out.coefficients[n - 1], before_previous;
+  double previous_f0 = out.f0_n[n - 1], before_previous_f0 = 0.0;
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jacobian;
+  hbm.residual_and_jacobian(previous, previous_f0, r, jacobian);
+  const double det = jacobian.partialPivLu().determinant();
+  const int sign = det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
+  for (std::size_t k = n - 1; k-- > lowest;) {
+    const double f0 = out.f0_n[k];
+    Eigen::VectorXd x = before_previous.size() == 0
+                            ? Eigen::VectorXd(previous * (f0 / previous_f0))
+                            : Eigen::VectorXd(previous + (previous - before_previous) *
+                                                             ((f0 - previous_f0) /
+                                                              (previous_f0 - before_previous_f0)));
+    if (before_previous.size() == 0) x[0] = previous[0];  // the mean stays; the motion scales
+    const NewtonReport report = hbm.solve(x, f0);
+    out.newton_iterations += report.iterations;
+    if (!report.converged() || report.jacobian_sign != sign) return;
+    const double swept_z1 = z1_abs(hbm, out.coefficients[k]);
+    const bool other_branch = std::abs(z1_abs(hbm, x) - swept_z1) > kBranchMismatch * swept_z1;
+    if (other_branch && measured[k] > 0.0 &&
+        off(out.coefficients[k], k) > kBranchMismatch * measured[k] &&
+        off(x, k) < off(out.coefficients[k], k)) {
+      const HbmMeasures measures = hbm.measure(x, f0);
+      out.edc_j[k] = measures.edc_j;
+      out.amp_m[k] = measures.amp_m;
+      out.coefficients[k] = x;
+      ++out.branch_switched;
+    }
+    before_previous = previous;
+    before_previous_f0 = previous_f0;
+    previous = x;
+    previous_f0 = f0;
+  }
+}
+
 }  // namespace
 
 int contact_resolving_harmonics(const Model& model, double freq_hz, bool positive_well) {
@@ -139,7 +204,8 @@ int contact_resolving_harmonics(const Model& model, double freq_hz, bool positiv
 }
 
 LevelResponse level_response(const Model& model, double freq_hz, bool positive_well,
-                             const std::vector<double>& levels_n, const HbmOptions& hbm_options) {
+                             const std::vector<double>& levels_n, const HbmOptions& hbm_options,
+                             const std::vector<double>& measured_z1_abs_m) {
   for (std::size_t i = 0; i < levels_n.size(); ++i) {
     if (!(levels_n[i] >= 0.0) || (i > 0 && !(levels_n[i] > levels_n[i - 1]))) {
       throw InputError("level response: levels must be non-negative and increasing");
@@ -151,13 +217,20 @@ LevelResponse level_response(const Model& model, double freq_hz, bool positive_w
   // kMaxContactHarmonics), so that the model side stays one smooth function of θ.
   const int contact =
       std::min(kMaxContactHarmonics, contact_resolving_harmonics(model, freq_hz, positive_well));
-  if (contact <= hbm_options.harmonics) {
-    return responses_at(model, freq_hz, positive_well, levels_n, hbm_options);
-  }
   HbmOptions resolved = hbm_options;
-  resolved.harmonics = contact;
-  resolved.samples = 0;
-  return responses_at(model, freq_hz, positive_well, levels_n, resolved);
+  if (contact > hbm_options.harmonics) {
+    resolved.harmonics = contact;
+    resolved.samples = 0;
+  }
+  LevelResponse out = responses_at(model, freq_hz, positive_well, levels_n, resolved);
+  if (!measured_z1_abs_m.empty()) {
+    if (measured_z1_abs_m.size() != levels_n.size()) {
+      throw InputError("level response: " + std::to_string(measured_z1_abs_m.size()) +
+                       " measured amplitudes for " + std::to_string(levels_n.size()) + " levels");
+    }
+    prefer_measured_branch(model, freq_hz, resolved, measured_z1_abs_m, out);
+  }
+  return out;
 }
 
 std::vector<LevelResponse> nearby_level_responses(const Model& model,

@@ -23,6 +23,7 @@ struct LevelResponse {
   int newton_iterations = 0;
   bool used_arclength = false;  // the fast path failed and a full continuation was run
   int harmonics = 0;            // H of the responses (more than asked when a contact rings)
+  int branch_switched = 0;      // levels taken from the top level's branch followed down
 };
 
 /// The most harmonics level_response() raises H to for a ringing contact.
@@ -44,8 +45,26 @@ int contact_resolving_harmonics(const Model& model, double freq_hz, bool positiv
 /// (contact_resolving_harmonics), every level is solved with H raised to resolve the ringing (at
 /// most kMaxContactHarmonics; `harmonics` says the H used). Throws InputError for decreasing or
 /// negative levels or a model that harmonic balance cannot handle.
+///
+/// With `measured_z1_abs_m` (the measured |Z1| of each level, as many as levels; empty: none)
+/// the responses follow the branch the measurement was taken on where the model has two: when the
+/// sweep crossed a fold and a level's swept |Z1| is off the measured one by more than
+/// kBranchMismatch of it, the branch of the top level is followed down by natural continuation
+/// (stopping at its fold, where the sign of det ∂r/∂x flips), and each mismatched level takes that
+/// solution when it is another branch (|Z1| apart by more than kBranchMismatch) closer to the
+/// measured. Between the two folds of a jump both branches are stable responses of the model; a
+/// model whose fold lies a little above a level where the specimen had already jumped (or a step
+/// that kicked the specimen over early) is then compared on the specimen's branch, and the
+/// comparison does not leap when θ moves a fold across a level. `branch_switched` counts the
+/// levels taken from the branch followed down.
 LevelResponse level_response(const Model& model, double freq_hz, bool positive_well,
-                             const std::vector<double>& levels_n, const HbmOptions& hbm = {});
+                             const std::vector<double>& levels_n, const HbmOptions& hbm = {},
+                             const std::vector<double>& measured_z1_abs_m = {});
+
+/// The relative |Z1| mismatch above which level_response looks for the measured branch: 25 %, far
+/// beyond what a parameter change of a fit moves on one branch between neighbouring evaluations
+/// and below the factor of 2 to 4 between the branches of a jump (Fig. 11b).
+inline constexpr double kBranchMismatch = 0.25;
 
 /// The responses of models near `model` (parameters changed a little) at the levels of `base`,
 /// `model`'s level_response with these options, without solving each again: at each level one

@@ -24,6 +24,19 @@ struct LevelQuantities {
   std::vector<double> edc_j, z1_abs_m, h2_ratio, h3_ratio;
 };
 
+// The measured |Z1| of a group's levels: the branch each level's response is compared on
+// (level_response); empty when none was measured (twin data).
+std::vector<double> measured_z1(const EdcGroup& group) {
+  std::vector<double> out;
+  bool any = false;
+  for (const MeasuredLevel& level : group.levels) {
+    out.push_back(level.amplitude_m);
+    any = any || level.amplitude_m > 0.0;
+  }
+  if (!any) out.clear();
+  return out;
+}
+
 LevelQuantities model_quantities(const Model& model, const EdcDataset& data, const HbmOptions& hbm,
                                  bool& ok, const CancelToken& cancel) {
   LevelQuantities out;
@@ -36,7 +49,8 @@ LevelQuantities model_quantities(const Model& model, const EdcDataset& data, con
     LevelResponse response;
     try {
       if (!cancel.cancelled()) {
-        response = level_response(model, group.freq_hz, group.positive_well, f0, hbm);
+        response =
+            level_response(model, group.freq_hz, group.positive_well, f0, hbm, measured_z1(group));
       }
     } catch (const InputError&) {
       response.status = JobStatus::NoConvergence;
@@ -308,8 +322,8 @@ std::vector<EdcObjective::GroupResponse> EdcObjective::respond(const Eigen::Vect
     std::vector<double> f0;
     for (const MeasuredLevel& level : group.levels) f0.push_back(level.f0_n);
     try {
-      responses[i].response =
-          level_response(*model, group.freq_hz, group.positive_well, f0, settings_.hbm);
+      responses[i].response = level_response(*model, group.freq_hz, group.positive_well, f0,
+                                             settings_.hbm, measured_z1(group));
     } catch (const InputError& error) {
       responses[i].message = error.what();
     }

@@ -73,6 +73,57 @@ TEST(LevelResponse, ResumedContinuationFollowsAJumpWhoseFoldLiesFarBelow) {
   EXPECT_GT(response.edc_j[3] / response.edc_j[2], 1.5);
 }
 
+// Between the folds of the paper's negative well at 10 Hz (about 2.20 and 2.45 N) the model has
+// two stable responses. A specimen measured on the upper branch at 2.3 and 2.4 N (it jumped
+// early) is compared on that branch when its |Z1| is given: the responses there equal the upper
+// branch of one continuation from rest (its last crossings of those levels, a second method),
+// while the levels with one response keep the sweep's. Without the measurement, or with a
+// measurement on the swept branch, the sweep's responses stand.
+TEST(LevelResponse, FollowsTheMeasuredBranchBetweenTheFolds) {
+  const Model model = paper_model();
+  const std::vector<double> levels = {1.0, 2.0, 2.3, 2.4, 2.6};
+  ContinuationOptions options;
+  options.freq_hz = 10.0;
+  options.positive_well = false;
+  options.end = levels.back();
+  options.stability = false;
+  options.landing = levels;
+  const Branch branch = continue_branch(model, options);
+  std::vector<double> last_edc(levels.size(), 0.0), last_z1(levels.size(), 0.0);
+  for (const BranchPoint& p : branch.points) {
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+      if (std::abs(p.f0_n - levels[k]) <= 1e-12 &&
+          (p.marker == PointMarker::Landing || p.marker == PointMarker::End)) {
+        last_edc[k] = p.measures.edc_j;
+        last_z1[k] = std::abs(p.measures.z1_m);
+      }
+    }
+  }
+  const LevelResponse swept = level_response(model, 10.0, false, levels);
+  ASSERT_EQ(swept.status, JobStatus::Ok) << swept.message;
+  ASSERT_EQ(swept.edc_j.size(), levels.size());
+  // The sweep is on the lower branch at 2.3 and 2.4 N: the upper branch dissipates about twice.
+  EXPECT_GT(last_edc[2] / swept.edc_j[2], 1.5);
+  EXPECT_GT(last_edc[3] / swept.edc_j[3], 1.5);
+
+  const LevelResponse measured_upper = level_response(model, 10.0, false, levels, {}, last_z1);
+  ASSERT_EQ(measured_upper.status, JobStatus::Ok);
+  EXPECT_EQ(measured_upper.branch_switched, 2);
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    // Converged solutions of the same equations (‖r‖ ≤ 1e-11 N) on the same branch.
+    EXPECT_NEAR(measured_upper.edc_j[k] / last_edc[k], 1.0, 1e-8) << "f0 = " << levels[k];
+  }
+
+  std::vector<double> swept_z1;
+  for (const Eigen::VectorXd& x : swept.coefficients) swept_z1.push_back(std::hypot(x[1], x[2]));
+  const LevelResponse measured_lower = level_response(model, 10.0, false, levels, {}, swept_z1);
+  EXPECT_EQ(measured_lower.branch_switched, 0);
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    EXPECT_EQ(measured_lower.edc_j[k], swept.edc_j[k]);
+  }
+  EXPECT_THROW(level_response(model, 10.0, false, levels, {}, {1e-3}), InputError);
+}
+
 TEST(LevelResponse, RejectsDecreasingLevels) {
   EXPECT_THROW(level_response(paper_model(), 9.0, true, {0.5, 0.4}), InputError);
 }
