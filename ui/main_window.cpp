@@ -6,6 +6,8 @@
 #include <QAction>
 #include <QByteArray>
 #include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QGuiApplication>
@@ -13,7 +15,9 @@
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QMimeData>
 #include <QProgressBar>
+#include <QPushButton>
 #include <QScreen>
 #include <QStatusBar>
 #include <QTabWidget>
@@ -27,9 +31,12 @@
 #include "daq/recording/format_reader.h"
 #include "ui/background_job.h"
 #include "ui/channel_mapping_dialog.h"
+#include "ui/dropped_files.h"
 #include "ui/export_menu.h"
 #include "ui/identification_panel.h"
+#include "ui/level_table.h"
 #include "ui/live_monitor.h"
+#include "ui/plot_zoom.h"
 #include "ui/record_view.h"
 #include "ui/review_model.h"
 #include "ui/review_view.h"
@@ -105,12 +112,10 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   dock->setWidget(identification_panel_);
   identification_panel_->setMinimumWidth(360);
   addDockWidget(Qt::RightDockWidgetArea, dock);
-  // From the rig to a fitted model: a finished live recording opens for review and fitting, and
-  // each fitted model's EDC is drawn over the live measurement.
-  connect(live_monitor_, &LiveMonitor::recording_finished, this, [this](const QString& path) {
-    if (open_recording(path))
-      statusBar()->showMessage(tr("Recorded %1: opened for review").arg(path));
-  });
+  // From the rig to a fitted model: a finished live recording opens for review and is offered to
+  // the fit set (it joins only when the user says so), and each fitted model's EDC is drawn over
+  // the live measurement.
+  connect(live_monitor_, &LiveMonitor::recording_finished, this, &MainWindow::open_live_recording);
   connect(identification_panel_, &IdentificationPanel::model_fitted, live_monitor_,
           [this](std::shared_ptr<const analysis::Model> model) {
             live_monitor_->set_prediction_model(std::move(model), tr("fitted model"));
@@ -129,6 +134,16 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   analysis_progress_->setMaximumWidth(160);
   analysis_progress_->setTextVisible(false);
   analysis_progress_->hide();
+  fit_set_offer_ = new QPushButton;
+  fit_set_offer_->setObjectName("fit_set_offer");
+  fit_set_offer_->setToolTip(tr("Add the recording just made to the fit and diagnosis panel"));
+  fit_set_offer_->hide();
+  connect(fit_set_offer_, &QPushButton::clicked, this, [this] {
+    identification_panel_->add_recording(offered_path_.toStdString());
+    fit_set_offer_->hide();
+    statusBar()->showMessage(tr("%1: added to the fit set").arg(offered_path_));
+  });
+  statusBar()->addPermanentWidget(fit_set_offer_);
   statusBar()->addPermanentWidget(analysis_label_);
   statusBar()->addPermanentWidget(analysis_progress_);
   connect(analysis_job_, &BackgroundJob::progress, this, [this](double fraction) {
@@ -154,13 +169,18 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
       review_menu->addAction(tr("&Mark at cursor\u2026"), this, &MainWindow::mark_at_cursor);
   mark_action_->setShortcut(Qt::CTRL | Qt::Key_M);
   mark_action_->setToolTip(tr("Add a note at the cursor time (Ctrl+M)"));
+  review_menu->addSeparator();
+  next_level_action_ = review_menu->addAction(tr("&Next level"), this, [this] { step_level(1); });
+  next_level_action_->setShortcut(Qt::ALT | Qt::Key_Down);
+  previous_level_action_ =
+      review_menu->addAction(tr("&Previous level"), this, [this] { step_level(-1); });
+  previous_level_action_->setShortcut(Qt::ALT | Qt::Key_Up);
 
   RecordView* records = review_view_->record_view();
   QMenu* view_menu = menuBar()->addMenu(tr("&View"));
   view_menu->addAction(dock->toggleViewAction());
   fit_action_ = view_menu->addAction(tr("&Whole record"), records, &RecordView::fit);
-  fit_action_->setShortcut(Qt::CTRL | Qt::Key_0);
-  fit_action_->setToolTip(tr("Show the whole record (also: double-click the plot)"));
+  fit_action_->setToolTip(tr("Show the whole record (also: double-click the plot, or Ctrl+0)"));
   auto_value_range_action_ = view_menu->addAction(tr("Fit &values to the time window"));
   auto_value_range_action_->setCheckable(true);
   auto_value_range_action_->setChecked(records->auto_value_range());
@@ -176,6 +196,13 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
           &RecordView::set_cursor_follows_mouse);
   connect(records, &RecordView::cursor_follows_mouse_changed, cursor_follows_mouse_action_,
           &QAction::setChecked);
+  view_menu->addSeparator();
+  add_zoom_actions(view_menu);
+
+  QMenu* help_menu = menuBar()->addMenu(tr("&Help"));
+  help_menu->addAction(tr("&Keyboard shortcuts"), this, [this] {
+    QMessageBox::information(this, tr("Keyboard shortcuts"), shortcut_lines().join('\n'));
+  });
 
   QToolBar* tools = addToolBar(tr("Main"));
   tools->setObjectName("main_toolbar");
@@ -196,6 +223,101 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   resize(size);
   // The panel takes about two fifths of the width, the review the rest.
   resizeDocks({dock}, {std::max(400, size.width() * 2 / 5)}, Qt::Horizontal);
+  setAcceptDrops(true);
+}
+
+void MainWindow::add_zoom_actions(QMenu* menu) {
+  // The plot under the mouse, or the one it was over last, or the first one shown.
+  const auto on_plot = [this](void (*act)(QCustomPlot&)) {
+    return [this, act] {
+      if (QCustomPlot* plot = export_menu_->plot_to_export()) act(*plot);
+    };
+  };
+  constexpr double kZoomStep = 1.25;  // per key press, like three notches of the wheel
+  zoom_in_action_ = menu->addAction(
+      tr("Zoom &in"), this, on_plot([](QCustomPlot& plot) { zoom_plot(plot, 1.0 / kZoomStep); }));
+  zoom_in_action_->setShortcuts({QKeySequence::ZoomIn, Qt::CTRL | Qt::Key_Equal});
+  zoom_out_action_ = menu->addAction(
+      tr("Zoom &out"), this, on_plot([](QCustomPlot& plot) { zoom_plot(plot, kZoomStep); }));
+  zoom_out_action_->setShortcuts(QKeySequence::ZoomOut);
+  reset_zoom_action_ = menu->addAction(tr("&Reset zoom"), this, [this] {
+    QCustomPlot* plot = export_menu_->plot_to_export();
+    if (!plot || plot == record_view()->plot()) {
+      record_view()->fit();  // the record view keeps its time window itself
+    } else {
+      reset_plot_zoom(*plot);
+    }
+  });
+  reset_zoom_action_->setShortcut(Qt::CTRL | Qt::Key_0);
+  undo_zoom_action_ = menu->addAction(tr("&Undo zoom"), this,
+                                      on_plot([](QCustomPlot& plot) { undo_plot_zoom(plot); }));
+  undo_zoom_action_->setShortcuts({QKeySequence::Undo, Qt::Key_Backspace});
+}
+
+QStringList MainWindow::shortcut_lines() const {
+  QStringList lines;
+  for (QAction* top : menuBar()->actions()) {
+    if (!top->menu()) continue;
+    const QString menu = top->menu()->title().remove('&');
+    for (QAction* action : top->menu()->actions()) {
+      if (action->shortcuts().isEmpty()) continue;
+      QStringList keys;
+      for (const QKeySequence& key : action->shortcuts()) {
+        keys << key.toString(QKeySequence::NativeText);
+      }
+      lines << tr("%1 \u25b8 %2: %3")
+                   .arg(menu, action->text().remove('&').remove(QChar(0x2026)), keys.join(", "));
+    }
+  }
+  return lines;
+}
+
+void MainWindow::step_level(int step) {
+  LevelTable* table = review_view_->level_table();
+  const int rows = table->rowCount();
+  if (rows == 0) return;
+  const int current = table->currentRow();
+  const int row = current < 0 ? (step > 0 ? 0 : rows - 1) : std::clamp(current + step, 0, rows - 1);
+  review_view_->select_levels({table->key_at(row)});
+}
+
+void MainWindow::open_live_recording(const QString& path) {
+  QString error;
+  if (!load(path, error, false)) {
+    report_error(error, tr("Cannot open recording"));
+    return;
+  }
+  Q_EMIT recording_opened(path);
+  const QString absolute = QFileInfo(path).absoluteFilePath();
+  bool fits = false;
+  for (const OpenedRecording& opened : opened_) {
+    if (opened.path == absolute) fits = joins_fit(*opened.recording);
+  }
+  if (!fits) {
+    statusBar()->showMessage(tr("Recorded %1: opened for review").arg(path));
+    return;
+  }
+  offered_path_ = path;
+  fit_set_offer_->setText(tr("Add %1 to the fit set").arg(QFileInfo(path).fileName()));
+  fit_set_offer_->show();
+  statusBar()->showMessage(tr("Recorded %1: opened for review, not in the fit set").arg(path));
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  const DroppedFiles files = sort_dropped_files(event->mimeData()->urls());
+  if (!files.sessions.isEmpty() || !files.recordings.isEmpty()) event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  const DroppedFiles files = sort_dropped_files(event->mimeData()->urls());
+  if (files.sessions.isEmpty() && files.recordings.isEmpty()) return;
+  event->acceptProposedAction();
+  // Opened after the drop has ended (a file without a sidecar asks in a dialog). A session
+  // replaces the review: the last one dropped; recordings dropped with it join it.
+  QTimer::singleShot(0, this, [this, files] {
+    if (!files.sessions.isEmpty()) open_session(files.sessions.last());
+    if (!files.recordings.isEmpty()) open_recordings(files.recordings);
+  });
 }
 
 MainWindow::~MainWindow() = default;
@@ -206,7 +328,7 @@ bool MainWindow::analysis_running() const {
   return analysis_job_->running() || analysis_timer_->isActive();
 }
 
-bool MainWindow::load(const QString& path, QString& error) {
+bool MainWindow::load(const QString& path, QString& error, bool join_fit) {
   const std::string path_utf8 = path.toStdString();
   std::shared_ptr<daq::Recording> recording;
   try {
@@ -244,7 +366,7 @@ bool MainWindow::load(const QString& path, QString& error) {
   sync_recordings();
   show_recording(recording);
   last_directory_ = QFileInfo(path).absolutePath();
-  if (joins_fit(*recording)) identification_panel_->add_recording(path_utf8);
+  if (join_fit && joins_fit(*recording)) identification_panel_->add_recording(path_utf8);
   schedule_analysis();
   return true;
 }

@@ -18,8 +18,12 @@
 #include "ui/review_session.h"
 
 class QAction;
+class QDragEnterEvent;
+class QDropEvent;
 class QLabel;
+class QMenu;
 class QProgressBar;
+class QPushButton;
 class QTabWidget;
 class QTimer;
 
@@ -116,6 +120,23 @@ class MainWindow : public QMainWindow {
   QAction* auto_value_range_action() const { return auto_value_range_action_; }
   QAction* cursor_follows_mouse_action() const { return cursor_follows_mouse_action_; }
   QAction* quit_action() const { return quit_action_; }
+  /// View ▸ Zoom in (Ctrl++), Zoom out (Ctrl+-), Reset zoom (Ctrl+0: the whole record on the
+  /// record view) and Undo zoom (Ctrl+Z, Backspace), on the plot under the mouse or the one it was
+  /// over last (ExportMenu::plot_to_export); ui/plot_zoom.
+  QAction* zoom_in_action() const { return zoom_in_action_; }
+  QAction* zoom_out_action() const { return zoom_out_action_; }
+  QAction* reset_zoom_action() const { return reset_zoom_action_; }
+  QAction* undo_zoom_action() const { return undo_zoom_action_; }
+  /// Review ▸ Next level (Alt+Down) and Previous level (Alt+Up): the level table's next or
+  /// previous row, selected alone.
+  QAction* next_level_action() const { return next_level_action_; }
+  QAction* previous_level_action() const { return previous_level_action_; }
+  /// Every menu action with a shortcut, one "Menu ▸ Action: keys" line each (Help ▸ Keyboard
+  /// shortcuts shows them).
+  QStringList shortcut_lines() const;
+  /// Shown in the status bar after a live recording finished: it opens for review but joins the
+  /// fit set only when this is clicked.
+  QPushButton* fit_set_offer_button() const { return fit_set_offer_; }
 
  Q_SIGNALS:
   /// A recording or session could not be opened (or saved); `message` names the file and the
@@ -126,14 +147,23 @@ class MainWindow : public QMainWindow {
   /// An analysis of the opened recordings finished and is shown.
   void analysis_finished();
 
+ protected:
+  /// Recordings (data files or sidecars) and sessions dropped on the window open as File ▸ Open
+  /// and File ▸ Open session would open them (ui/dropped_files).
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+
  private:
   struct OpenedRecording;
+  void open_live_recording(const QString& path);
+  void add_zoom_actions(QMenu* menu);
+  void step_level(int step);
   void choose_and_open();
   void choose_and_open_session();
   void choose_and_save_session();
   void mark_at_cursor();
   void report_error(const QString& message, const QString& title);
-  bool load(const QString& path, QString& error);
+  bool load(const QString& path, QString& error, bool join_fit = true);
   void sync_recordings();
   void schedule_analysis();
   void start_analysis();
@@ -168,6 +198,14 @@ class MainWindow : public QMainWindow {
   QAction* auto_value_range_action_ = nullptr;
   QAction* cursor_follows_mouse_action_ = nullptr;
   QAction* quit_action_ = nullptr;
+  QAction* zoom_in_action_ = nullptr;
+  QAction* zoom_out_action_ = nullptr;
+  QAction* reset_zoom_action_ = nullptr;
+  QAction* undo_zoom_action_ = nullptr;
+  QAction* next_level_action_ = nullptr;
+  QAction* previous_level_action_ = nullptr;
+  QPushButton* fit_set_offer_ = nullptr;
+  QString offered_path_;  // the live recording fit_set_offer_ would add
   ExportMenu* export_menu_ = nullptr;
 };
 

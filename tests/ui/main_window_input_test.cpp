@@ -1,0 +1,195 @@
+// GUI test of how the main window takes input besides its menus' dialogs, under the offscreen
+// platform on the bundled samples: files dropped on the window open as File ▸ Open and File ▸
+// Open session would (a recording dropped with its sidecar opens once); a live recording opens
+// for review and joins the fit set only when the offer is clicked; the keyboard zooms the plot
+// under the mouse in and out, undoes the last zoom and resets it; Alt+Down and Alt+Up step
+// through the level table; Help ▸ Keyboard shortcuts lists the keys.
+#include <memory>
+
+#include <QApplication>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QMimeData>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <qcustomplot.h>
+
+#include "ui/export_menu.h"
+#include "ui/identification_panel.h"
+#include "ui/level_table.h"
+#include "ui/live_monitor.h"
+#include "ui/main_window.h"
+#include "ui/record_view.h"
+#include "ui/review_view.h"
+
+using oscilab::ui::MainWindow;
+
+namespace {
+
+const QString kSamples = QStringLiteral(OSCILAB_SOURCE_DIR "/samples/");
+constexpr int kAnalysisTimeoutMs = 60000;  // one 262 s record: a bound on a hung worker
+
+// Drags `files` over `window` and drops them there, as a file manager would; true when the
+// window accepted the drag.
+bool drop_files(MainWindow& window, const QStringList& files) {
+  QMimeData data;
+  QList<QUrl> urls;
+  for (const QString& file : files) urls << QUrl::fromLocalFile(file);
+  urls << QUrl("https://example.org/run1.flac");  // not a local file: left out
+  data.setUrls(urls);
+  const QPoint at = window.rect().center();
+  QDragEnterEvent enter(at, Qt::CopyAction, &data, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(&window, &enter);
+  if (!enter.isAccepted()) return false;
+  QDropEvent drop(at, Qt::CopyAction, &data, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(&window, &drop);
+  return drop.isAccepted();
+}
+
+double time_span(const MainWindow& window) {
+  return window.record_view()->plot()->axisRect(0)->axis(QCPAxis::atBottom)->range().size();
+}
+
+std::unique_ptr<MainWindow> shown_window() {
+  auto window = std::make_unique<MainWindow>();
+  window->set_interactive_errors(false);
+  window->show();
+  window->activateWindow();
+  return window;
+}
+
+}  // namespace
+
+class MainWindowInputTest : public QObject {
+  Q_OBJECT
+
+ private Q_SLOTS:
+  void droppedRecordingOpensOnceWithItsSidecar() {
+    MainWindow window;
+    window.set_interactive_errors(false);
+    QSignalSpy opened(&window, &MainWindow::recording_opened);
+    QVERIFY(drop_files(window,
+                       {kSamples + "stepped_positive.flac", kSamples + "stepped_positive.json"}));
+    QTRY_COMPARE(opened.count(), 1);
+    QCOMPARE(window.opened_paths(), QStringList{kSamples + "stepped_positive.flac"});
+    // Its sidecar alone opens the data file beside it.
+    QVERIFY(drop_files(window, {kSamples + "stepped_negative.json"}));
+    QTRY_COMPARE(opened.count(), 2);
+    QCOMPARE(window.opened_paths().at(1), kSamples + "stepped_negative.flac");
+    // Nothing to open: the drag is refused.
+    QVERIFY(!drop_files(window, {}));
+  }
+
+  void droppedSessionReplacesTheReview() {
+    QTemporaryDir dir;
+    const QString session = dir.filePath("review.json");
+    {
+      MainWindow saved;
+      saved.set_interactive_errors(false);
+      QVERIFY(saved.open_recording(kSamples + "stepped_negative.flac"));
+      QVERIFY(saved.save_session(session));
+    }
+    MainWindow window;
+    window.set_interactive_errors(false);
+    QVERIFY(window.open_recording(kSamples + "random.flac"));
+    QVERIFY(drop_files(window, {session}));
+    QTRY_COMPARE(window.opened_paths(), QStringList{kSamples + "stepped_negative.flac"});
+  }
+
+  void liveRecordingJoinsTheFitSetOnlyWhenAdded() {
+    MainWindow window;
+    window.set_interactive_errors(false);
+    QSignalSpy opened(&window, &MainWindow::recording_opened);
+    const QString path = kSamples + "stepped_positive.flac";
+    Q_EMIT window.live_monitor()->recording_finished(path);
+    QCOMPARE(opened.count(), 1);
+    QCOMPARE(window.opened_paths(), QStringList{path});
+    QVERIFY(window.identification_panel()->recordings().empty());  // opened for review only
+    QPushButton* offer = window.fit_set_offer_button();
+    QVERIFY(offer->isVisibleTo(&window));
+    QVERIFY2(offer->text().contains("stepped_positive.flac"), qPrintable(offer->text()));
+    QTest::mouseClick(offer, Qt::LeftButton);
+    QCOMPARE(window.identification_panel()->recordings(),
+             std::vector<std::string>{path.toStdString()});
+    QVERIFY(!offer->isVisibleTo(&window));
+    // A recording opened with File ▸ Open still joins at once.
+    QVERIFY(window.open_recording(kSamples + "stepped_negative.flac"));
+    QCOMPARE(window.identification_panel()->recordings().size(), std::size_t{2});
+  }
+
+  void zoomKeysZoomUndoAndReset() {
+    auto window = shown_window();
+    QVERIFY(QTest::qWaitForWindowActive(window.get()));
+    QVERIFY(window->open_recording(kSamples + "stepped_positive.flac"));
+    const double whole = time_span(*window);
+    QEvent enter(QEvent::Enter);  // the plot under the mouse is the one zoomed
+    QApplication::sendEvent(window->record_view()->plot(), &enter);
+    QCOMPARE(window->export_menu()->plot_to_export(), window->record_view()->plot());
+    QVERIFY(whole > 200.0);  // s: the 262 s record
+    QTest::keyClick(window.get(), Qt::Key_Plus, Qt::ControlModifier);
+    QCOMPARE(time_span(*window), whole / 1.25);
+    QTest::keyClick(window.get(), Qt::Key_Plus, Qt::ControlModifier);
+    QCOMPARE(time_span(*window), whole / 1.25 / 1.25);
+    QTest::keyClick(window.get(), Qt::Key_Backspace);  // undo the last zoom
+    QCOMPARE(time_span(*window), whole / 1.25);
+    QTest::keyClick(window.get(), Qt::Key_Minus, Qt::ControlModifier);
+    QCOMPARE(time_span(*window), whole);
+    QTest::keyClick(window.get(), Qt::Key_Plus, Qt::ControlModifier);
+    QTest::keyClick(window.get(), Qt::Key_0, Qt::ControlModifier);  // the whole record
+    QCOMPARE(time_span(*window), whole);
+    // Another plot under the mouse zooms in both directions; Ctrl+Z undoes it.
+    QCustomPlot* edc = window->identification_panel()->edc_plot();
+    QVERIFY(edc->isVisible());
+    QApplication::sendEvent(edc, &enter);
+    const QCPRange x = edc->xAxis->range();
+    const QCPRange y = edc->yAxis->range();
+    QTest::keyClick(window.get(), Qt::Key_Plus, Qt::ControlModifier);
+    QCOMPARE(edc->xAxis->range().size(), x.size() / 1.25);
+    QCOMPARE(edc->yAxis->range().size(), y.size() / 1.25);
+    QCOMPARE(time_span(*window), whole);  // the record view is left alone
+    QTest::keyClick(window.get(), Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(edc->xAxis->range(), x);
+    QCOMPARE(edc->yAxis->range(), y);
+  }
+
+  void altArrowsStepThroughTheLevels() {
+    auto window = shown_window();
+    QVERIFY(QTest::qWaitForWindowActive(window.get()));
+    QSignalSpy analysed(window.get(), &MainWindow::analysis_finished);
+    QVERIFY(window->open_recording(kSamples + "stepped_positive.flac"));
+    QVERIFY(analysed.wait(kAnalysisTimeoutMs));
+    const oscilab::ui::LevelTable* table = window->review_view()->level_table();
+    QVERIFY(table->rowCount() > 2);
+    const auto selected = [&] { return window->review_view()->selected_levels(); };
+    QTest::keyClick(window.get(), Qt::Key_Down, Qt::AltModifier);
+    QCOMPARE(selected(), std::vector{table->key_at(0)});
+    QTest::keyClick(window.get(), Qt::Key_Down, Qt::AltModifier);
+    QCOMPARE(selected(), std::vector{table->key_at(1)});
+    QTest::keyClick(window.get(), Qt::Key_Up, Qt::AltModifier);
+    QCOMPARE(selected(), std::vector{table->key_at(0)});
+    QTest::keyClick(window.get(), Qt::Key_Up, Qt::AltModifier);  // stays on the first
+    QCOMPARE(selected(), std::vector{table->key_at(0)});
+  }
+
+  void helpListsTheShortcuts() {
+    MainWindow window;
+    const QStringList lines = window.shortcut_lines();
+    for (const QString& expected : {QStringLiteral("View \u25b8 Zoom in: Ctrl++"),
+                                    QStringLiteral("View \u25b8 Zoom out: Ctrl+-"),
+                                    QStringLiteral("View \u25b8 Reset zoom: Ctrl+0"),
+                                    QStringLiteral("View \u25b8 Undo zoom: Ctrl+Z, Backspace"),
+                                    QStringLiteral("Review \u25b8 Next level: Alt+Down"),
+                                    QStringLiteral("Review \u25b8 Previous level: Alt+Up"),
+                                    QStringLiteral("File \u25b8 Open: Ctrl+O")}) {
+      bool found = false;
+      for (const QString& line : lines) found = found || line.startsWith(expected);
+      QVERIFY2(found, qPrintable(expected + " not in:\n" + lines.join('\n')));
+    }
+  }
+};
+
+QTEST_MAIN(MainWindowInputTest)
+#include "main_window_input_test.moc"
