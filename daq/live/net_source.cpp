@@ -1,5 +1,6 @@
 #include "daq/live/net_source.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,13 @@ constexpr double kNoTime = std::numeric_limits<double>::quiet_NaN();
 // stream_id), placed after the last sample. A larger jump is refused: its samples would move the
 // stream clock (a first_sample of 2^63 is 1.8e16 s at 512 Hz) and its gap be written as NaN.
 constexpr double kMaxGapS = 600.0;
+// And at most this many samples (600 s up to 1.7 kHz): the chain runs through a gap sample by
+// sample (NaN rows in the recording, the derived filters on zeros), about 10^5 samples a second,
+// so a 590 s gap at 100 kHz held the recorder up for ten minutes.
+constexpr double kMaxGapSamples = 1 << 20;
+
+// The most samples a DATA frame may open as a gap at `rate_hz`.
+double max_gap_samples(double rate_hz) { return std::min(kMaxGapS * rate_hz, kMaxGapSamples); }
 
 }  // namespace
 
@@ -55,15 +63,15 @@ std::string NetSource::sequence_problem(std::uint64_t sequence, double rate_hz) 
   // most that many samples' worth of blocks. A sequence further ahead is refused: the blocks it
   // skips would be counted lost and the monitor would wait on them.
   const std::uint64_t expected = next_sequence_ - static_cast<std::uint64_t>(sequence_offset_);
-  const double max_ahead = std::ceil(kMaxGapS * rate_hz);
+  const double max_ahead = std::ceil(max_gap_samples(rate_hz));
   if (sequence <= expected || static_cast<double>(sequence - expected) <= max_ahead) return "";
   char text[200];
   std::snprintf(text, sizeof text,
                 "DATA frame refused: sequence %llu is %llu blocks past the next expected %llu "
-                "(at most %.0f, %g s of one-row blocks)",
+                "(at most %.0f, the longest gap in one-row blocks)",
                 static_cast<unsigned long long>(sequence),
                 static_cast<unsigned long long>(sequence - expected),
-                static_cast<unsigned long long>(expected), max_ahead, kMaxGapS);
+                static_cast<unsigned long long>(expected), max_ahead);
   return text;
 }
 
@@ -163,14 +171,15 @@ bool NetSource::serve(TcpSocket& peer) {
           const std::uint64_t expected = next_sample_ - static_cast<std::uint64_t>(sample_offset_);
           const double ahead_s =
               (static_cast<double>(frame.first_sample) - static_cast<double>(expected)) / rate_hz;
-          if (ahead_s > kMaxGapS) {
+          if (ahead_s * rate_hz > max_gap_samples(rate_hz)) {
             malformed_frames_.fetch_add(1, std::memory_order_relaxed);
             char text[200];
             std::snprintf(text, sizeof text,
                           "DATA frame refused: first_sample %llu is %.3g s past the next "
-                          "expected sample %llu (at most %g s)",
+                          "expected sample %llu (at most %g s, %.0f samples)",
                           static_cast<unsigned long long>(frame.first_sample), ahead_s,
-                          static_cast<unsigned long long>(expected), kMaxGapS);
+                          static_cast<unsigned long long>(expected),
+                          max_gap_samples(rate_hz) / rate_hz, max_gap_samples(rate_hz));
             post_event({kNoTime, EventKind::MalformedFrame, text});
             break;
           }

@@ -167,11 +167,30 @@ PY
 port=$((20000 + RANDOM % 30000))
 timeout 60 python3 "$work/send.py" "$port" "$work/fast_hello.json" hello data:0:512 bye &
 expect_error "record: a refused HELLO named when the wait ends" \
-  "no usable sender within 3 s; the last was refused: .*sample_rate_hz: 1000000000.0 Hz is outside" \
-  timeout 60 "$cli" record --source "net:127.0.0.1:$port" --wait 3 --out "$work/fast.wav"
+  "no usable sender within 2 s; the last was refused: .*sample_rate_hz: 1000000000.0 Hz is outside" \
+  timeout 60 "$cli" record --source "net:127.0.0.1:$port" --wait 2 --out "$work/fast.wav"
 wait
 expect_absent "record: a refused HELLO leaves no file" "$work/fast.wav" "$work/fast.json" \
   "$work/fast.events.jsonl"
+
+# At 4096 Hz a gap of 2^20 + 1024 samples (256 s) is past the receiver's bound in samples, which
+# it runs through one by one: refused at once (it had held the recorder up for minutes).
+python3 - "$src/samples/stepped_positive.json" "$work/khz_hello.json" <<'PY'
+import json, sys
+sidecar = json.load(open(sys.argv[1]))
+sidecar["sample_rate_hz"] = 4096.0
+json.dump(sidecar, open(sys.argv[2], "w"))
+PY
+port=$((20000 + RANDOM % 30000))
+timeout 60 "$cli" record --source "net:127.0.0.1:$port" --wait 30 --out "$work/khz.wav" \
+  > "$work/khz.log" 2>&1 &
+recorder=$!
+timeout 60 python3 "$work/send.py" "$port" "$work/khz_hello.json" hello data:0:512 \
+  data:1049600:512 data:512:512 bye
+wait $recorder && grep -q '"malformed-frame".*first_sample 1049600 is 256 s past .* 1048576 samples' \
+  "$work/khz.events.jsonl" && "$cli" info "$work/khz.wav" 2>&1 | grep -q "samples: *1024$" \
+  && pass "record at 4096 Hz: a gap of more than 2^20 samples refused, the stream kept" \
+  || fail "record khz: $(tail -2 "$work/khz.log"; grep malformed "$work/khz.events.jsonl")"
 
 # --- Absurd network fields: each frame refused alone (one malformed-frame event), the stream
 # goes on, the clock never jumps, nothing beyond Nyquist reaches the analysis or the sidecar.
