@@ -51,7 +51,9 @@ ExportMenu::ExportMenu(MainWindow* window, QMenu* file_menu) : QObject(window), 
   menu_ = file_menu->addMenu(tr("&Export"));
   menu_->setObjectName("export_menu");
   plot_action_ = menu_->addAction(tr("&Plot as PNG/SVG/PDF\u2026"), this, [this] {
-    const QString path = ask_path(tr("Export plot"), "plot.png",
+    const QCustomPlot* plot = plot_to_export();
+    const QString path = ask_path(tr("Export plot"),
+                                  (plot ? plot_file_name(*plot) : QStringLiteral("plot")) + ".png",
                                   tr("PNG image (*.png);;SVG drawing (*.svg);;PDF document "
                                      "(*.pdf)"));
     if (!path.isEmpty()) export_plot(path);

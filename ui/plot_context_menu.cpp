@@ -56,7 +56,7 @@ bool PlotContextMenus::eventFilter(QObject* watched, QEvent* event) {
 QString export_plot_interactively(QCustomPlot& plot, QWidget* parent) {
   QString filter = QObject::tr("PNG image (*.png)");
   const QString path = QFileDialog::getSaveFileName(
-      parent, QObject::tr("Export plot"), QStringLiteral("plot.png"),
+      parent, QObject::tr("Export plot"), plot_file_name(plot) + QStringLiteral(".png"),
       QObject::tr("PNG image (*.png);;SVG drawing (*.svg);;PDF document (*.pdf)"), &filter);
   if (path.isEmpty()) return {};
   QString file = path;

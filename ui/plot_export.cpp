@@ -6,12 +6,14 @@
 #include <QSaveFile>
 #include <QStringList>
 #include <QSvgGenerator>
+#include <QTabWidget>
 #include <QTableWidget>
 
 #include <qcustomplot.h>
 
 #include "analysis/common/input_error.h"
 #include "daq/recording/temporary_file.h"
+#include "ui/clipping_paint_device.h"
 
 namespace oscilab::ui {
 namespace {
@@ -31,11 +33,16 @@ bool write_svg(QCustomPlot& plot, const QString& file_name, int width_px, int he
   generator.setTitle(plot.windowTitle().isEmpty() ? QStringLiteral("Oscilab plot")
                                                   : plot.windowTitle());
   generator.setDescription(QStringLiteral("Exported by Oscilab"));
+  QPainter svg;
+  if (!svg.begin(&generator)) return false;
+  // The generator ignores clipping: the device cuts what crosses an axis rect itself.
+  ClippingPaintDevice clipped(svg, QSize(width_px, height_px));
   QCPPainter painter;
-  if (!painter.begin(&generator)) return false;
+  if (!painter.begin(&clipped)) return false;
   painter.setMode(QCPPainter::pmVectorized);
   plot.toPainter(&painter, width_px, height_px);
   painter.end();
+  svg.end();
   return file.flush() && file.error() == QFileDevice::NoError;
 }
 
@@ -48,7 +55,58 @@ QString csv_field(QString text) {
   return text;
 }
 
+// Lower-case ASCII words of `text` joined by "-", at most eight; "" when it has none.
+QString slug(const QString& text) {
+  const QString plain = text.normalized(QString::NormalizationForm_KD).toLower();
+  QStringList words;
+  QString word;
+  for (const QChar c : plain + QLatin1Char(' ')) {
+    if (c.unicode() < 128 && c.isLetterOrNumber()) {
+      word += c;
+    } else if (c.category() != QChar::Mark_NonSpacing && !word.isEmpty()) {
+      words << word;
+      word.clear();
+    }
+  }
+  return words.mid(0, 8).join(QLatin1Char('-'));
+}
+
+QString title_of(const QCustomPlot& plot) {
+  for (int i = 0; i < plot.plotLayout()->elementCount(); ++i) {
+    if (auto* title = qobject_cast<QCPTextElement*>(plot.plotLayout()->elementAt(i))) {
+      QString text = title->text();
+      return text.remove(QChar(0x2026));  // an elided title keeps its first words
+    }
+  }
+  return {};
+}
+
+// The label of the tab `plot` sits in, at any depth (a scroll area inside a tab).
+QString tab_of(const QWidget& plot) {
+  for (const QWidget* w = &plot; w && !w->isWindow(); w = w->parentWidget()) {
+    const QWidget* stack = w->parentWidget();
+    auto* tabs = stack ? qobject_cast<const QTabWidget*>(stack->parentWidget()) : nullptr;
+    if (tabs && tabs->indexOf(const_cast<QWidget*>(w)) >= 0) {
+      return tabs->tabText(tabs->indexOf(const_cast<QWidget*>(w))).remove(QLatin1Char('&'));
+    }
+  }
+  return {};
+}
+
 }  // namespace
+
+QString plot_file_name(const QCustomPlot& plot) {
+  QString name = plot.objectName();
+  if (name.endsWith(QLatin1String("_plot"))) name.chop(5);
+  for (const QString& candidate :
+       {name, title_of(plot), tab_of(plot),
+        plot.yAxis && plot.xAxis && !plot.yAxis->label().isEmpty()
+            ? plot.yAxis->label() + QStringLiteral(" vs ") + plot.xAxis->label()
+            : QString()}) {
+    if (const QString file = slug(candidate); !file.isEmpty()) return file;
+  }
+  return QStringLiteral("plot");
+}
 
 void export_plot(QCustomPlot& plot, const QString& path, int width_px, int height_px) {
   const QString extension = QFileInfo(path).suffix().toLower();

@@ -20,6 +20,12 @@ namespace oscilab::ui {
 /// a Qt slot).
 void export_plot(QCustomPlot& plot, const QString& path, int width_px = 0, int height_px = 0);
 
+/// A file name (without extension) after what `plot` shows, for the export dialog to propose:
+/// its object name without "_plot" (loop_plot: "loop"), else its title row, else the label of the
+/// tab it sits in, else its axes' labels ("z-mm-vs-t-s"), else "plot"; lower-case ASCII words
+/// joined by "-" (at most eight), symbols spelled in ASCII where Unicode has a form (z₊: z+).
+QString plot_file_name(const QCustomPlot& plot);
+
 /// Writes a table as CSV (RFC 4180 quoting, UTF-8, "\n" line ends): a header row of the model's
 /// horizontal header labels, then every row's DisplayRole text; a field holding a comma, a quote
 /// or a line break is quoted, with quotes doubled. Atomic like export_plot; throws

@@ -9,7 +9,10 @@
 #include <QDir>
 #include <QFile>
 #include <QImage>
+#include <QPainter>
 #include <QStandardItemModel>
+#include <QSvgRenderer>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
@@ -54,6 +57,23 @@ QString input_error_of(Action action) {
     return QString::fromStdString(error.what());
   }
   return {};
+}
+
+// Pixels of `image` near kLineColor (antialiasing blends edges: within 40 per channel) outside
+// `inside`, the axis rect grown by the pen's half width.
+int line_pixels_outside(const QImage& image, const QRect& inside) {
+  int count = 0;
+  for (int yy = 0; yy < image.height(); ++yy) {
+    for (int xx = 0; xx < image.width(); ++xx) {
+      const QColor c = image.pixelColor(xx, yy);
+      if (!inside.contains(xx, yy) && std::abs(c.red() - kLineColor.red()) < 40 &&
+          std::abs(c.green() - kLineColor.green()) < 40 &&
+          std::abs(c.blue() - kLineColor.blue()) < 40) {
+        ++count;
+      }
+    }
+  }
+  return count;
 }
 
 }  // namespace
@@ -127,6 +147,60 @@ class PlotExportTest : public QObject {
     QCOMPARE(root, QStringLiteral("svg"));
     QVERIFY2(paths > 0, "no path or polyline element");
     QVERIFY2(curve_colour, "the curve's stroke colour is missing: not drawn as a vector");
+  }
+
+  // A curve that runs past the axes (here: zoomed into the middle of a sine) is cut at the frame
+  // in the SVG as on screen: the SVG, drawn by Qt's own renderer, has no curve pixel outside the
+  // axis rect.
+  void svgIsClippedToTheAxisRectLikeTheScreen() {
+    QTemporaryDir dir;
+    QCustomPlot plot;
+    fill_plot(plot);
+    plot.xAxis->setRange(0.4, 0.6);
+    plot.yAxis->setRange(-0.3, 0.3);
+    plot.resize(400, 250);
+    plot.replot();  // lays out the axis rect
+    const QRect rect = plot.axisRect()->rect().adjusted(-2, -2, 2, 2);
+    QImage screen(400, 250, QImage::Format_ARGB32);
+    screen.fill(Qt::white);
+    {
+      QCPPainter painter(&screen);
+      plot.toPainter(&painter, 400, 250);
+    }
+    QCOMPARE(line_pixels_outside(screen, rect), 0);  // the screen's drawing clips
+    const QString path = dir.filePath(QStringLiteral("zoomed.svg"));
+    oscilab::ui::export_plot(plot, path, 400, 250);
+    QSvgRenderer renderer(path);
+    QVERIFY(renderer.isValid());
+    QImage drawn(400, 250, QImage::Format_ARGB32);
+    drawn.fill(Qt::white);
+    {
+      QPainter painter(&drawn);
+      renderer.render(&painter);
+    }
+    QCOMPARE(line_pixels_outside(drawn, rect), 0);
+  }
+
+  // The export dialog proposes a file named after the plot: its object name, else its title,
+  // else the tab it sits in, else its axes.
+  void proposesAFileNameAfterThePlot() {
+    using oscilab::ui::plot_file_name;
+    QCustomPlot named;
+    named.setObjectName(QStringLiteral("edc_positive_plot"));
+    QCOMPARE(plot_file_name(named), QStringLiteral("edc-positive"));
+    QCustomPlot titled;
+    titled.plotLayout()->insertRow(0);
+    titled.plotLayout()->addElement(
+        0, 0, new QCPTextElement(&titled, QStringLiteral("Energy dissipated per cycle (Fig. 10)")));
+    QCOMPARE(plot_file_name(titled), QStringLiteral("energy-dissipated-per-cycle-fig-10"));
+    QTabWidget tabs;
+    auto* in_tab = new QCustomPlot;
+    tabs.addTab(in_tab, QStringLiteral("Cost slices (Fig. 13)"));
+    QCOMPARE(plot_file_name(*in_tab), QStringLiteral("cost-slices-fig-13"));
+    QCustomPlot axes;
+    fill_plot(axes);
+    QCOMPARE(plot_file_name(axes), QStringLiteral("z-mm-vs-t-s"));
+    QCOMPARE(plot_file_name(QCustomPlot()), QStringLiteral("plot"));
   }
 
   void takesThePlotsOwnSizeWhenGivenNone() {
