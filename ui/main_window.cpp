@@ -36,6 +36,7 @@
 #include "ui/identification_panel.h"
 #include "ui/level_table.h"
 #include "ui/live_monitor.h"
+#include "ui/plot_hover_readout.h"
 #include "ui/plot_zoom.h"
 #include "ui/record_view.h"
 #include "ui/review_model.h"
@@ -224,6 +225,7 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   // The panel takes about two fifths of the width, the review the rest.
   resizeDocks({dock}, {std::max(400, size.width() * 2 / 5)}, Qt::Horizontal);
   setAcceptDrops(true);
+  new PlotHoverReadouts(this);  // the value under the mouse on every plot
 }
 
 void MainWindow::add_zoom_actions(QMenu* menu) {

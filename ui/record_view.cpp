@@ -10,6 +10,7 @@
 #include <qcustomplot.h>
 
 #include "ui/cursor_readout.h"
+#include "ui/plot_hover_readout.h"
 #include "ui/time_marks.h"
 
 namespace oscilab::ui {
@@ -46,6 +47,7 @@ RecordView::RecordView(QWidget* parent) : QWidget(parent) {
 
   plot_ = new QCustomPlot(this);
   plot_->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
+  plot_->setProperty(PlotHoverReadouts::kOwnReadoutProperty, true);  // the readout line above
   plot_->setAutoAddPlottableToLegend(false);
   plot_->setNoAntialiasingOnDrag(true);
   plot_->setPlottingHint(QCP::phFastPolylines, true);

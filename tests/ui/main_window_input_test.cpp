@@ -3,17 +3,22 @@
 // Open session would (a recording dropped with its sidecar opens once); a live recording opens
 // for review and joins the fit set only when the offer is clicked; the keyboard zooms the plot
 // under the mouse in and out, undoes the last zoom and resets it; Alt+Down and Alt+Up step
-// through the level table; Help ▸ Keyboard shortcuts lists the keys.
+// through the level table; Help ▸ Keyboard shortcuts lists the keys; the review's plots read out
+// the value under the mouse.
 #include <memory>
 
 #include <QApplication>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QMimeData>
+#include <QMouseEvent>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QSignalSpy>
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QToolTip>
 
 #include <qcustomplot.h>
 
@@ -59,6 +64,21 @@ std::unique_ptr<MainWindow> shown_window() {
   window->show();
   window->activateWindow();
   return window;
+}
+
+// The tooltip a mouse resting at the middle of `plot`'s (first) axis rect shows, with the tab
+// holding the plot brought to the front so that it is laid out.
+QString hover_tooltip(QTabWidget& tabs, QWidget* page, QCustomPlot* plot) {
+  tabs.setCurrentWidget(page);
+  QApplication::processEvents();
+  plot->replot();
+  QEvent enter(QEvent::Enter);
+  QApplication::sendEvent(plot, &enter);
+  const QPointF at = plot->axisRect()->rect().center();
+  QMouseEvent move(QEvent::MouseMove, at, plot->mapToGlobal(at), Qt::NoButton, Qt::NoButton,
+                   Qt::NoModifier);
+  QApplication::sendEvent(plot, &move);
+  return QToolTip::text();
 }
 
 }  // namespace
@@ -172,6 +192,36 @@ class MainWindowInputTest : public QObject {
     QCOMPARE(selected(), std::vector{table->key_at(0)});
     QTest::keyClick(window.get(), Qt::Key_Up, Qt::AltModifier);  // stays on the first
     QCOMPARE(selected(), std::vector{table->key_at(0)});
+  }
+
+  // The Cycles and restoring-force plots read out the value under the mouse with its unit.
+  void plotsReadOutTheValueUnderTheMouse() {
+    auto window = shown_window();
+    QVERIFY(QTest::qWaitForWindowActive(window.get()));
+    QSignalSpy analysed(window.get(), &MainWindow::analysis_finished);
+    QVERIFY(window->open_recording(kSamples + "stepped_positive.flac"));
+    QVERIFY(analysed.wait(kAnalysisTimeoutMs));
+    oscilab::ui::ReviewView* review = window->review_view();
+    auto* tabs = review->findChild<QTabWidget*>("review_tabs");
+    QVERIFY(tabs != nullptr);
+    const QRegularExpression cycles(
+        QStringLiteral("^time = [-0-9.e]+ s   EDC per cycle = [-0-9.e]+ mJ$"));
+    const QString cycle_tip = hover_tooltip(*tabs, review->cycle_plot(), review->cycle_plot());
+    QVERIFY2(cycles.match(cycle_tip).hasMatch(), qPrintable(cycle_tip));
+    QWidget* slices = tabs->widget(2);
+    const QString slice_tip = hover_tooltip(*tabs, slices, review->stiffness_plot());
+    QVERIFY2(slice_tip.startsWith("z = ") && slice_tip.contains(" mm   ") &&
+                 slice_tip.contains("R = ") && slice_tip.contains(" N"),
+             qPrintable(slice_tip));
+    // The record view keeps its own readout line: no tooltip of this kind there.
+    QToolTip::hideText();
+    QTRY_VERIFY(!QToolTip::isVisible());
+    QCustomPlot* record = window->record_view()->plot();
+    const QPointF middle = record->rect().center();
+    QMouseEvent move(QEvent::MouseMove, middle, record->mapToGlobal(middle), Qt::NoButton,
+                     Qt::NoButton, Qt::NoModifier);
+    QApplication::sendEvent(record, &move);
+    QVERIFY(!QToolTip::isVisible() || !QToolTip::text().contains(" = "));
   }
 
   void helpListsTheShortcuts() {
