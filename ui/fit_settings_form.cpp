@@ -16,7 +16,7 @@
 namespace oscilab::ui {
 
 FitSettingsForm::FitSettingsForm(QWidget* parent)
-    : QGroupBox(tr("Fit of \u03b8 = [f_d(z-*), f_d(z+*), f_d(0), v_t, k_s, c]"), parent) {
+    : QGroupBox(tr("Fit of \u03b8 = [f_d(z\u208b*), f_d(z\u208a*), f_d(0), v_t, k_s, c]"), parent) {
   method_box_ = new QComboBox;
   method_box_->setObjectName("method");
   method_box_->addItem(tr("CMA-ES + BOBYQA polish"), "cmaes");

@@ -63,8 +63,8 @@ QString figure_tab_name(const std::string& stem) {
   if (stem == "convergence") return QObject::tr("Convergence (Fig. 14)");
   if (stem == "friction") return QObject::tr("Friction f_d(z)");
   if (stem == "cost_slices") return QObject::tr("Cost slices (Fig. 13)");
-  if (stem == "sensitivity_positive") return QObject::tr("Sensitivity z+* (Fig. 16)");
-  if (stem == "sensitivity_negative") return QObject::tr("Sensitivity z-* (Fig. 16)");
+  if (stem == "sensitivity_positive") return QObject::tr("Sensitivity z\u208a* (Fig. 16)");
+  if (stem == "sensitivity_negative") return QObject::tr("Sensitivity z\u208b* (Fig. 16)");
   return QString::fromStdString(stem);
 }
 
@@ -529,7 +529,7 @@ void IdentificationPanel::plot_edc(const std::vector<analysis::EdcGroup>& groups
   edc_plot_->clearPlottables();  // graphs and their error bars
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const bool positive = groups[g].positive_well;
-    const QString well = positive ? tr("z+* well") : tr("z-* well");
+    const QString well = positive ? tr("z\u208a* well") : tr("z\u208b* well");
     QVector<double> f0, measured, error, predicted;
     for (std::size_t i = 0; i < groups[g].levels.size(); ++i) {
       const auto& m = groups[g].levels[i];

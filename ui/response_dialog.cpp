@@ -29,7 +29,8 @@ namespace oscilab::ui {
 
 namespace {
 
-const char* well_label(bool positive) { return positive ? "z+* well" : "z-* well"; }
+// UTF-8, as the figures take their text.
+const char* well_label(bool positive) { return positive ? "z\u208a* well" : "z\u208b* well"; }
 
 QDoubleSpinBox* number_box(double low, double high, double value, int decimals, double step,
                            const QString& suffix) {

@@ -4,18 +4,23 @@
 // for review and joins the fit set only when the offer is clicked; the keyboard zooms the plot
 // under the mouse in and out, undoes the last zoom and resets it; Alt+Down and Alt+Up step
 // through the level table; Help ▸ Keyboard shortcuts lists the keys; the review's plots read out
-// the value under the mouse.
+// the value under the mouse; every text in the window spells its symbols and units one way.
 #include <memory>
 
+#include <QAbstractButton>
 #include <QApplication>
+#include <QComboBox>
 #include <QDragEnterEvent>
 #include <QDropEvent>
+#include <QGroupBox>
+#include <QLabel>
 #include <QMimeData>
 #include <QMouseEvent>
 #include <QPushButton>
 #include <QRegularExpression>
 #include <QSignalSpy>
 #include <QTabWidget>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QToolTip>
@@ -79,6 +84,44 @@ QString hover_tooltip(QTabWidget& tabs, QWidget* page, QCustomPlot* plot) {
                    Qt::NoModifier);
   QApplication::sendEvent(plot, &move);
   return QToolTip::text();
+}
+
+// Every text the window's widgets show or say on hover: labels, buttons, group boxes, tabs, table
+// headers, combo box items, actions, and the plots' axis labels, titles and legend names.
+QStringList shown_texts(const QWidget& root) {
+  QStringList texts;
+  for (const QWidget* w : root.findChildren<const QWidget*>()) {
+    texts << w->toolTip() << w->windowTitle();
+    if (auto* label = qobject_cast<const QLabel*>(w)) texts << label->text();
+    if (auto* button = qobject_cast<const QAbstractButton*>(w)) texts << button->text();
+    if (auto* group = qobject_cast<const QGroupBox*>(w)) texts << group->title();
+    if (auto* tabs = qobject_cast<const QTabWidget*>(w)) {
+      for (int i = 0; i < tabs->count(); ++i) texts << tabs->tabText(i) << tabs->tabToolTip(i);
+    }
+    if (auto* table = qobject_cast<const QTableWidget*>(w)) {
+      for (int c = 0; c < table->columnCount(); ++c) {
+        if (const QTableWidgetItem* item = table->horizontalHeaderItem(c)) texts << item->text();
+      }
+    }
+    if (auto* box = qobject_cast<const QComboBox*>(w)) {
+      for (int i = 0; i < box->count(); ++i) texts << box->itemText(i);
+    }
+    if (auto* plot = qobject_cast<QCustomPlot*>(const_cast<QWidget*>(w))) {
+      for (QCPAxisRect* rect : plot->axisRects()) {
+        for (QCPAxis* axis : rect->axes()) texts << axis->label();
+      }
+      for (int i = 0; i < plot->plottableCount(); ++i) texts << plot->plottable(i)->name();
+      for (int i = 0; i < plot->plotLayout()->elementCount(); ++i) {
+        if (auto* title = qobject_cast<QCPTextElement*>(plot->plotLayout()->elementAt(i))) {
+          texts << title->text();
+        }
+      }
+    }
+  }
+  for (const QAction* action : root.findChildren<const QAction*>()) {
+    texts << action->text() << action->toolTip();
+  }
+  return texts;
 }
 
 }  // namespace
@@ -222,6 +265,21 @@ class MainWindowInputTest : public QObject {
                      Qt::NoButton, Qt::NoModifier);
     QApplication::sendEvent(record, &move);
     QVERIFY(!QToolTip::isVisible() || !QToolTip::text().contains(" = "));
+  }
+
+  // One spelling of each symbol and unit in the whole window, the Unicode one: z₊*, z₋*, σ, m/s².
+  void unitTextIsSpelledOneWay() {
+    MainWindow window;
+    window.set_interactive_errors(false);
+    QSignalSpy analysed(&window, &MainWindow::analysis_finished);
+    QVERIFY(window.open_recordings(
+                {kSamples + "stepped_positive.flac", kSamples + "stepped_negative.flac"}) == 2);
+    QVERIFY(analysed.wait(kAnalysisTimeoutMs));
+    for (const QString& text : shown_texts(window)) {
+      for (const char* ascii : {"z+*", "z-*", "sigma", "^2", "m/s2"}) {
+        QVERIFY2(!text.contains(QLatin1String(ascii)), qPrintable(ascii + (": " + text)));
+      }
+    }
   }
 
   void helpListsTheShortcuts() {
