@@ -1,5 +1,8 @@
 #include "daq/recording/json_file.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -39,6 +42,12 @@ void write_text_file_atomically(const std::string& text, const std::string& path
     out.flush();
     if (!out) throw InputError(path + ": cannot write: " + std::strerror(errno));
   }
+  // On the disk before the rename: a power cut then leaves the old file or the new one whole,
+  // never a renamed file whose bytes were not written yet (an empty sidecar, a lost recording).
+  const int fd = ::open(file.path().c_str(), O_RDONLY | O_CLOEXEC);
+  const int error = fd < 0 || ::fdatasync(fd) != 0 ? errno : 0;
+  if (fd >= 0) ::close(fd);
+  if (error != 0) throw InputError(path + ": cannot write: " + std::strerror(error));
   file.commit();
 }
 

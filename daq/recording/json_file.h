@@ -12,8 +12,9 @@ namespace oscilab::daq {
 /// unreadable, or malformed JSON with its line and column.
 nlohmann::json read_json_file(const std::string& path, std::uintmax_t max_bytes);
 
-/// Writes `text` to `path` through a temporary file beside it and a rename (TemporaryFile), so
-/// that the target is either the old file or the complete new one. Throws InputError.
+/// Writes `text` to `path` through a temporary file beside it, handed to the disk (fdatasync),
+/// and a rename (TemporaryFile), so that the target is either the old file or the complete new
+/// one, after a crash or a power cut. Throws InputError.
 void write_text_file_atomically(const std::string& text, const std::string& path);
 
 }  // namespace oscilab::daq
