@@ -203,15 +203,15 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
 
   // The set-up (recordings and settings) above the results, in a splitter: on a short screen the
   // set-up scrolls and the results keep most of the height; the user moves the divider.
-  auto* setup = new QWidget;
-  auto* setup_layout = new QVBoxLayout(setup);
+  setup_ = new QWidget;
+  auto* setup_layout = new QVBoxLayout(setup_);
   setup_layout->setContentsMargins(0, 0, 0, 0);
   setup_layout->addWidget(records);
   setup_layout->addWidget(settings_form_);
   setup_layout->addStretch(1);
   auto* setup_scroll = new QScrollArea;
   setup_scroll->setObjectName("fit_setup");
-  setup_scroll->setWidget(setup);
+  setup_scroll->setWidget(setup_);
   setup_scroll->setWidgetResizable(true);
   setup_scroll->setFrameShape(QFrame::NoFrame);
   setup_scroll->setMinimumHeight(80);
@@ -229,6 +229,7 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
   splitter_->setChildrenCollapsible(false);
   splitter_->setStretchFactor(0, 0);
   splitter_->setStretchFactor(1, 1);
+  connect(splitter_, &QSplitter::splitterMoved, this, [this] { splitter_placed_ = true; });
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(4, 4, 4, 4);
   layout->addWidget(splitter_);
@@ -237,11 +238,11 @@ IdentificationPanel::IdentificationPanel(QWidget* parent) : QWidget(parent) {
 
 void IdentificationPanel::resizeEvent(QResizeEvent* event) {
   QWidget::resizeEvent(event);
-  if (splitter_placed_ || splitter_->height() < 100) return;
-  // The set-up gets what it asks for up to a third of the height; the results the rest.
-  splitter_placed_ = true;
+  if (splitter_placed_ || splitter_->height() < 100) return;  // the user placed the divider
+  // The set-up gets what its contents ask for (its scroll area's hint stops at 24 lines) up to a
+  // third of the height, again as the panel grows, until the user moves the divider.
   const int total = splitter_->height() - splitter_->handleWidth();
-  const int setup = std::min(splitter_->widget(0)->sizeHint().height(), total / 3);
+  const int setup = std::min(setup_->sizeHint().height(), total / 3);
   splitter_->setSizes({setup, total - setup});
 }
 

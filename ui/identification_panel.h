@@ -190,7 +190,8 @@ class IdentificationPanel : public QWidget {
   QLabel* status_label_ = nullptr;
   QTabWidget* tabs_ = nullptr;
   QSplitter* splitter_ = nullptr;  // the set-up above the results
-  bool splitter_placed_ = false;   // the divider's first place, once the panel has a height
+  QWidget* setup_ = nullptr;       // the recordings and settings, scrolled above the results
+  bool splitter_placed_ = false;   // the user moved the divider: it stays where they put it
   QTableWidget* parameter_table_ = nullptr;
   DiagnosisView* diagnosis_view_ = nullptr;
   QCustomPlot* edc_plot_ = nullptr;

@@ -16,8 +16,10 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSignalSpy>
 #include <QSpinBox>
+#include <QSplitter>
 #include <QTableWidget>
 #include <QTest>
 
@@ -313,6 +315,24 @@ class IdentificationPanelTest : public QObject {
     population->setValue(population->maximum());
     QCOMPARE(population->value(), 999);
     QVERIFY(within());
+  }
+
+  // The set-up above the results gets its whole height once the panel is tall enough, also when
+  // the panel grows after it was first laid out short (a window resized to a large screen).
+  void setUpGetsItsHeightAsThePanelGrows() {
+    IdentificationPanel panel;
+    panel.resize(420, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    auto* splitter = panel.findChild<QSplitter*>("fit_splitter");
+    QVERIFY(splitter != nullptr);
+    // What the set-up's contents ask for (its scroll area's own hint stops at 24 lines of text).
+    auto* setup = qobject_cast<QScrollArea*>(splitter->widget(0));
+    QVERIFY(setup != nullptr && setup->widget() != nullptr);
+    const int wanted = setup->widget()->sizeHint().height();
+    QTRY_VERIFY(splitter->sizes().at(0) < wanted);  // a third of 600 px: the set-up scrolls
+    panel.resize(420, 1400);
+    QTRY_COMPARE(splitter->sizes().at(0), wanted);
   }
 
   void badRecordingIsReportedNotFatal() {
