@@ -23,6 +23,7 @@ if [ ! -x "$bin" ]; then
   exit 2
 fi
 mkdir -p "$(dirname "$out")"
-# -a: a free display number; 24-bit screen larger than the window so nothing is cut.
-xvfb-run -a -s "-screen 0 1920x1200x24" "$bin" --screenshot "$out" "$@" "$rec"
+# -a: a free display number; 24-bit screen larger than the window so nothing is cut
+# (OSCILAB_SCREEN: another size, e.g. 2560x1600x24 for a 2560x1440 window).
+xvfb-run -a -s "-screen 0 ${OSCILAB_SCREEN:-1920x1200x24}" "$bin" --screenshot "$out" "$@" "$rec"
 echo "screenshot: $out"

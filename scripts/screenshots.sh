@@ -21,3 +21,10 @@ shot "$root/samples/presliding_negative.flac" "$out/diagnosis-panel.png" --size 
 shot "$neg" "$out/fit-hbm.png" --size 1000x820 --run fit --dialog hbm "$pos"
 shot "$neg" "$out/fit-map.png" --size 1000x1180 --run fit --dialog map "$pos"
 shot "$pos" "$out/live-monitor.png" --size 1600x1000 --hide-panel --live rig
+# A 2560x1440 desktop screen: review, live, fit and diagnosis.
+big() { OSCILAB_SCREEN=2560x1600x24 shot "$@" --size 2560x1440; }
+big "$neg" "$out/desktop-review-2560x1440.png" --tab levels --level 0:11,1:11 "$pos"
+big "$pos" "$out/desktop-live-2560x1440.png" --live rig
+big "$neg" "$out/desktop-fit-2560x1440.png" --run fit "$pos"
+big "$root/samples/presliding_negative.flac" "$out/desktop-diagnosis-2560x1440.png" \
+  --run diagnose "$root/samples/presliding_positive.flac"
