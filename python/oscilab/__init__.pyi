@@ -14,7 +14,7 @@ _ModelLike = Model | dict[str, Any] | _StrPath
 _Progress = Callable[[dict[str, Any]], object]
 
 __version__: str
-__all__ = ['Analysis', 'Error', 'FileError', 'FitProblem', 'InputError', 'LiveSession', 'MissingFileError', 'Model', 'Recording', 'Result', 'amplitude_sweep', 'analyze', 'bifurcation_map', 'describe_recording', 'diagnose', 'draft_sidecar', 'fit', 'hbm_branch', 'live', 'prepare_fit', 'read_recording', 'simulate', 'to_dataframe', 'virtual_rig', 'write_recording']
+__all__ = ['Analysis', 'Error', 'FileError', 'FitProblem', 'InputError', 'LiveSession', 'MissingFileError', 'Model', 'Recording', 'Result', 'amplitude_sweep', 'analyze', 'bifurcation_map', 'describe_recording', 'diagnose', 'draft_sidecar', 'fit', 'hbm_branch', 'live', 'merge', 'prepare_fit', 'read_recording', 'simulate', 'to_dataframe', 'virtual_rig', 'write_recording']
 
 
 class Analysis:
@@ -183,6 +183,8 @@ def fit(recordings: _Recordings, *, model: _ModelLike = 'paper', method: str = '
 def hbm_branch(model: _ModelLike = 'paper', *, freq_hz: float = 9.0, f0_n: tuple[float, float] = (0.1, 3.7), well: str = 'positive', harmonics: int = 7, subharmonic: int = 1, samples: int = 0, floquet_steps: int = 1024, stability: bool = True, max_step: float = 0.1, landing: list[float] = [], follow_period_doubling: bool = False, progress: _Progress | None = None) -> dict: ...
 
 def live(source: str | os.PathLike[str] | Recording, *, duration_s: float | None = None, speed: float = 1.0, model: _ModelLike = 'paper', well: str = 'positive', freq_hz: float = 9.0, levels_n: str | ArrayLike | None = None, hold_s: float = 10.0, lead_in_s: float = 2.5, seed: int = 1, expected_sidecar: dict[str, Any] | _StrPath | None = None, record_to: _StrPath | None = None, poll_s: float = 0.1, blocks: bool = True, excitation_freq_hz: float | None = None, calibration: dict[str, Any] | _StrPath | None = None, jack_server: str = '') -> LiveSession: ...
+
+def merge(fits: _StrPath | Iterable[_StrPath]) -> dict: ...
 
 def prepare_fit(recordings: _Recordings, *, model: _ModelLike = 'paper', stiffness: str = 'model', harmonics: int = 7, max_harmonics: int = 63, model_error: float = -1.0, freq_hz: float | None = None, progress: _Progress | None = None) -> FitProblem: ...
 

@@ -24,6 +24,7 @@ ARGUMENT_TYPES = {
     "model": "_ModelLike",
     "progress": "_Progress",
     "path": "_StrPath",
+    "fits": "_StrPath | Iterable[_StrPath]",
     "spec": "_StrPath",
     "record_to": "_StrPath",
     "sidecar": "dict[str, Any] | str",

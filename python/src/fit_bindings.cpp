@@ -7,14 +7,17 @@
 #include <vector>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_limits.h"
 #include "analysis/diagnosis/campaign_fit.h"
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/fit_setup.h"
+#include "analysis/identification/fit_table.h"
 #include "analysis/model/model.h"
 #include "analysis/model/model_json.h"
 #include "bindings.h"
 #include "daq/recording/fit_json.h"
+#include "daq/recording/json_file.h"
 #include "daq/recording/recording.h"
 #include "python_types.h"
 
@@ -233,6 +236,58 @@ levels of both wells, and the objective: eq. (8) and the σ-weighted cost. Made 
           py::arg("bootstrap") = kSearch.uncertainty.bootstrap_replicates,
           py::arg("progress") = py::none(),
           "Runs the fit on this problem; arguments and result as oscilab.fit().");
+
+  m.def(
+      "merge",
+      [](const py::object& fits) {
+        if (!is_path(fits) && py::len(fits) == 0) throw InputError("fits: no FIT JSON given");
+        std::vector<analysis::FitSummary> rows;
+        for (const std::string& path : path_list(fits, "fits")) {
+          rows.push_back(
+              analysis::read_fit_summary(daq::read_json_file(path, kMaxJsonTextBytes), path));
+        }
+        const analysis::FitTable table = analysis::fit_table(std::move(rows));
+        const auto numpy = py::module_::import("numpy");
+        const auto texts = [&](auto field) {
+          py::list out;
+          for (const analysis::FitSummary& r : table.rows) out.append(py::str(field(r)));
+          return numpy.attr("array")(out, py::arg("dtype") = "U");
+        };
+        const auto reals = [&](auto field) {
+          std::vector<double> out;
+          for (std::size_t k = 0; k < table.rows.size(); ++k) out.push_back(field(k));
+          return to_array(out);
+        };
+        py::dict out;
+        out["fit"] = texts([](const analysis::FitSummary& r) { return r.source; });
+        out["records"] = texts([](const analysis::FitSummary& r) { return r.records; });
+        out["method"] = texts([](const analysis::FitSummary& r) { return r.method; });
+        out["cost_j"] = reals([&](std::size_t k) { return table.rows[k].cost_j; });
+        out["mean_deviation_pct_positive"] =
+            reals([&](std::size_t k) { return table.rows[k].mean_deviation_pct_positive; });
+        out["mean_deviation_pct_negative"] =
+            reals([&](std::size_t k) { return table.rows[k].mean_deviation_pct_negative; });
+        std::vector<int> evaluations;
+        for (const analysis::FitSummary& r : table.rows) {
+          evaluations.push_back(static_cast<int>(r.evaluations));
+        }
+        out["evaluations"] = to_int_array(evaluations);
+        out["seconds"] = reals([&](std::size_t k) { return table.rows[k].seconds; });
+        for (const std::string& p : table.parameters) {
+          out[py::str(p)] = reals([&](std::size_t k) { return table.parameter(k, p); });
+          out[py::str(p + "_std")] =
+              reals([&](std::size_t k) { return table.standard_error(k, p); });
+        }
+        return out;
+      },
+      py::arg("fits"),
+      R"doc(Many fits joined into one table (`oscilab-cli merge`): one row per FIT JSON, the columns
+of the CLI's CSV in its order (fit, records, method, cost_j [J], mean_deviation_pct_positive,
+mean_deviation_pct_negative, evaluations, seconds [s], then each parameter p and p_std, the union
+of the fits' parameters in first-seen order) as a dict of NumPy arrays: unicode (<U...) for the
+text, int64 for evaluations, float64 otherwise (NaN where a fit has no such parameter or error).
+fits: a path or a sequence of paths (str, bytes or os.PathLike) of FIT JSONs written by fit().
+pandas.DataFrame(oscilab.merge(paths)) takes it as it is.)doc");
 
   m.def(
       "prepare_fit",

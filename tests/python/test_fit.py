@@ -3,6 +3,8 @@ progress and cancellation, Ctrl-C (KeyboardInterrupt once the fit stopped) and t
 while C++ works."""
 
 import contextlib
+import csv
+import json
 import os
 import signal
 import threading
@@ -181,3 +183,69 @@ def test_diagnose_report_equals_cli_report(tmp_path, py_analysis):
     assert without_timing(report) == without_timing(cli)
     assert report["verdict"] == cli["verdict"]
     assert report["baseline"]["cost_j"] == cli["baseline"]["cost_j"]
+
+
+def test_diagnose_progress_says_its_phases_in_order(py_analysis):
+    reports = []
+    oscilab.diagnose(py_analysis, baseline_evaluations=20, candidate_evaluations=10, max_steps=1,
+                     threads=1, max_seconds=0, model_error=0.05, harmonics=3, max_harmonics=3,
+                     progress=reports.append)
+    phases = [r["phase"] for r in reports]
+    assert phases[0] == "baseline" and phases[-1] == "done"
+    # One step at most (max_steps=1): the phases never go back.
+    order = ["baseline", "settling", "candidates", "finalists", "accepting", "done"]
+    indices = [order.index(p) for p in phases]
+    assert indices == sorted(indices)
+    fractions = [r["fraction"] for r in reports]
+    assert fractions == sorted(fractions) and fractions[-1] == 1.0
+    assert all(isinstance(r["message"], str) and r["message"] for r in reports)
+    assert reports[-1]["max_steps"] == 1
+    baseline = [r for r in reports if r["phase"] == "baseline"]
+    assert baseline[-1]["evaluations"] > 0
+    assert "of 20 evaluations" in baseline[-1]["message"]
+
+
+def test_merge_equals_cli_merge(tmp_path, cli_fit):
+    # Two FIT JSONs: the CLI's fit, and the same with one parameter and its error left out (the
+    # table then holds NaN there, the CSV an empty field).
+    a, b = tmp_path / "a.json", tmp_path / "b,quoted.json"
+    a.write_text(json.dumps(cli_fit))
+    other = json.loads(json.dumps(cli_fit))
+    dropped = next(iter(other["parameters"]))
+    del other["parameters"][dropped]
+    other.get("standard_errors", {}).pop(dropped, None)
+    b.write_text(json.dumps(other))
+    run_cli("merge", a, b, "--out", tmp_path / "m.csv")
+    with open(tmp_path / "m.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    table = oscilab.merge([a, os.fsencode(b)])
+    assert list(table) == header
+    for c, name in enumerate(header):
+        column = table[name]
+        assert column.shape == (2,)
+        for k in range(2):
+            cell = body[k][c]
+            if column.dtype.kind == "U":
+                assert column[k] == (cell if name != "fit" else str([a, b][k]))
+            elif column.dtype == np.int64:
+                assert column[k] == int(cell)
+            else:
+                assert column.dtype == np.float64
+                # The CSV keeps 9 significant digits.
+                assert (np.isnan(column[k]) and cell == "") or \
+                    column[k] == pytest.approx(float(cell), rel=1e-8)
+    assert np.isnan(table[dropped][1]) and not np.isnan(table[dropped][0])
+
+
+def test_merge_errors_name_the_argument_and_the_file(tmp_path):
+    with pytest.raises(oscilab.InputError, match="fits"):
+        oscilab.merge([])
+    bad = tmp_path / "not_a_fit.json"
+    bad.write_text('{"cost_j": 1}')
+    message = cli_error("merge", bad, "--out", tmp_path / "m.csv")
+    with pytest.raises(oscilab.InputError) as error:
+        oscilab.merge(bad)
+    assert str(error.value) == message
+    with pytest.raises(oscilab.MissingFileError):
+        oscilab.merge(tmp_path / "absent.json")
