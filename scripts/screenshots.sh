@@ -24,6 +24,7 @@ shot "$pos" "$out/live-monitor.png" --size 1600x1000 --hide-panel --live rig
 # A 2560x1440 desktop screen: review, live, fit and diagnosis.
 big() { OSCILAB_SCREEN=2560x1600x24 shot "$@" --size 2560x1440; }
 big "$neg" "$out/desktop-review-2560x1440.png" --tab levels --level 0:11,1:11 "$pos"
+big "$neg" "$out/desktop-review-dark-2560x1440.png" --tab levels --level 0:11,1:11 --theme dark "$pos"
 big "$pos" "$out/desktop-live-2560x1440.png" --live rig
 big "$neg" "$out/desktop-fit-2560x1440.png" --run fit "$pos"
 big "$root/samples/presliding_negative.flac" "$out/desktop-diagnosis-2560x1440.png" \

@@ -37,6 +37,7 @@
 #include "ui/level_table.h"
 #include "ui/live_monitor.h"
 #include "ui/plot_hover_readout.h"
+#include "ui/plot_theme.h"
 #include "ui/plot_zoom.h"
 #include "ui/record_view.h"
 #include "ui/review_model.h"
@@ -199,6 +200,7 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
           &QAction::setChecked);
   view_menu->addSeparator();
   add_zoom_actions(view_menu);
+  add_theme_menu(*view_menu);  // plots follow the palette (PlotPalettes, below)
 
   QMenu* help_menu = menuBar()->addMenu(tr("&Help"));
   help_menu->addAction(tr("&Keyboard shortcuts"), this, [this] {
@@ -226,6 +228,7 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   resizeDocks({dock}, {std::max(400, size.width() * 2 / 5)}, Qt::Horizontal);
   setAcceptDrops(true);
   new PlotHoverReadouts(this);  // the value under the mouse on every plot
+  new PlotPalettes(this);
 }
 
 void MainWindow::add_zoom_actions(QMenu* menu) {

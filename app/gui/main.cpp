@@ -2,7 +2,8 @@
 // all are analysed for the review, and those not of a random or other non-stepped test join the fit
 // and diagnosis panel); `oscilab --session FILE`
 // opens a saved session. The view options (--cursor T, --window T0:T1, --level R:L,...,
-// --tab levels|cycles|rfs|annotations, --mark T:NOTE, --hide-panel) set up what the window shows;
+// --tab levels|cycles|rfs|annotations, --mark T:NOTE, --hide-panel, --theme dark) set up what the
+// window shows;
 // `--screenshot OUT.png ...` runs the app as a script for a picture of it (window_script.h).
 #include <cstdio>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDockWidget>
+#include <QMenu>
 #include <QStatusBar>
 #include <QTabWidget>
 
@@ -61,8 +63,10 @@ int main(int argc, char** argv) {
       "mark", "Annotate the recording shown at <t> seconds with a note (t:note; repeatable).",
       "t:note");
   const QCommandLineOption hide_panel_option("hide-panel", "Hide the fit and diagnosis panel.");
+  const QCommandLineOption theme_option(
+      "theme", "Colour scheme, as View > Theme: system | light | dark.", "theme");
   parser.addOptions({session_option, cursor_option, window_option, level_option, tab_option,
-                     mark_option, hide_panel_option});
+                     mark_option, hide_panel_option, theme_option});
   oscilab::gui::WindowScript::add_options(parser);
   parser.process(app);
 
@@ -73,6 +77,10 @@ int main(int argc, char** argv) {
   if (script.active()) script.size_window(window);
   if (parser.isSet(hide_panel_option)) {
     if (auto* dock = window.findChild<QDockWidget*>("identification_dock")) dock->hide();
+  }
+  if (auto* themes = window.findChild<QMenu*>("theme_menu"); themes && parser.isSet(theme_option)) {
+    const int index = QStringList{"system", "light", "dark"}.indexOf(parser.value(theme_option));
+    if (index >= 0) themes->actions().at(index)->trigger();
   }
   window.show();
   if (script.active()) script.prepare(window);

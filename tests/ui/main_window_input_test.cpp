@@ -4,7 +4,8 @@
 // for review and joins the fit set only when the offer is clicked; the keyboard zooms the plot
 // under the mouse in and out, undoes the last zoom and resets it; Alt+Down and Alt+Up step
 // through the level table; Help ▸ Keyboard shortcuts lists the keys; the review's plots read out
-// the value under the mouse; every text in the window spells its symbols and units one way.
+// the value under the mouse; every text in the window spells its symbols and units one way; the
+// plots follow a dark palette.
 #include <memory>
 
 #include <QAbstractButton>
@@ -14,6 +15,7 @@
 #include <QDropEvent>
 #include <QGroupBox>
 #include <QLabel>
+#include <QMenu>
 #include <QMimeData>
 #include <QMouseEvent>
 #include <QPushButton>
@@ -280,6 +282,51 @@ class MainWindowInputTest : public QObject {
         QVERIFY2(!text.contains(QLatin1String(ascii)), qPrintable(ascii + (": " + text)));
       }
     }
+  }
+
+  // The plots follow the palette: a dark one (View ▸ Theme ▸ Dark, or the system's) draws them
+  // dark (background, axes, tick labels), a colour a plot chose itself stays, and System brings
+  // back the light default.
+  void plotsFollowADarkPalette() {
+    auto window = shown_window();
+    QVERIFY(QTest::qWaitForWindowExposed(window.get()));
+    QVERIFY(window->open_recording(kSamples + "stepped_positive.flac"));
+    QCustomPlot* cycles = window->review_view()->cycle_plot();
+    QCustomPlot* record = window->record_view()->plot();
+    const auto background = [](QCustomPlot* plot) {
+      return plot->toPixmap(200, 150).toImage().pixelColor(1, 1);  // outside the axes
+    };
+    QCOMPARE(background(record), QColor(Qt::white));
+    const QColor channel_title =
+        qobject_cast<QCPTextElement*>(record->plotLayout()->elementAt(0))->textColor();
+    QMenu* themes = window->findChild<QMenu*>("theme_menu");
+    QVERIFY(themes != nullptr && themes->actions().size() == 3);
+    themes->actions().at(2)->trigger();  // Dark
+    QApplication::processEvents();
+    const QPalette dark = QApplication::palette();
+    QVERIFY(dark.color(QPalette::Base).lightness() < 80);
+    for (QCustomPlot* plot : {cycles, record}) {
+      QCOMPARE(background(plot), dark.color(QPalette::Base));
+      QCOMPARE(plot->xAxis->tickLabelColor(), dark.color(QPalette::Text));
+      QCOMPARE(plot->xAxis->basePen().color(), dark.color(QPalette::Text));
+    }
+    QCOMPARE(qobject_cast<QCPTextElement*>(record->plotLayout()->elementAt(0))->textColor(),
+             channel_title);  // the channel's own colour
+    // A plot rebuilt under the dark palette (another recording shown: new axis rects) is dark.
+    QVERIFY(window->open_recording(kSamples + "stepped_negative.flac"));
+    record->replot();
+    QCOMPARE(record->axisRect(0)->axis(QCPAxis::atBottom)->tickLabelColor(),
+             dark.color(QPalette::Text));
+    themes->actions().at(0)->trigger();  // System: the palette the application started with
+    QApplication::processEvents();
+    QCOMPARE(background(record), QColor(Qt::white));
+    QCOMPARE(record->xAxis->tickLabelColor(), QColor(Qt::black));
+    // A plot of its own, given a dark palette directly, follows it too.
+    QCustomPlot alone;
+    alone.show();
+    alone.setPalette(dark);
+    QApplication::processEvents();
+    QCOMPARE(background(&alone), dark.color(QPalette::Base));
   }
 
   void helpListsTheShortcuts() {
