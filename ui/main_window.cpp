@@ -138,12 +138,14 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   analysis_progress_->hide();
   fit_set_offer_ = new QPushButton;
   fit_set_offer_->setObjectName("fit_set_offer");
-  fit_set_offer_->setToolTip(tr("Add the recording just made to the fit and diagnosis panel"));
+  fit_set_offer_->setToolTip(tr("Add the recordings just made to the fit and diagnosis panel"));
   fit_set_offer_->hide();
   connect(fit_set_offer_, &QPushButton::clicked, this, [this] {
-    identification_panel_->add_recording(offered_path_.toStdString());
+    for (const QString& path : offered_paths_)
+      identification_panel_->add_recording(path.toStdString());
     fit_set_offer_->hide();
-    statusBar()->showMessage(tr("%1: added to the fit set").arg(offered_path_));
+    statusBar()->showMessage(tr("Added to the fit set: %1").arg(offered_paths_.join(", ")));
+    offered_paths_.clear();
   });
   statusBar()->addPermanentWidget(fit_set_offer_);
   statusBar()->addPermanentWidget(analysis_label_);
@@ -302,8 +304,10 @@ void MainWindow::open_live_recording(const QString& path) {
     statusBar()->showMessage(tr("Recorded %1: opened for review").arg(path));
     return;
   }
-  offered_path_ = path;
-  fit_set_offer_->setText(tr("Add %1 to the fit set").arg(QFileInfo(path).fileName()));
+  if (!offered_paths_.contains(path)) offered_paths_ << path;  // each recording until added
+  fit_set_offer_->setText(offered_paths_.size() == 1
+                              ? tr("Add %1 to the fit set").arg(QFileInfo(path).fileName())
+                              : tr("Add %1 recordings to the fit set").arg(offered_paths_.size()));
   fit_set_offer_->show();
   statusBar()->showMessage(tr("Recorded %1: opened for review, not in the fit set").arg(path));
 }

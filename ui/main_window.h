@@ -135,7 +135,8 @@ class MainWindow : public QMainWindow {
   /// shortcuts shows them).
   QStringList shortcut_lines() const;
   /// Shown in the status bar after a live recording finished: it opens for review but joins the
-  /// fit set only when this is clicked.
+  /// fit set only when this is clicked ("Add NAME to the fit set", or "Add N recordings …" for
+  /// the recordings made since the last click).
   QPushButton* fit_set_offer_button() const { return fit_set_offer_; }
 
  Q_SIGNALS:
@@ -205,7 +206,7 @@ class MainWindow : public QMainWindow {
   QAction* next_level_action_ = nullptr;
   QAction* previous_level_action_ = nullptr;
   QPushButton* fit_set_offer_ = nullptr;
-  QString offered_path_;  // the live recording fit_set_offer_ would add
+  QStringList offered_paths_;  // the live recordings fit_set_offer_ would add
   ExportMenu* export_menu_ = nullptr;
 };
 

@@ -479,7 +479,8 @@ class LiveMonitorTest : public QObject {
 
   // The end-to-end goal: a whole test in the app from the virtual rig to a fitted model. The
   // rig runs a stepped sine in each well (as fast as it goes) and records it; each finished
-  // recording opens for review and joins the fit panel; a fit of both runs ends, and the live
+  // recording opens for review and both join the fit panel when its offer in the status bar is
+  // taken; a fit of both runs ends, and the live
   // EDC plot then draws the fitted model, whose θ reproduces the rig's own friction within the
   // accuracy a short, noisy test allows.
   void wholeTestFromTheRigToAFittedModel() {
@@ -504,6 +505,10 @@ class LiveMonitorTest : public QObject {
       monitor->stop();
     }
     oscilab::ui::IdentificationPanel* panel = window.identification_panel();
+    QVERIFY(panel->recordings().empty());  // not without the user's say
+    QCOMPARE(window.fit_set_offer_button()->text(), QString("Add 2 recordings to the fit set"));
+    QTest::mouseClick(window.fit_set_offer_button(), Qt::LeftButton);
+    QCOMPARE(panel->recordings().size(), std::size_t{2});
     panel->set_fit_settings("cmaes", 600, 100, 20);
     QSignalSpy finished(panel, &oscilab::ui::IdentificationPanel::job_finished);
     panel->start_fit();

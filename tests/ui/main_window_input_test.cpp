@@ -183,6 +183,14 @@ class MainWindowInputTest : public QObject {
     // A recording opened with File ▸ Open still joins at once.
     QVERIFY(window.open_recording(kSamples + "stepped_negative.flac"));
     QCOMPARE(window.identification_panel()->recordings().size(), std::size_t{2});
+    // Two recordings made before the offer is taken: one click adds both.
+    MainWindow second;
+    second.set_interactive_errors(false);
+    Q_EMIT second.live_monitor()->recording_finished(path);
+    Q_EMIT second.live_monitor()->recording_finished(kSamples + "stepped_negative.flac");
+    QCOMPARE(second.fit_set_offer_button()->text(), QString("Add 2 recordings to the fit set"));
+    QTest::mouseClick(second.fit_set_offer_button(), Qt::LeftButton);
+    QCOMPARE(second.identification_panel()->recordings().size(), std::size_t{2});
   }
 
   void zoomKeysZoomUndoAndReset() {
