@@ -15,6 +15,7 @@
 #include <QDropEvent>
 #include <QGroupBox>
 #include <QLabel>
+#include <QLineEdit>
 #include <QMenu>
 #include <QMimeData>
 #include <QMouseEvent>
@@ -226,6 +227,15 @@ class MainWindowInputTest : public QObject {
     QTest::keyClick(window.get(), Qt::Key_Z, Qt::ControlModifier);
     QCOMPARE(edc->xAxis->range(), x);
     QCOMPARE(edc->yAxis->range(), y);
+    // In a text field Backspace and Ctrl+Z edit the text, not the zoom.
+    auto* edit = new QLineEdit(window.get());
+    edit->show();
+    edit->setFocus();
+    QTRY_VERIFY(edit->hasFocus());
+    QTest::keyClicks(edit, "ab");
+    QTest::keyClick(edit, Qt::Key_Backspace);
+    QCOMPARE(edit->text(), QString("a"));
+    QCOMPARE(time_span(*window), whole);
   }
 
   void altArrowsStepThroughTheLevels() {
