@@ -108,14 +108,6 @@ LevelResponse responses_at(const Model& model, double freq_hz, bool positive_wel
   const Branch branch = continue_branch(model, options);
   out.newton_iterations += branch.newton_iterations;
   std::size_t next = solved;
-  for (std::size_t i = 1; i < branch.points.size(); ++i) {
-    const double f0 = branch.points[i].f0_n;
-    if (!out.crossed_fold && f0 < branch.points[i - 1].f0_n) {
-      out.crossed_fold = true;
-      out.fold_band_low_n = f0;
-    }
-    if (out.crossed_fold) out.fold_band_low_n = std::min(out.fold_band_low_n, f0);
-  }
   for (const BranchPoint& point : branch.points) {
     if (next < levels_n.size() &&
         std::abs(point.f0_n - levels_n[next]) <= 1e-12 * levels_n.back() &&
@@ -151,16 +143,15 @@ double z1_abs(const HarmonicBalance& hbm, const Eigen::VectorXd& x) {
 void prefer_measured_branch(const Model& model, double freq_hz, const HbmOptions& hbm_options,
                             const std::vector<double>& measured, LevelResponse& out) {
   const std::size_t n = out.coefficients.size();
-  // Only a sweep that crossed a fold (its arclength run turned back in f0) has levels with a
-  // second stable response below it; elsewhere the branch followed down is the swept one.
-  if (out.status != JobStatus::Ok || !out.crossed_fold || measured.size() != n || n < 2) return;
+  // Only a sweep that crossed a fold (it handed over to arclength continuation) has levels with
+  // a second stable response below it; elsewhere the branch followed down is the swept one.
+  if (out.status != JobStatus::Ok || !out.used_arclength || measured.size() != n || n < 2) return;
   HarmonicBalance hbm(model, freq_hz, hbm_options);
   const auto off = [&](const Eigen::VectorXd& x, std::size_t k) {
     return std::abs(z1_abs(hbm, x) - measured[k]);
   };
   std::size_t lowest = n;
   for (std::size_t k = 0; k + 1 < n; ++k) {
-    if (out.f0_n[k] < out.fold_band_low_n) continue;  // one response only below the band
     if (measured[k] > 0.0 && off(out.coefficients[k], k) > kBranchMismatch * measured[k]) {
       lowest = k;
       break;

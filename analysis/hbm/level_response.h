@@ -23,11 +23,7 @@ struct LevelResponse {
   int newton_iterations = 0;
   bool used_arclength = false;  // the fast path failed and a full continuation was run
   int harmonics = 0;            // H of the responses (more than asked when a contact rings)
-  bool crossed_fold = false;    // the arclength run turned back in f0 (a jump between levels)
-  /// With crossed_fold: the lowest f0 the branch returned to after turning back (its lower fold);
-  /// only levels from there up can have a second stable response.
-  double fold_band_low_n = 0.0;
-  int branch_switched = 0;  // levels taken from the top level's branch followed down
+  int branch_switched = 0;      // levels taken from the top level's branch followed down
 };
 
 /// The most harmonics level_response() raises H to for a ringing contact.
@@ -52,8 +48,8 @@ int contact_resolving_harmonics(const Model& model, double freq_hz, bool positiv
 ///
 /// With `measured_z1_abs_m` (the measured |Z1| of each level, as many as levels; empty: none)
 /// the responses follow the branch the measurement was taken on where the model has two: when the
-/// sweep crossed a fold (crossed_fold) and a level's swept |Z1| is off the measured one by more
-/// than kBranchMismatch of it, the branch of the top level is followed down by natural continuation
+/// sweep crossed a fold and a level's swept |Z1| is off the measured one by more than
+/// kBranchMismatch of it, the branch of the top level is followed down by natural continuation
 /// (stopping at its fold, where the sign of det ∂r/∂x flips), and each mismatched level takes that
 /// solution when it is another branch (|Z1| apart by more than kBranchMismatch) closer to the
 /// measured. Between the two folds of a jump both branches are stable responses of the model; a
