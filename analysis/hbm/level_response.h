@@ -48,7 +48,8 @@ int contact_resolving_harmonics(const Model& model, double freq_hz, bool positiv
 ///
 /// With `measured_z1_abs_m` (the measured |Z1| of each level, as many as levels; empty: none)
 /// the responses follow the branch the measurement was taken on where the model has two: when the
-/// sweep crossed a fold and a level's swept |Z1| is off the measured one by more than
+/// sweep handed over to arclength continuation (a fold ahead, or Newton failing even in small
+/// steps) and a level's swept |Z1| is off the measured one by more than
 /// kBranchMismatch of it, the branch of the top level is followed down by natural continuation
 /// (stopping at its fold, where the sign of det ∂r/∂x flips), and each mismatched level takes that
 /// solution when it is another branch (|Z1| apart by more than kBranchMismatch) closer to the
