@@ -160,11 +160,10 @@ void prefer_measured_branch(const Model& model, double freq_hz, const HbmOptions
   if (lowest == n) return;
   Eigen::VectorXd previous = out.coefficients[n - 1], before_previous;
   double previous_f0 = out.f0_n[n - 1], before_previous_f0 = 0.0;
-  Eigen::VectorXd r;
-  Eigen::MatrixXd jacobian;
-  hbm.residual_and_jacobian(previous, previous_f0, r, jacobian);
-  const double det = jacobian.partialPivLu().determinant();
-  const int sign = det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
+  // The branch's side of its fold: the Jacobian's sign at the top level (already converged, so
+  // Newton only reports it).
+  Eigen::VectorXd top = previous;
+  const int sign = hbm.solve(top, previous_f0).jacobian_sign;
   for (std::size_t k = n - 1; k-- > lowest;) {
     const double f0 = out.f0_n[k];
     Eigen::VectorXd x = before_previous.size() == 0
