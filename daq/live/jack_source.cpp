@@ -321,9 +321,27 @@ void JackSource::Impl::drain(bool wait_for_room) {
     }
     // Frames that never came (an xrun that dropped periods, a ring overrun).
     const auto jump = static_cast<std::int32_t>(slot->frame_time - next_frame);
-    if (jump > 0 && jump <= static_cast<std::int64_t>(kMaxBridgeS * rate_in)) {
+    const auto within_bridge = [&](std::int64_t frames) {
+      return frames <= static_cast<std::int64_t>(kMaxBridgeS * rate_in);
+    };
+    std::uint32_t repeated = 0;  // the slot's leading frames that were fed already
+    if (jump > 0 && within_bridge(jump)) {
       bridge(static_cast<std::uint64_t>(jump), wait_for_room);
-    } else if (jump != 0) {  // far ahead, or back: a new segment after what was made
+    } else if (jump < 0 && within_bridge(-static_cast<std::int64_t>(jump))) {
+      // Frames the clock says were fed already: a period the server ran again after an xrun
+      // (JACK 2 does, the frame clock one period back). The stream keeps its clock: the repeated
+      // frames are skipped and the stretch around them, whose data an xrun makes doubtful,
+      // withheld like an xrun's.
+      const auto back = static_cast<std::uint64_t>(-static_cast<std::int64_t>(jump));
+      repeated = static_cast<std::uint32_t>(std::min<std::uint64_t>(back, slot->frames));
+      const std::uint64_t margin = back + 2 * static_cast<std::uint64_t>(period);
+      withhold_frames(segment_in > margin ? segment_in - margin : 0,
+                      segment_in + (slot->frames - repeated) + period);
+      if (repeated == slot->frames) {
+        client.ring().pop();
+        continue;
+      }
+    } else if (jump != 0) {  // far ahead, or far back: a new segment after what was made
       const std::uint64_t end = out_index(segment_in);
       owner.post_event({time_of(end), EventKind::Discontinuity,
                         "the JACK frame clock jumped by " + std::to_string(jump) + " frames"});
@@ -332,7 +350,7 @@ void JackSource::Impl::drain(bool wait_for_room) {
       begin_segment(end + 1 + static_cast<std::uint64_t>(std::llround(ahead_s * rate_out)));
       have_first_frame = true;
     }
-    next_frame = slot->frame_time + slot->frames;
+    next_frame = slot->frame_time + slot->frames;  // past what was fed, repeated frames or not
     // Ports without a connection give silence: counted once per loss, their frames withheld.
     const std::uint32_t lost = slot->disconnected & ~last_disconnected;
     const std::uint32_t back = last_disconnected & ~slot->disconnected;
@@ -353,9 +371,10 @@ void JackSource::Impl::drain(bool wait_for_room) {
       }
     }
     last_disconnected = slot->disconnected;
-    if (slot->disconnected != 0) withhold_frames(segment_in, segment_in + slot->frames);
+    const std::uint32_t fresh = slot->frames - repeated;
+    if (slot->disconnected != 0) withhold_frames(segment_in, segment_in + fresh);
     check_clipping(*slot);
-    feed(slot->data.data(), slot->frames, wait_for_room);
+    feed(slot->data.data() + static_cast<std::size_t>(repeated) * channels, fresh, wait_for_room);
     client.ring().pop();
   }
 }
