@@ -53,8 +53,8 @@ StreamSetup stream_setup(const MeasurementChannels& channels) {
   return setup;
 }
 
-RecordAnalysis analyze_record(const MeasurementChannels& channels,
-                              const PipelineSettings& settings) {
+RecordAnalysis analyze_record(const MeasurementChannels& channels, const PipelineSettings& settings,
+                              const CancelToken& cancel) {
   settings.validate();
   if (channels.base.size() != channels.mass.size() || channels.base.size() < 16) {
     throw InputError(channels.name + ": base and mass channels need the same, non-trivial length");
@@ -120,6 +120,7 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
     constexpr Eigen::Index kChunk = 8192;
     const Eigen::Index n = filled.base.size();
     for (Eigen::Index first = 0; first < n; first += kChunk) {
+      if (cancel.cancelled()) return out;
       pipeline.push(first, filled.base.data() + first, filled.mass.data() + first,
                     static_cast<int>(std::min(kChunk, n - first)));
     }
@@ -134,6 +135,7 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels,
       out.notes.push_back(std::move(note));
     }
   }
+  if (cancel.cancelled()) return out;
   out.motion = motion_signals(filled, settings, mass);
   // The zero-phase filters spread a bad stretch over about one period of the integration
   // high-pass on either side: leave those restoring-force samples out (NaN, skipped by the
@@ -202,7 +204,7 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
   parallel_for(records.size(), 0, [&](std::size_t i) {
     if (cancel.cancelled()) return;
     try {
-      campaign.records[i] = analyze_record(records[i], settings);
+      campaign.records[i] = analyze_record(records[i], settings, cancel);
     } catch (...) {
       errors[i] = std::current_exception();
     }
@@ -237,6 +239,12 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
     } catch (const InputError& error) {
       campaign.rfs_message = error.what();
     }
+  }
+  if (cancel.cancelled()) {  // during the slices: what was made is dropped as above
+    campaign = CampaignAnalysis();
+    campaign.settings = settings;
+    campaign.status = JobStatus::Cancelled;
+    return campaign;
   }
   if (progress) progress(1.0);
   return campaign;

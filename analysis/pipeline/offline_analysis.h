@@ -48,9 +48,10 @@ StreamSetup stream_setup(const MeasurementChannels& channels);
 
 /// The offline analysis of one record: detect the excitation when the sidecar does not say it,
 /// run the measurement pipeline over the whole record as one block, and compute the time
-/// signals of the restoring surface.
-RecordAnalysis analyze_record(const MeasurementChannels& channels,
-                              const PipelineSettings& settings);
+/// signals of the restoring surface. A cancelled token stops it between chunks of samples; what
+/// it returns then is incomplete and only good for discarding.
+RecordAnalysis analyze_record(const MeasurementChannels& channels, const PipelineSettings& settings,
+                              const CancelToken& cancel = CancelToken());
 
 /// Why a stepped-sine record has no level that measures anything (LevelResult::measured: every
 /// level flagged base-constant, mass-constant, negative-edc or non-finite, or without steady
