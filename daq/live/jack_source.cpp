@@ -329,14 +329,11 @@ void JackSource::Impl::drain(bool wait_for_room) {
       bridge(static_cast<std::uint64_t>(jump), wait_for_room);
     } else if (jump < 0 && within_bridge(-static_cast<std::int64_t>(jump))) {
       // Frames the clock says were fed already: a period the server ran again after an xrun
-      // (JACK 2 does, the frame clock one period back). The stream keeps its clock: the repeated
-      // frames are skipped and the stretch around them, whose data an xrun makes doubtful,
-      // withheld like an xrun's.
+      // (JACK 2 does under load, the frame clock one period back). The stream keeps its clock:
+      // the repeated frames are skipped, the rest fed; the xrun itself is withheld by its own
+      // report (handle_xruns).
       const auto back = static_cast<std::uint64_t>(-static_cast<std::int64_t>(jump));
       repeated = static_cast<std::uint32_t>(std::min<std::uint64_t>(back, slot->frames));
-      const std::uint64_t margin = back + 2 * static_cast<std::uint64_t>(period);
-      withhold_frames(segment_in > margin ? segment_in - margin : 0,
-                      segment_in + (slot->frames - repeated) + period);
       if (repeated == slot->frames) {
         client.ring().pop();
         continue;
