@@ -65,6 +65,7 @@ class Continuer {
     jacobian_.resize(n_, n_);
     g_.resize(n_);
     g_y_.resize(n_, n_ + 1);
+    e_p_ = Eigen::VectorXd::Unit(n_ + 1, n_);
   }
 
   Branch run(const ProgressFn& progress, const CancelToken& cancel) {
@@ -263,6 +264,30 @@ class Continuer {
     return out;
   }
 
+  // A point found within an accepted step, σ along it.
+  struct Insert {
+    double sigma;
+    double lambda;
+    BranchPoint point;
+  };
+  // An accepted step from y (tangent t) to `next` (tangent t_next), of length ds, starting at
+  // `arclength` along the branch.
+  struct Step {
+    const Eigen::VectorXd& y;
+    const Eigen::VectorXd& t;
+    const Solved& next;
+    const Eigen::VectorXd& t_next;
+    double ds;
+    double arclength;
+  };
+  Solved start_point(const CancelToken& cancel);
+  bool land(const Step& step, double lambda, PointMarker marker, std::vector<Insert>& inserts);
+  void locate_events(const Step& step, const BranchPoint& here, const BranchPoint& next_point,
+                     double lambda_end, double direction, std::vector<Insert>& inserts);
+  static void append(Branch& branch, std::vector<Insert> inserts, bool passes_end,
+                     double lambda_end, double direction);
+  double next_step_size(double ds, int iterations, double turn_rad) const;
+
   ContinuationOptions options_;
   HarmonicBalance hbm_;
   FloquetAnalysis floquet_;
@@ -270,27 +295,18 @@ class Continuer {
   double z_star_ = 0.0, p_ref_ = 1.0, f_ref_ = 1.0, z_ref_ = 1.0, f0_ = 0.0;
   Eigen::VectorXd r_, dr_dp_, g_;
   Eigen::MatrixXd jacobian_, g_y_;
+  Eigen::VectorXd
+      e_p_;  // the parameter's unit vector in y: the corrector's direction at a fixed value
 };
 
-Branch Continuer::run_steps(const ProgressFn& progress, const CancelToken& cancel) {
-  Branch branch;
-  branch.parameter = options_.parameter;
-  branch.hbm = options_.hbm;
-  branch.samples = hbm_.samples();
-  branch.positive_well = options_.positive_well;
-
-  const double direction = options_.end > options_.start ? 1.0 : -1.0;
-  const double lambda_start = options_.start / p_ref_, lambda_end = options_.end / p_ref_;
-  Eigen::VectorXd e_p = Eigen::VectorXd::Zero(n_ + 1);
-  e_p[n_] = 1.0;
-
-  // Starting point: the given coefficients or the linear response about the well, corrected at
-  // the fixed start value. From rest (f0 = 0) the equilibrium itself is the exact solution.
+// The first point: the given coefficients or the linear response about the well, corrected at
+// the fixed start value. From rest (f0 = 0) the equilibrium itself is the exact solution.
+Continuer::Solved Continuer::start_point(const CancelToken& cancel) {
   set_parameter(options_.start);
   Eigen::VectorXd x0 = options_.initial_coefficients.size() == n_
                            ? options_.initial_coefficients
                            : hbm_.linear_guess(z_star_, amplitude() ? options_.start : f0_);
-  Solved solved = correct(y_of(x0, options_.start), e_p);
+  Solved solved = correct(y_of(x0, options_.start), e_p_);
   if (!solved.ok && amplitude() && options_.start > 0.0 &&
       options_.initial_coefficients.size() != n_) {
     // Grow the response from rest instead: a continuation from f0 = 0 to the start.
@@ -303,16 +319,110 @@ Branch Continuer::run_steps(const ProgressFn& progress, const CancelToken& cance
     pre.displacement_scale_m = z_ref_;
     const Branch lead = continue_branch(hbm_.model(), pre, {}, cancel);
     if (lead.status == JobStatus::Ok && !lead.points.empty()) {
-      solved = correct(y_of(lead.points.back().coefficients, options_.start), e_p);
+      solved = correct(y_of(lead.points.back().coefficients, options_.start), e_p_);
     }
   }
+  return solved;
+}
+
+// The point of the step at parameter λ (between its ends), corrected at that fixed value from
+// the chord; kept in `inserts` when the corrector converged.
+bool Continuer::land(const Step& step, double lambda, PointMarker marker,
+                     std::vector<Insert>& inserts) {
+  const double lambda0 = step.y[n_], lambda1 = step.next.y[n_];
+  const double fraction = (lambda - lambda0) / (lambda1 - lambda0);
+  Eigen::VectorXd guess = step.y + fraction * (step.next.y - step.y);
+  guess[n_] = lambda;
+  const Solved s = correct(guess, e_p_);
+  if (s.ok) {
+    inserts.push_back(
+        {fraction * step.ds, s.y[n_],
+         make_point(s.y, s, tangent(s.g_y, step.t), marker, step.arclength + fraction * step.ds)});
+  }
+  return s.ok;
+}
+
+// Folds (the tangent's parameter component changes sign), branch points and period doublings
+// (the Floquet test functions change sign) within the step, located and kept in `inserts` when
+// they lie before the end value.
+void Continuer::locate_events(const Step& step, const BranchPoint& here,
+                              const BranchPoint& next_point, double lambda_end, double direction,
+                              std::vector<Insert>& inserts) {
+  auto keep = [&](const Located& located, PointMarker marker) {
+    if (located.ok && (located.solved.y[n_] - lambda_end) * direction <= 0.0) {
+      inserts.push_back({located.sigma, located.solved.y[n_],
+                         make_point(located.solved.y, located.solved, located.t, marker,
+                                    step.arclength + located.sigma)});
+    }
+  };
+  const Eigen::VectorXd& t = step.t;
+  if ((t[n_] > 0.0) != (step.t_next[n_] > 0.0)) {
+    keep(locate(step.y, t, step.ds, t[n_], step.t_next[n_],
+                [&](const Eigen::VectorXd&, const Solved& s) { return tangent(s.g_y, t)[n_]; }),
+         PointMarker::Fold);
+  } else if (options_.stability &&
+             (here.floquet.fold_test > 0.0) != (next_point.floquet.fold_test > 0.0)) {
+    keep(locate(step.y, t, step.ds, here.floquet.fold_test, next_point.floquet.fold_test,
+                [&](const Eigen::VectorXd& yy, const Solved&) { return fold_test(yy); }),
+         PointMarker::BranchPoint);
+  }
+  if (options_.stability &&
+      (here.floquet.flip_test > 0.0) != (next_point.floquet.flip_test > 0.0)) {
+    keep(locate(step.y, t, step.ds, here.floquet.flip_test, next_point.floquet.flip_test,
+                [&](const Eigen::VectorXd& yy, const Solved&) { return flip_test(yy); }),
+         PointMarker::PeriodDoubling);
+  }
+}
+
+// The step's inserted points onto the branch in arclength order, its events listed; beyond the
+// end value only the end point itself is kept.
+void Continuer::append(Branch& branch, std::vector<Insert> inserts, bool passes_end,
+                       double lambda_end, double direction) {
+  std::sort(inserts.begin(), inserts.end(),
+            [](const Insert& a, const Insert& b) { return a.sigma < b.sigma; });
+  for (Insert& insert : inserts) {
+    if (insert.point.marker != PointMarker::End && passes_end &&
+        (insert.lambda - lambda_end) * direction > 0.0) {
+      continue;
+    }
+    if (insert.point.marker == PointMarker::Fold ||
+        insert.point.marker == PointMarker::PeriodDoubling ||
+        insert.point.marker == PointMarker::BranchPoint) {
+      branch.events.push_back({insert.point.marker, insert.point.f0_n, insert.point.freq_hz,
+                               insert.point.measures.amp_m, branch.points.size()});
+    }
+    branch.points.push_back(std::move(insert.point));
+  }
+}
+
+// Step control: grow when the corrector converged fast and the branch turned little, shrink when
+// the corrector needed more than its target.
+double Continuer::next_step_size(double ds, int iterations, double turn_rad) const {
+  double factor = 1.0;
+  if (iterations < options_.target_iterations) factor = 1.5;
+  if (iterations > options_.target_iterations) factor = 0.7;
+  if (turn_rad > 0.5 * options_.max_turn_rad) factor = std::min(factor, 1.0);
+  return std::clamp(ds * factor, options_.min_step, options_.max_step);
+}
+
+Branch Continuer::run_steps(const ProgressFn& progress, const CancelToken& cancel) {
+  Branch branch;
+  branch.parameter = options_.parameter;
+  branch.hbm = options_.hbm;
+  branch.samples = hbm_.samples();
+  branch.positive_well = options_.positive_well;
+
+  const double direction = options_.end > options_.start ? 1.0 : -1.0;
+  const double lambda_start = options_.start / p_ref_, lambda_end = options_.end / p_ref_;
+
+  const Solved solved = start_point(cancel);
   if (!solved.ok) {
     branch.status = JobStatus::NoConvergence;
     branch.message = "no solution at the start value: " + solved.message;
     return branch;
   }
   Eigen::VectorXd y = solved.y;
-  Eigen::VectorXd t = tangent(solved.g_y, direction * e_p);
+  Eigen::VectorXd t = tangent(solved.g_y, direction * e_p_);
   double arclength = 0.0;
   branch.points.push_back(make_point(y, solved, t, PointMarker::Start, arclength));
   branch.newton_iterations += solved.iterations;
@@ -362,101 +472,31 @@ Branch Continuer::run_steps(const ProgressFn& progress, const CancelToken& cance
     ++branch.steps_accepted;
 
     // Points to insert between y and the new point: landings, located events, the end.
-    struct Insert {
-      double sigma;
-      double lambda;
-      BranchPoint point;
-    };
+    const Step step{y, t, next, t_next, ds, arclength};
     std::vector<Insert> inserts;
     const double lambda0 = y[n_], lambda1 = next.y[n_];
     const bool passes_end = (lambda1 - lambda_end) * direction >= 0.0;
-    auto land = [&](double l, PointMarker marker) {
-      const double fraction = (l - lambda0) / (lambda1 - lambda0);
-      Eigen::VectorXd guess = y + fraction * (next.y - y);
-      guess[n_] = l;
-      const Solved s = correct(guess, e_p);
-      if (s.ok) {
-        inserts.push_back(
-            {fraction * ds, s.y[n_],
-             make_point(s.y, s, tangent(s.g_y, t), marker, arclength + fraction * ds)});
-      }
-      return s.ok;
-    };
     for (double l : landing) {
-      if ((l - lambda0) * (l - lambda1) < 0.0) land(l, PointMarker::Landing);
+      if ((l - lambda0) * (l - lambda1) < 0.0) land(step, l, PointMarker::Landing, inserts);
     }
     BranchPoint next_point = make_point(next.y, next, t_next, PointMarker::None, arclength + ds);
-    const BranchPoint& here = branch.points.back();
     if (options_.locate_events) {
-      auto within = [&](const Located& located) {
-        return located.ok && (located.solved.y[n_] - lambda_end) * direction <= 0.0;
-      };
-      if ((t[n_] > 0.0) != (t_next[n_] > 0.0)) {
-        const Located fold =
-            locate(y, t, ds, t[n_], t_next[n_],
-                   [&](const Eigen::VectorXd&, const Solved& s) { return tangent(s.g_y, t)[n_]; });
-        if (within(fold)) {
-          inserts.push_back({fold.sigma, fold.solved.y[n_],
-                             make_point(fold.solved.y, fold.solved, fold.t, PointMarker::Fold,
-                                        arclength + fold.sigma)});
-        }
-      } else if (options_.stability &&
-                 (here.floquet.fold_test > 0.0) != (next_point.floquet.fold_test > 0.0)) {
-        const Located bp =
-            locate(y, t, ds, here.floquet.fold_test, next_point.floquet.fold_test,
-                   [&](const Eigen::VectorXd& yy, const Solved&) { return fold_test(yy); });
-        if (within(bp)) {
-          inserts.push_back({bp.sigma, bp.solved.y[n_],
-                             make_point(bp.solved.y, bp.solved, bp.t, PointMarker::BranchPoint,
-                                        arclength + bp.sigma)});
-        }
-      }
-      if (options_.stability &&
-          (here.floquet.flip_test > 0.0) != (next_point.floquet.flip_test > 0.0)) {
-        const Located pd =
-            locate(y, t, ds, here.floquet.flip_test, next_point.floquet.flip_test,
-                   [&](const Eigen::VectorXd& yy, const Solved&) { return flip_test(yy); });
-        if (within(pd)) {
-          inserts.push_back({pd.sigma, pd.solved.y[n_],
-                             make_point(pd.solved.y, pd.solved, pd.t, PointMarker::PeriodDoubling,
-                                        arclength + pd.sigma)});
-        }
-      }
+      locate_events(step, branch.points.back(), next_point, lambda_end, direction, inserts);
     }
-    if (passes_end && !land(lambda_end, PointMarker::End)) {
+    if (passes_end && !land(step, lambda_end, PointMarker::End, inserts)) {
       branch.status = JobStatus::NoConvergence;
       branch.message = "could not land on the end value";
       return branch;
     }
-    std::sort(inserts.begin(), inserts.end(),
-              [](const Insert& a, const Insert& b) { return a.sigma < b.sigma; });
-    for (Insert& insert : inserts) {
-      // Beyond the end only the end point itself is kept.
-      if (insert.point.marker != PointMarker::End && passes_end &&
-          (insert.lambda - lambda_end) * direction > 0.0) {
-        continue;
-      }
-      if (insert.point.marker == PointMarker::Fold ||
-          insert.point.marker == PointMarker::PeriodDoubling ||
-          insert.point.marker == PointMarker::BranchPoint) {
-        branch.events.push_back({insert.point.marker, insert.point.f0_n, insert.point.freq_hz,
-                                 insert.point.measures.amp_m, branch.points.size()});
-      }
-      branch.points.push_back(std::move(insert.point));
-    }
+    append(branch, std::move(inserts), passes_end, lambda_end, direction);
     if (passes_end) break;
 
-    // Step control: grow when the corrector converged fast and the branch turned little.
     const double turn = std::acos(std::clamp(t_next.dot(t), -1.0, 1.0));
     branch.points.push_back(std::move(next_point));
     arclength += ds;
     y = next.y;
     t = t_next;
-    double factor = 1.0;
-    if (next.iterations < options_.target_iterations) factor = 1.5;
-    if (next.iterations > options_.target_iterations) factor = 0.7;
-    if (turn > 0.5 * options_.max_turn_rad) factor = std::min(factor, 1.0);
-    ds = std::clamp(ds * factor, options_.min_step, options_.max_step);
+    ds = next_step_size(ds, next.iterations, turn);
 
     const double behind = (lambda_start - y[n_]) * direction;  // > 0: behind the start value
     const double allowed_behind = options_.stop_when_turning_back ? 1e-12
