@@ -15,6 +15,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/common/parallel_for.h"
 #include "analysis/diagnosis/candidate_trial.h"
+#include "analysis/diagnosis/diagnosis_progress.h"
 #include "analysis/diagnosis/effect_candidates.h"
 #include "analysis/diagnosis/joint_refit.h"
 #include "analysis/diagnosis/settled_model.h"
@@ -127,155 +128,6 @@ bool at_a_bound(const ModelForm& form, const Eigen::VectorXd& theta) {
 
 }  // namespace
 
-const char* to_string(DiagnosisPhase phase) {
-  switch (phase) {
-    case DiagnosisPhase::Baseline:
-      return "baseline";
-    case DiagnosisPhase::Settling:
-      return "settling";
-    case DiagnosisPhase::Candidates:
-      return "candidates";
-    case DiagnosisPhase::Finalists:
-      return "finalists";
-    case DiagnosisPhase::Accepting:
-      return "accepting";
-    case DiagnosisPhase::Done:
-      return "done";
-  }
-  return "unknown";
-}
-
-std::string DiagnosisProgress::describe() const {
-  const std::string step_text =
-      "step " + std::to_string(step) + " of at most " + std::to_string(max_steps) + ": ";
-  switch (phase) {
-    case DiagnosisPhase::Baseline:
-      return "baseline: global search, " + std::to_string(evaluations) + " of " +
-             std::to_string(baseline_budget) + " evaluations";
-    case DiagnosisPhase::Settling:
-      return step == 0 ? "settling the baseline" : step_text + "settling the model";
-    case DiagnosisPhase::Candidates:
-      return step_text + std::to_string(candidates_done) + " of " + std::to_string(candidates) +
-             " candidates refitted" + (candidate.empty() ? "" : " (last: " + candidate + ")");
-    case DiagnosisPhase::Finalists:
-      return step_text + "longer refits of the leading candidates";
-    case DiagnosisPhase::Accepting:
-      return step_text + "settling the model with " + candidate;
-    case DiagnosisPhase::Done:
-      return "done";
-  }
-  return {};
-}
-
-namespace {
-
-// Shares of a step's part of the progress: refitting the candidates, the finalists' longer
-// refits, settling the model with the accepted effect.
-constexpr double kCandidatesShare = 0.85, kFinalistsShare = 0.10;
-constexpr double kBaselineSearchEnd = 0.20, kBaselineEnd = 0.25;
-
-// The diagnosis's progress: serialises the reports of its threads, counts the evaluations of the
-// running candidates and keeps the fraction from going back.
-class ProgressTracker {
- public:
-  ProgressTracker(DiagnosisProgressFn report, const DiagnosisOptions& options)
-      : report_(std::move(report)) {
-    state_.max_steps = options.max_steps;
-    state_.baseline_budget = options.baseline_evaluations;
-  }
-
-  void baseline_search(long evaluations) {
-    update([&](DiagnosisProgress& p) {
-      p.evaluations = evaluations;
-      p.fraction = kBaselineSearchEnd *
-                   std::min(1.0, static_cast<double>(evaluations) /
-                                     static_cast<double>(std::max(1L, p.baseline_budget)));
-    });
-  }
-  // A phase that starts at `step` (0: the baseline's) with `evaluations` done so far.
-  void phase(DiagnosisPhase phase, int step, long evaluations, const std::string& candidate = {}) {
-    update([&](DiagnosisProgress& p) {
-      p.phase = phase;
-      p.step = step;
-      p.evaluations = evaluations;
-      if (!candidate.empty()) p.candidate = candidate;
-      done_before_ = evaluations;
-      if (phase == DiagnosisPhase::Done) {
-        p.fraction = 1.0;
-      } else if (step == 0) {
-        p.fraction = phase == DiagnosisPhase::Settling ? kBaselineSearchEnd : 0.0;
-      } else if (phase == DiagnosisPhase::Finalists) {
-        p.fraction = step_start(step) + kCandidatesShare * step_width();
-      } else if (phase == DiagnosisPhase::Accepting) {
-        p.fraction = step_start(step) + (kCandidatesShare + kFinalistsShare) * step_width();
-      }
-    });
-  }
-  void baseline_settled() {
-    update([&](DiagnosisProgress& p) { p.fraction = kBaselineEnd; });
-  }
-  void candidates(int step, int count, long evaluations) {
-    spent_.assign(static_cast<std::size_t>(count), 0);
-    budget_ = 1;
-    phase(DiagnosisPhase::Candidates, step, evaluations);
-    update([&](DiagnosisProgress& p) {
-      p.candidates = count;
-      p.candidates_done = 0;
-      p.candidate.clear();
-      p.fraction = step_start(step);
-    });
-  }
-  void set_trial_budget(long budget) { budget_ = std::max(1L, budget); }
-  // Candidate `slot` has spent `evaluations` so far.
-  void candidate_spent(std::size_t slot, long evaluations) {
-    update([&](DiagnosisProgress& p) {
-      if (slot < spent_.size()) spent_[slot] = evaluations;
-      account(p);
-    });
-  }
-  void candidate_done(std::size_t slot, const std::string& label) {
-    update([&](DiagnosisProgress& p) {
-      ++p.candidates_done;
-      p.candidate = label;
-      if (slot < spent_.size()) spent_[slot] = std::max(spent_[slot], budget_);
-      account(p);
-    });
-  }
-
- private:
-  double step_width() const { return (1.0 - kBaselineEnd) / std::max(1, state_.max_steps); }
-  double step_start(int step) const { return kBaselineEnd + (step - 1) * step_width(); }
-  // The candidates' evaluations and share of the step from what each has spent.
-  void account(DiagnosisProgress& p) const {
-    long total = 0;
-    double share = 0.0;
-    for (long s : spent_) {
-      total += s;
-      share += std::min(1.0, static_cast<double>(s) / static_cast<double>(budget_));
-    }
-    p.evaluations = done_before_ + total;
-    p.fraction =
-        step_start(p.step) + kCandidatesShare * step_width() * share /
-                                 static_cast<double>(std::max<std::size_t>(1, spent_.size()));
-  }
-  template <class Change>
-  void update(Change change) {
-    const std::lock_guard lock(mutex_);
-    const double before = state_.fraction;
-    change(state_);
-    state_.fraction = std::clamp(std::max(before, state_.fraction), 0.0, 1.0);
-    if (report_) report_(state_);
-  }
-
-  DiagnosisProgressFn report_;
-  std::mutex mutex_;
-  DiagnosisProgress state_;
-  std::vector<long> spent_;
-  long budget_ = 1, done_before_ = 0;
-};
-
-}  // namespace
-
 namespace {
 
 // One diagnosis: the baseline, then steps of candidates until nothing is accepted or the model
@@ -285,7 +137,7 @@ class DiagnosisRun {
  public:
   DiagnosisRun(const CampaignAnalysis& campaign, const ModelForm& form,
                const DiagnosisOptions& options, const CancelToken& cancel,
-               ProgressTracker& progress)
+               DiagnosisProgressTracker& progress)
       : campaign_(campaign),
         form_(form),
         options_(options),
@@ -329,7 +181,7 @@ class DiagnosisRun {
   const ModelForm& form_;
   const DiagnosisOptions& options_;
   const CancelToken& cancel_;
-  ProgressTracker& progress_;
+  DiagnosisProgressTracker& progress_;
   const EdcDataset data_;
   const int n_;
   EdcCostSettings base_cost_;
@@ -622,7 +474,7 @@ DiagnosisResult diagnose(const CampaignAnalysis& campaign, const ModelForm& form
   const auto start = std::chrono::steady_clock::now();
   const DeadlineToken deadline(outer_cancel, options.max_seconds);
   const CancelToken& cancel = deadline.token();
-  ProgressTracker tracker(progress, options);
+  DiagnosisProgressTracker tracker(progress, options);
   DiagnosisRun run(campaign, form, options, cancel, tracker);
   run.baseline();
   for (int step = 1; step <= options.max_steps && !cancel.cancelled(); ++step) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 
@@ -69,25 +70,37 @@ const std::vector<std::string>& effect_vocabulary() {
   return names;
 }
 
-std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcDataset& data) {
-  double s_max = 0.0, z_max = 0.0, f0_max = 0.0, freq_hz = 0.0;
+namespace {
+
+// The data's scales the candidates' bounds come from: the largest EDC, amplitude and forcing, and
+// the forcing's angular frequency.
+struct DataScales {
+  double s_max = 0.0, z_max = 0.0, f0_max = 0.0, omega = 0.0;
+};
+
+DataScales data_scales(const EdcDataset& data) {
+  DataScales d;
+  double freq_hz = 0.0;
   for (const EdcGroup& g : data.groups) {
     freq_hz = std::max(freq_hz, g.freq_hz);
     for (const MeasuredLevel& m : g.levels) {
-      s_max = std::max(s_max, m.edc_j);
-      z_max = std::max(z_max, m.amplitude_m);
-      f0_max = std::max(f0_max, m.f0_n);
+      d.s_max = std::max(d.s_max, m.edc_j);
+      d.z_max = std::max(d.z_max, m.amplitude_m);
+      d.f0_max = std::max(d.f0_max, m.f0_n);
     }
   }
-  const double omega = 2.0 * std::numbers::pi * freq_hz;
-  if (!(z_max > 0.0)) z_max = 1e-3;
-  if (!(s_max > 0.0)) s_max = 1e-3;
-  if (!(f0_max > 0.0)) f0_max = 1.0;
-  std::vector<EffectCandidate> out;
-  const auto add = [&](EffectCandidate c) {
-    if (!form_has(form, c.term->type())) out.push_back(std::move(c));
-  };
+  d.omega = 2.0 * std::numbers::pi * freq_hz;
+  if (!(d.z_max > 0.0)) d.z_max = 1e-3;
+  if (!(d.s_max > 0.0)) d.s_max = 1e-3;
+  if (!(d.f0_max > 0.0)) d.f0_max = 1.0;
+  return d;
+}
 
+// Added dissipation: Coulomb friction and viscous, quadratic and cubic damping, each bounded by
+// what would dissipate twice the largest EDC at the largest amplitude.
+void add_dissipation_candidates(const ModelForm& form, const DataScales& d,
+                                const std::function<void(EffectCandidate)>& add) {
+  const double s_max = d.s_max, z_max = d.z_max, f0_max = d.f0_max, omega = d.omega;
   {
     // Coulomb dissipates 4 F_c Z: F_c up to twice the largest EDC over 4 Z_max. On top of the
     // paper's f_d(z) it is a position-independent part (γ of eq. (6) absorbs much of it).
@@ -122,6 +135,12 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
          log_scan(c3_max, 6),
          4.0});
   }
+}
+
+// Friction laws on top of the form's: a Stribeck excess and a Dahl presliding element.
+void add_friction_law_candidates(const DataScales& d,
+                                 const std::function<void(EffectCandidate)>& add) {
+  const double s_max = d.s_max, z_max = d.z_max, f0_max = d.f0_max;
   {
     // Stribeck excess: force up to the largest forcing, velocity scale over two decades.
     EffectCandidate c{"stribeck-friction",
@@ -161,6 +180,12 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
     }
     add(std::move(c));
   }
+}
+
+// Presliding as the friction's own regime, when the form has a sliding friction.
+void add_friction_regime_candidate(const ModelForm& form, const DataScales& d,
+                                   std::vector<EffectCandidate>& out) {
+  const double z_max = d.z_max;
   if (form_has_sliding_friction(form)) {
     // Presliding as the friction's own regime (eqs. (5)–(6) with a presliding length δ): the
     // contact's Coulomb part turns into a Dahl state of the same magnitude f_d(z). δ from 1 µm
@@ -182,6 +207,12 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
     }
     out.push_back(std::move(c));
   }
+}
+
+// Stiffness powers the form does not identify already.
+void add_stiffness_candidates(const ModelForm& form, const DataScales& d,
+                              std::vector<EffectCandidate>& out) {
+  const double z_max = d.z_max, f0_max = d.f0_max;
   // Stiffness powers c z^p: bounded so that c Z_ref^p stays within ten times the largest forcing,
   // with Z_ref the largest |z| the wells reach (the wells' positions plus the largest amplitude):
   // a stiffness power far stronger than the forcing would have moved the wells out of the test.
@@ -208,6 +239,20 @@ std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcD
       c.scan.push_back(Eigen::VectorXd::Constant(1, f * bound));
     out.push_back(std::move(c));
   }
+}
+
+}  // namespace
+
+std::vector<EffectCandidate> effect_candidates(const ModelForm& form, const EdcDataset& data) {
+  const DataScales scales = data_scales(data);
+  std::vector<EffectCandidate> out;
+  const std::function<void(EffectCandidate)> add = [&](EffectCandidate c) {
+    if (!form_has(form, c.term->type())) out.push_back(std::move(c));
+  };
+  add_dissipation_candidates(form, scales, add);
+  add_friction_law_candidates(scales, add);
+  add_friction_regime_candidate(form, scales, out);
+  add_stiffness_candidates(form, scales, out);
   return out;
 }
 

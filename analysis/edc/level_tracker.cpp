@@ -107,9 +107,13 @@ std::vector<std::string> degenerate_level_notes(const std::vector<LevelResult>& 
   return notes;
 }
 
-LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOptions& options) {
-  LevelResult level;
-  if (cycles.empty()) return level;
+namespace {
+
+// The level's steady cycles: trailing cycles that already belong to the ramp to the next level
+// dropped, then the steady range of the EDC (eq. (13)); the transient and steady counts into
+// `level`.
+std::vector<CycleFit> steady_cycles(const std::vector<CycleFit>& cycles,
+                                    const LevelOptions& options, LevelResult& level) {
   // Cycles at the end of a detected level may already belong to the ramp to the next one: drop
   // trailing cycles whose force amplitude is off the level's by more than 0.1 % or 5 σ (a
   // ramp's first cycle moves f0 by a few tenths of a percent and its EDC by far more).
@@ -121,7 +125,7 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   while (end > 0 && std::abs(cycles[end - 1].f0_n - f0_level) > f0_band) --end;
   const std::vector<CycleFit> all(cycles.begin(),
                                   cycles.begin() + static_cast<std::ptrdiff_t>(end));
-  if (all.empty()) return level;
+  if (all.empty()) return {};
   std::vector<double> edc;
   edc.reserve(all.size());
   for (const CycleFit& c : all) edc.push_back(c.edc_j);
@@ -131,13 +135,24 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   level.transient_cycles = static_cast<int>(range.first);
   level.cycles = static_cast<int>(steady.size());
   level.few_cycles = level.cycles < options.min_steady_cycles;
-  if (steady.empty()) return level;
+  return steady;
+}
 
+// What the cycles scatter with: each cycle's residuals, samples and harmonic change from the one
+// before.
+struct CycleScatter {
+  std::vector<double> mass_residuals, base_residuals, samples, changes;
+};
+
+// The means over the steady cycles (EDC and its standard deviation, f0, |Z1|, lag, z range)
+// into `level`.
+CycleScatter average_cycles(const std::vector<CycleFit>& steady, const LevelOptions& options,
+                            LevelResult& level) {
   const double n = static_cast<double>(steady.size());
   double sum = 0, sum2 = 0, eq13 = 0, trapz = 0, f0 = 0, z1 = 0, lag = 0, z_mean = 0;
   level.z_min_m = steady.front().z_min_m;
   level.z_max_m = steady.front().z_max_m;
-  std::vector<double> mass_residuals, base_residuals, samples, changes;
+  CycleScatter scatter;
   for (std::size_t i = 0; i < steady.size(); ++i) {
     const CycleFit& c = steady[i];
     sum += c.edc_j;
@@ -154,10 +169,10 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
     level.cross_well = level.cross_well ||
                        (options.mass_quantity == MotionQuantity::Displacement &&
                         c.z_min_m < options.well_boundary_m && c.z_max_m > options.well_boundary_m);
-    mass_residuals.push_back(c.mass_residual_rms);
-    base_residuals.push_back(c.base_residual_rms);
-    samples.push_back(c.samples);
-    if (i > 0) changes.push_back(harmonic_change(steady[i - 1], c));
+    scatter.mass_residuals.push_back(c.mass_residual_rms);
+    scatter.base_residuals.push_back(c.base_residual_rms);
+    scatter.samples.push_back(c.samples);
+    if (i > 0) scatter.changes.push_back(harmonic_change(steady[i - 1], c));
   }
   level.edc_mean_j = sum / n;
   level.edc_std_j = n > 1 ? std::sqrt(std::max(0.0, (sum2 - sum * sum / n) / (n - 1))) : 0.0;
@@ -170,6 +185,14 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   level.start_s = steady.front().start_s;
   level.end_s = steady.back().end_s;
 
+  return scatter;
+}
+
+// The level's noise floor, period-1 test, degenerate-data flags and well, from its steady cycles'
+// means (already in `level`) and scatter.
+void judge_level(const std::vector<CycleFit>& steady, const CycleScatter& scatter,
+                 const LevelOptions& options, LevelResult& level) {
+  const double n = static_cast<double>(steady.size());
   // Noise floor of the mean EDC from the sensor noise (the fits' residual rms; at high levels
   // this also holds harmonics above H, so the floor errs on the high side there). Over a cycle of
   // N samples a least-squares sine/cosine coefficient of white noise σ has σ·√(2/N). Eq. (13),
@@ -177,12 +200,12 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   // displacement noise of y − b) and by S σ_F / f0 through the force amplitude (σ_F the noise
   // of F1 = m·B̈1). The mean of n independent cycles divides by √n.
   const double omega = 2.0 * std::numbers::pi * options.freq_hz;
-  const double n_per_cycle = median(samples);
+  const double n_per_cycle = median(scatter.samples);
   const double coefficient_noise = std::sqrt(2.0 / n_per_cycle);
   const double mass_noise =
-      median(mass_residuals) / std::pow(omega, derivative_order(options.mass_quantity));
+      median(scatter.mass_residuals) / std::pow(omega, derivative_order(options.mass_quantity));
   const double base_noise_disp =
-      median(base_residuals) / std::pow(omega, derivative_order(options.base_quantity));
+      median(scatter.base_residuals) / std::pow(omega, derivative_order(options.base_quantity));
   const double sigma_z = std::hypot(mass_noise, base_noise_disp) * coefficient_noise;
   const double sigma_f = options.mass_kg * base_noise_disp * omega * omega * coefficient_noise;
   const double sigma_cycle =
@@ -194,8 +217,8 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   // of three harmonics has noise ≈ √(2·6/N)·σ_z/|Z|; demand 3× that plus 2 %), and the
   // per-cycle EDC scatters no more than 10× its predicted noise (plus 0.5 %). A period-2 or
   // chaotic response fails one or both (Fig. 17).
-  if (!changes.empty()) {
-    level.period1_change = median(changes);
+  if (!scatter.changes.empty()) {
+    level.period1_change = median(scatter.changes);
     const double noise_change = std::sqrt(12.0 / n_per_cycle) *
                                 std::hypot(mass_noise, base_noise_disp) /
                                 std::max(level.z1_abs_m, 1e-300);
@@ -236,6 +259,17 @@ LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOpti
   } else {
     level.well = Well::Unknown;
   }
+}
+
+}  // namespace
+
+LevelResult summarise_level(const std::vector<CycleFit>& cycles, const LevelOptions& options) {
+  LevelResult level;
+  if (cycles.empty()) return level;
+  const std::vector<CycleFit> steady = steady_cycles(cycles, options, level);
+  if (steady.empty()) return level;
+  const CycleScatter scatter = average_cycles(steady, options, level);
+  judge_level(steady, scatter, options, level);
   return level;
 }
 
