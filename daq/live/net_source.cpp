@@ -111,6 +111,103 @@ void NetSource::run() {
   }
 }
 
+// A HELLO: the sender's layout checked against the stream's (refused: false), a new stream's
+// clock started after the last sample received.
+bool NetSource::accept_hello(const stream_protocol::Hello& hello) {
+  if (const std::optional<Sidecar> current = layout()) {
+    const std::string difference = layout_difference(*current, hello.sidecar);
+    if (!difference.empty()) {
+      layout_mismatches_.fetch_add(1, std::memory_order_relaxed);
+      post_event({kNoTime,
+                  EventKind::LayoutMismatch,
+                  "sender refused: " + difference,
+                  {{"stream_id", hello.stream_id}}});
+      return false;
+    }
+  } else {
+    set_layout(hello.sidecar);
+  }
+  const double rate_hz = hello.sidecar.sample_rate_hz;
+  if (hello.stream_id != stream_id_) {
+    // A new stream: its clock starts after the last sample received.
+    if (!stream_id_.empty()) {
+      post_event({static_cast<double>(next_sample_) / rate_hz, EventKind::Discontinuity,
+                  "a new stream \"" + hello.stream_id + "\" follows \"" + stream_id_ + "\""});
+    }
+    stream_id_ = hello.stream_id;
+    sample_offset_ = static_cast<std::int64_t>(next_sample_);
+    sequence_offset_ = static_cast<std::int64_t>(next_sequence_);
+  }
+  return true;
+}
+
+// A DATA frame: refused when it jumps too far ahead or its sequence is absurd, else its samples
+// onto the queue on this receiver's clock.
+void NetSource::accept_data(const stream_protocol::Frame& frame, double rate_hz) {
+  // The sender's own numbering: the next sample it should send is where it left off.
+  const std::uint64_t expected = next_sample_ - static_cast<std::uint64_t>(sample_offset_);
+  const double ahead_s =
+      (static_cast<double>(frame.first_sample) - static_cast<double>(expected)) / rate_hz;
+  if (ahead_s * rate_hz > max_gap_samples(rate_hz)) {
+    malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "DATA frame refused: first_sample %llu is %.3g s past the next "
+                  "expected sample %llu (at most %g s, %.0f samples)",
+                  static_cast<unsigned long long>(frame.first_sample), ahead_s,
+                  static_cast<unsigned long long>(expected), max_gap_samples(rate_hz) / rate_hz,
+                  max_gap_samples(rate_hz));
+    post_event({kNoTime, EventKind::MalformedFrame, text});
+    return;
+  }
+  if (const std::string problem = sequence_problem(frame.sequence, rate_hz); !problem.empty()) {
+    malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+    post_event({kNoTime, EventKind::MalformedFrame, problem});
+    return;
+  }
+  const std::uint64_t first = frame.first_sample + static_cast<std::uint64_t>(sample_offset_);
+  const std::uint64_t sequence = frame.sequence + static_cast<std::uint64_t>(sequence_offset_);
+  next_sample_ = std::max(next_sample_, first + static_cast<std::uint64_t>(frame.rows));
+  next_sequence_ = std::max(next_sequence_, sequence + 1);
+  // A full queue holds the sender back through TCP for a while; a consumer still
+  // behind after that loses the block (counted, and a gap downstream).
+  RawBlock* block = begin_block_within(kBackpressure);
+  if (block == nullptr) {
+    count_overflow(first);
+    return;
+  }
+  const std::size_t count =
+      static_cast<std::size_t>(frame.rows) * static_cast<std::size_t>(frame.channels);
+  for (std::size_t i = 0; i < count; ++i) {
+    block->values[i] = stream_protocol::read_f64_le(frame.data + 8 * i);
+  }
+  block->sequence = sequence;
+  block->first_sample = first;
+  block->rows = frame.rows;
+  block->channels = frame.channels;
+  end_block(*block);
+}
+
+// An EVENT frame: refused when its fields are absurd, else posted on this receiver's clock.
+void NetSource::accept_event(const stream_protocol::Frame& frame, double rate_hz) {
+  StreamEvent event = *frame.event;
+  if (const std::string problem = stream_event_problem(event, rate_hz); !problem.empty()) {
+    malformed_frames_.fetch_add(1, std::memory_order_relaxed);
+    post_event({kNoTime, EventKind::MalformedFrame, "EVENT frame refused: " + problem});
+    return;
+  }
+  // The sender's stream times, moved onto this receiver's clock.
+  const double shift_s = static_cast<double>(sample_offset_) / rate_hz;
+  if (std::isfinite(event.t_s)) event.t_s += shift_s;
+  for (const char* key : {"steady_from_s", "steady_to_s", "from_s", "to_s"}) {
+    if (event.data.contains(key) && event.data[key].is_number()) {
+      event.data[key] = event.data[key].get<double>() + shift_s;
+    }
+  }
+  event.wall.clear();
+  post_event(std::move(event));
+}
+
 bool NetSource::serve(TcpSocket& peer) {
   stream_protocol::FrameDecoder decoder;
   std::vector<std::uint8_t> buffer(1u << 16);
@@ -136,103 +233,17 @@ bool NetSource::serve(TcpSocket& peer) {
         return false;
       }
       switch (frame.type) {
-        case FrameType::Hello: {
-          const stream_protocol::Hello& hello = *frame.hello;
-          if (const std::optional<Sidecar> current = layout()) {
-            const std::string difference = layout_difference(*current, hello.sidecar);
-            if (!difference.empty()) {
-              layout_mismatches_.fetch_add(1, std::memory_order_relaxed);
-              post_event({kNoTime,
-                          EventKind::LayoutMismatch,
-                          "sender refused: " + difference,
-                          {{"stream_id", hello.stream_id}}});
-              return false;
-            }
-          } else {
-            set_layout(hello.sidecar);
-          }
-          rate_hz = hello.sidecar.sample_rate_hz;
-          if (hello.stream_id != stream_id_) {
-            // A new stream: its clock starts after the last sample received.
-            if (!stream_id_.empty()) {
-              post_event(
-                  {static_cast<double>(next_sample_) / rate_hz, EventKind::Discontinuity,
-                   "a new stream \"" + hello.stream_id + "\" follows \"" + stream_id_ + "\""});
-            }
-            stream_id_ = hello.stream_id;
-            sample_offset_ = static_cast<std::int64_t>(next_sample_);
-            sequence_offset_ = static_cast<std::int64_t>(next_sequence_);
-          }
+        case FrameType::Hello:
+          if (!accept_hello(*frame.hello)) return false;
+          rate_hz = frame.hello->sidecar.sample_rate_hz;
           greeted = true;
           break;
-        }
-        case FrameType::Data: {
-          // The sender's own numbering: the next sample it should send is where it left off.
-          const std::uint64_t expected = next_sample_ - static_cast<std::uint64_t>(sample_offset_);
-          const double ahead_s =
-              (static_cast<double>(frame.first_sample) - static_cast<double>(expected)) / rate_hz;
-          if (ahead_s * rate_hz > max_gap_samples(rate_hz)) {
-            malformed_frames_.fetch_add(1, std::memory_order_relaxed);
-            char text[200];
-            std::snprintf(text, sizeof text,
-                          "DATA frame refused: first_sample %llu is %.3g s past the next "
-                          "expected sample %llu (at most %g s, %.0f samples)",
-                          static_cast<unsigned long long>(frame.first_sample), ahead_s,
-                          static_cast<unsigned long long>(expected),
-                          max_gap_samples(rate_hz) / rate_hz, max_gap_samples(rate_hz));
-            post_event({kNoTime, EventKind::MalformedFrame, text});
-            break;
-          }
-          if (const std::string problem = sequence_problem(frame.sequence, rate_hz);
-              !problem.empty()) {
-            malformed_frames_.fetch_add(1, std::memory_order_relaxed);
-            post_event({kNoTime, EventKind::MalformedFrame, problem});
-            break;
-          }
-          const std::uint64_t first =
-              frame.first_sample + static_cast<std::uint64_t>(sample_offset_);
-          const std::uint64_t sequence =
-              frame.sequence + static_cast<std::uint64_t>(sequence_offset_);
-          next_sample_ = std::max(next_sample_, first + static_cast<std::uint64_t>(frame.rows));
-          next_sequence_ = std::max(next_sequence_, sequence + 1);
-          // A full queue holds the sender back through TCP for a while; a consumer still
-          // behind after that loses the block (counted, and a gap downstream).
-          RawBlock* block = begin_block_within(kBackpressure);
-          if (block == nullptr) {
-            count_overflow(first);
-            break;
-          }
-          const std::size_t count =
-              static_cast<std::size_t>(frame.rows) * static_cast<std::size_t>(frame.channels);
-          for (std::size_t i = 0; i < count; ++i) {
-            block->values[i] = stream_protocol::read_f64_le(frame.data + 8 * i);
-          }
-          block->sequence = sequence;
-          block->first_sample = first;
-          block->rows = frame.rows;
-          block->channels = frame.channels;
-          end_block(*block);
+        case FrameType::Data:
+          accept_data(frame, rate_hz);
           break;
-        }
-        case FrameType::Event: {
-          StreamEvent event = *frame.event;
-          if (const std::string problem = stream_event_problem(event, rate_hz); !problem.empty()) {
-            malformed_frames_.fetch_add(1, std::memory_order_relaxed);
-            post_event({kNoTime, EventKind::MalformedFrame, "EVENT frame refused: " + problem});
-            break;
-          }
-          // The sender's stream times, moved onto this receiver's clock.
-          const double shift_s = static_cast<double>(sample_offset_) / rate_hz;
-          if (std::isfinite(event.t_s)) event.t_s += shift_s;
-          for (const char* key : {"steady_from_s", "steady_to_s", "from_s", "to_s"}) {
-            if (event.data.contains(key) && event.data[key].is_number()) {
-              event.data[key] = event.data[key].get<double>() + shift_s;
-            }
-          }
-          event.wall.clear();
-          post_event(std::move(event));
+        case FrameType::Event:
+          accept_event(frame, rate_hz);
           break;
-        }
         case FrameType::Bye:
           post_event({static_cast<double>(next_sample_) / rate_hz, EventKind::SourceEnded,
                       "the sender ended its stream"});

@@ -9,6 +9,11 @@
 
 namespace oscilab::daq {
 
+namespace stream_protocol {
+struct Frame;
+struct Hello;
+}  // namespace stream_protocol
+
 /// Receives the Oscilab stream protocol (stream_protocol.h, docs/stream-protocol.md) from one
 /// sender at a time over TCP, listening on localhost unless told otherwise.
 ///
@@ -45,6 +50,9 @@ class NetSource final : public SampleSource {
   void interrupt() override;
   /// Serves one sender; true when it ended the stream (BYE).
   bool serve(TcpSocket& peer);
+  bool accept_hello(const stream_protocol::Hello& hello);
+  void accept_data(const stream_protocol::Frame& frame, double rate_hz);
+  void accept_event(const stream_protocol::Frame& frame, double rate_hz);
   /// Why a DATA frame's sequence (the sender's numbering) is refused, or "" when it is not.
   std::string sequence_problem(std::uint64_t sequence, double rate_hz) const;
 
