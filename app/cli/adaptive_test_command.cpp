@@ -191,10 +191,9 @@ nlohmann::json setting_json(const analysis::SettingScore& s) {
           {"shaker_s", s.shaker_s}};
 }
 
-void run(const AdaptiveOptions& o) {
-  validate(o);
-  const auto started = std::chrono::steady_clock::now();
-  const analysis::Model truth = analysis::model_from_spec(o.rig_model);
+// The settings the loop may choose from: the f0 grid, the frequencies around --freq, the wells,
+// and what each costs in shaker time.
+analysis::AdmissibleSettings admissible_settings(const AdaptiveOptions& o) {
   analysis::AdmissibleSettings settings;
   std::tie(settings.f0_min_n, settings.f0_max_n) = parse_range(o.f0, "--f0");
   settings.f0_step_n = o.f0_step_n;
@@ -207,6 +206,103 @@ void run(const AdaptiveOptions& o) {
   settings.settling_s = o.lead_in_s;
   settings.well_change_s = o.well_change_s;
   settings.validate();
+  return settings;
+}
+
+// One line of decisions.jsonl: the weights and fits after a level, the stop rule's answer and,
+// when the test goes on, the proposal with every setting's score.
+nlohmann::json decision_line(int decision_index, double time_s, double shaker_time_s, int levels,
+                             const std::vector<analysis::ModelHypothesis>& hypotheses,
+                             const analysis::StopDecision& decision,
+                             const analysis::NextPoint& next, double proposal_s, double refit_s) {
+  nlohmann::json line = {
+      {"decision", decision_index},
+      {"time_s", time_s},
+      {"shaker_time_s", shaker_time_s},
+      {"levels", levels},
+      {"weights", weights_json(hypotheses)},
+      {"fits", chi2_json(hypotheses)},
+      {"leader",
+       decision.leader >= 0 ? hypotheses[static_cast<std::size_t>(decision.leader)].label() : ""},
+      {"leader_weight", decision.leader_weight},
+      {"reduced_chi2", decision.reduced_chi2},
+      {"noise_reduced_chi2", decision.noise_reduced_chi2},
+      {"max_discrimination", next.found ? next.max_discrimination : 0.0},
+      {"proposal_s", proposal_s},
+      {"stop", decision.stop}};
+  line["refit_s"] = refit_s;
+  line["reason"] = decision.stop ? decision.reason : next.reason;
+  if (!decision.stop) {
+    line["proposal"] = setting_json(next.best);
+    nlohmann::json scores = nlohmann::json::array();
+    for (const analysis::SettingScore& s : next.settings) scores.push_back(setting_json(s));
+    line["scores"] = scores;
+  }
+  return line;
+}
+
+// The final diagnosis, the same as `diagnose` on the recordings made, and report.json (and
+// final_model.json) with the loop's own answer beside it.
+void diagnose_and_report(const Runner& rig, const analysis::FitSetup& setup,
+                         const std::vector<analysis::ModelHypothesis>& hypotheses,
+                         const analysis::StopDecision& decision, std::size_t pilot_levels,
+                         int adaptive_levels, const AdaptiveOptions& o,
+                         std::chrono::steady_clock::time_point started) {
+  // The final diagnosis: the same as `diagnose` on the recordings made.
+  const analysis::CampaignAnalysis campaign =
+      analysis::analyze_campaign(rig.channels, analysis::PipelineSettings{});
+  std::vector<std::string> notes;
+  const analysis::ModelForm form = analysis::fit_form(campaign, setup, notes);
+  analysis::DiagnosisOptions diagnosis_options;
+  diagnosis_options.cost = setup.cost;
+  diagnosis_options.max_seconds = o.max_seconds;
+  diagnosis_options.seed = o.seed;
+  diagnosis_options.threads = o.threads;
+  const analysis::DiagnosisResult result = analysis::diagnose(campaign, form, diagnosis_options);
+  nlohmann::json report = analysis::diagnosis_report_json(result, rig.paths);
+  report["notes"] = notes;
+  report["shaker_time_s"] = rig.shaker_time_s;
+  const int levels = analysis::edc_dataset(campaign).level_count();
+  // The loop's own answer beside the diagnosis's: on a few levels a diagnosis's candidate refits,
+  // started from its baseline, can miss a fit the loop's global searches found.
+  const std::string leader =
+      decision.leader >= 0 ? hypotheses[static_cast<std::size_t>(decision.leader)].effect : "none";
+  report["adaptive_test"] = {{"levels", levels},
+                             {"pilot_levels_per_well", pilot_levels},
+                             {"adaptive_levels", adaptive_levels},
+                             {"decided", decision.decided},
+                             {"stop_reason", decision.reason},
+                             {"leader", leader},
+                             {"leader_reduced_chi2", decision.reduced_chi2},
+                             {"agrees_with_diagnosis", leader == result.verdict},
+                             {"weights", weights_json(hypotheses)},
+                             {"seconds", elapsed_s(started)}};
+  OutputFiles outputs;
+  outputs.write(o.out_dir + "/report.json",
+                [&](std::ostream& out) { out << report.dump(2) << '\n'; });
+  if (result.final_form) {
+    const nlohmann::json model = result.final_form->build(result.final_theta).to_json();
+    outputs.write(o.out_dir + "/final_model.json",
+                  [&](std::ostream& out) { out << model.dump(2) << '\n'; });
+  }
+  outputs.commit();
+  std::printf("verdict: %s, shaker time %.1f s over %d level(s) (%d adaptive), %.1f s\n",
+              result.verdict.c_str(), rig.shaker_time_s, levels, adaptive_levels,
+              elapsed_s(started));
+  if (leader != result.verdict) {
+    std::printf(
+        "note: the adaptive test's leader is %s (weight %.4f, chi2/dof %.3g); the diagnosis of "
+        "the same recordings says %s\n",
+        leader.c_str(), decision.leader_weight, decision.reduced_chi2, result.verdict.c_str());
+  }
+  std::printf("recordings, decisions.jsonl and report.json written to %s/\n", o.out_dir.c_str());
+}
+
+void run(const AdaptiveOptions& o) {
+  validate(o);
+  const auto started = std::chrono::steady_clock::now();
+  const analysis::Model truth = analysis::model_from_spec(o.rig_model);
+  analysis::AdmissibleSettings settings = admissible_settings(o);
   std::vector<double> pilot = parse_levels(o.pilot, "--pilot");
   std::vector<std::string> effects;
   if (!o.effects.empty()) {
@@ -288,30 +384,11 @@ void run(const AdaptiveOptions& o) {
       decision.stop = true;
       decision.reason = "no admissible setting: " + next.message + "; " + decision.reason;
     }
-    nlohmann::json line = {
-        {"decision", decision_index},
-        {"time_s", elapsed_s(started)},
-        {"shaker_time_s", rig.shaker_time_s},
-        {"levels", analysis::edc_dataset(rig.campaign).level_count()},
-        {"weights", weights_json(hypotheses)},
-        {"fits", chi2_json(hypotheses)},
-        {"leader",
-         decision.leader >= 0 ? hypotheses[static_cast<std::size_t>(decision.leader)].label() : ""},
-        {"leader_weight", decision.leader_weight},
-        {"reduced_chi2", decision.reduced_chi2},
-        {"noise_reduced_chi2", decision.noise_reduced_chi2},
-        {"max_discrimination", next.found ? next.max_discrimination : 0.0},
-        {"proposal_s", proposal_s},
-        {"stop", decision.stop}};
-    line["refit_s"] = refit_s;
-    line["reason"] = decision.stop ? decision.reason : next.reason;
-    if (!decision.stop) {
-      line["proposal"] = setting_json(next.best);
-      nlohmann::json scores = nlohmann::json::array();
-      for (const analysis::SettingScore& s : next.settings) scores.push_back(setting_json(s));
-      line["scores"] = scores;
-    }
-    log << line.dump() << '\n';
+    log << decision_line(decision_index, elapsed_s(started), rig.shaker_time_s,
+                         analysis::edc_dataset(rig.campaign).level_count(), hypotheses, decision,
+                         next, proposal_s, refit_s)
+               .dump()
+        << '\n';
     log.flush();
     std::printf("[%6.1f s shaker] %s\n", rig.shaker_time_s,
                 (decision.stop ? "stop: " + decision.reason : "next: " + next.reason).c_str());
@@ -327,54 +404,7 @@ void run(const AdaptiveOptions& o) {
     refit_s = elapsed_s(refitting);
   }
 
-  // The final diagnosis: the same as `diagnose` on the recordings made.
-  const analysis::CampaignAnalysis campaign =
-      analysis::analyze_campaign(rig.channels, analysis::PipelineSettings{});
-  std::vector<std::string> notes;
-  const analysis::ModelForm form = analysis::fit_form(campaign, setup, notes);
-  analysis::DiagnosisOptions diagnosis_options;
-  diagnosis_options.cost = setup.cost;
-  diagnosis_options.max_seconds = o.max_seconds;
-  diagnosis_options.seed = o.seed;
-  diagnosis_options.threads = o.threads;
-  const analysis::DiagnosisResult result = analysis::diagnose(campaign, form, diagnosis_options);
-  nlohmann::json report = analysis::diagnosis_report_json(result, rig.paths);
-  report["notes"] = notes;
-  report["shaker_time_s"] = rig.shaker_time_s;
-  const int levels = analysis::edc_dataset(campaign).level_count();
-  // The loop's own answer beside the diagnosis's: on a few levels a diagnosis's candidate refits,
-  // started from its baseline, can miss a fit the loop's global searches found.
-  const std::string leader =
-      decision.leader >= 0 ? hypotheses[static_cast<std::size_t>(decision.leader)].effect : "none";
-  report["adaptive_test"] = {{"levels", levels},
-                             {"pilot_levels_per_well", pilot.size()},
-                             {"adaptive_levels", adaptive_levels},
-                             {"decided", decision.decided},
-                             {"stop_reason", decision.reason},
-                             {"leader", leader},
-                             {"leader_reduced_chi2", decision.reduced_chi2},
-                             {"agrees_with_diagnosis", leader == result.verdict},
-                             {"weights", weights_json(hypotheses)},
-                             {"seconds", elapsed_s(started)}};
-  OutputFiles outputs;
-  outputs.write(o.out_dir + "/report.json",
-                [&](std::ostream& out) { out << report.dump(2) << '\n'; });
-  if (result.final_form) {
-    const nlohmann::json model = result.final_form->build(result.final_theta).to_json();
-    outputs.write(o.out_dir + "/final_model.json",
-                  [&](std::ostream& out) { out << model.dump(2) << '\n'; });
-  }
-  outputs.commit();
-  std::printf("verdict: %s, shaker time %.1f s over %d level(s) (%d adaptive), %.1f s\n",
-              result.verdict.c_str(), rig.shaker_time_s, levels, adaptive_levels,
-              elapsed_s(started));
-  if (leader != result.verdict) {
-    std::printf(
-        "note: the adaptive test's leader is %s (weight %.4f, chi2/dof %.3g); the diagnosis of "
-        "the same recordings says %s\n",
-        leader.c_str(), decision.leader_weight, decision.reduced_chi2, result.verdict.c_str());
-  }
-  std::printf("recordings, decisions.jsonl and report.json written to %s/\n", o.out_dir.c_str());
+  diagnose_and_report(rig, setup, hypotheses, decision, pilot.size(), adaptive_levels, o, started);
 }
 
 }  // namespace

@@ -99,11 +99,12 @@ void follow_period_doublings(const analysis::Model& model, const analysis::Branc
   if (!switches.empty()) std::printf("period doublings followed in %.1f ms\n", seconds * 1e3);
 }
 
-void run(const HbmCommandOptions& o) {
-  const analysis::Model model = analysis::model_from_spec(o.model);
+// The continuation's options from the command's: the f0 range, the frequency, the HBM and Floquet
+// settings, the step bound.
+analysis::ContinuationOptions continuation_options(const HbmCommandOptions& o) {
+  analysis::ContinuationOptions options;
   const auto colon = o.f0.find(':');
   if (colon == std::string::npos) throw InputError("--f0: \"" + o.f0 + "\" is not A:B");
-  analysis::ContinuationOptions options;
   options.start = parse_number(o.f0.substr(0, colon), "--f0");
   options.end = parse_number(o.f0.substr(colon + 1), "--f0");
   options.freq_hz = o.freq_hz;
@@ -119,29 +120,14 @@ void run(const HbmCommandOptions& o) {
   }
   options.max_step = o.max_step;
   options.initial_step = std::min(options.initial_step, o.max_step);
+  return options;
+}
 
-  const std::optional<Well> only_well = analysis::parse_well(o.well);  // none: both
-  std::vector<Well> wells;
-  if (only_well != Well::Negative) wells.push_back(Well::Positive);
-  if (only_well != Well::Positive) wells.push_back(Well::Negative);
-  // Every option is checked before the branch is computed and written: a refused --sweep or
-  // --map leaves no branch CSV behind.
-  analysis::AmplitudeSweepOptions sweep_options;
-  sweep_options.freq_hz = o.freq_hz;
-  sweep_options.f0_max_n = options.end;
-  sweep_options.up_s = sweep_options.down_s = o.sweep_time;
-  sweep_options.positive_well = wells[0] == Well::Positive;
-  if (!o.sweep.empty()) sweep_options.validate();
-  analysis::BifurcationMapOptions map_options;
-  map_options.freq_hz = o.freq_hz;
-  map_options.start_n = options.start;
-  map_options.end_n = options.end;
-  map_options.step_n = o.map_step;
-  map_options.hold_periods = o.map_hold;
-  map_options.sampled_periods = o.map_sampled;
-  map_options.positive_well = only_well != Well::Negative;
-  map_options.negative_well = only_well != Well::Positive;
-  if (!o.map.empty()) map_options.validate();
+// The branch of each well, its summary printed.
+std::vector<analysis::Branch> continue_in_wells(const analysis::Model& model,
+                                                analysis::ContinuationOptions options,
+                                                const std::vector<Well>& wells,
+                                                const HbmCommandOptions& o) {
   std::vector<analysis::Branch> branches;
   for (const Well well : wells) {
     options.positive_well = well == Well::Positive;
@@ -166,6 +152,98 @@ void run(const HbmCommandOptions& o) {
     }
     branches.push_back(std::move(branch));
   }
+  return branches;
+}
+
+// --sweep: the time-integrated amplitude sweep beside the branch of the first well.
+void write_sweep(const analysis::Model& model, const analysis::AmplitudeSweepOptions& sweep_options,
+                 const analysis::Branch& first_branch, Well well, const char* title,
+                 const HbmCommandOptions& o) {
+  analysis::AmplitudeSweep sweep;
+  {
+    ProgressBar bar("sweep");
+    sweep = analysis::amplitude_sweep(model, sweep_options, bar.callback());
+  }
+  write_output_file(o.sweep,
+                    [&](std::ostream& out) { analysis::write_amplitude_sweep_csv(sweep, out); });
+  std::printf("wrote %s: sweep 0 -> %g -> 0 N, %g s each way (%g N/s), %s well\n", o.sweep.c_str(),
+              sweep_options.f0_max_n, o.sweep_time, sweep_options.f0_max_n / o.sweep_time,
+              to_string(well).c_str());
+  std::printf("jump up   at f0 = %.4f N  (%.4g -> %.4g m)\n", sweep.jump_up.f0_n,
+              sweep.jump_up.amp_before_m, sweep.jump_up.amp_after_m);
+  std::printf("jump down at f0 = %.4f N  (%.4g -> %.4g m)\n", sweep.jump_down.f0_n,
+              sweep.jump_down.amp_before_m, sweep.jump_down.amp_after_m);
+  if (sweep.status != JobStatus::Ok) throw InputError("hbm --sweep: " + sweep.message);
+  if (!o.png.empty()) {
+    char sweep_title[512];
+    std::snprintf(sweep_title, sizeof sweep_title,
+                  "%s, time integration: f0 swept 0 -> %g -> 0 N at %.3g N/s", title,
+                  sweep_options.f0_max_n, sweep_options.f0_max_n / o.sweep_time);
+    write_png_output(figures::sweep_figure(sweep_title, first_branch, sweep), o.png + "-sweep.png");
+    std::printf("wrote %s-sweep.png\n", o.png.c_str());
+  }
+}
+
+// --map: the bifurcation map by time simulation, drawn over the branches.
+void write_map(const analysis::Model& model, const analysis::BifurcationMapOptions& map_options,
+               const std::vector<NamedBranch>& named, const char* title,
+               const HbmCommandOptions& o) {
+  analysis::BifurcationMap map;
+  {
+    ProgressBar bar("map");
+    map = analysis::bifurcation_map(model, map_options, bar.callback());
+  }
+  write_output_file(o.map,
+                    [&](std::ostream& out) { analysis::write_bifurcation_map_csv(map, out); });
+  std::printf("wrote %s: %zu levels, %d periods each, last %d sampled at t = nT\n", o.map.c_str(),
+              map.levels.size(), o.map_hold, o.map_sampled);
+  for (const Well well : {Well::Positive, Well::Negative}) {
+    int previous = 0;
+    for (const analysis::BifurcationMapLevel& level : map.levels_of(well == Well::Positive)) {
+      if (level.distinct_points != previous) {
+        std::printf("%s well: %d distinct point%s from f0 = %.4g N\n", to_string(well).c_str(),
+                    level.distinct_points, level.distinct_points == 1 ? "" : "s", level.f0_n);
+        previous = level.distinct_points;
+      }
+    }
+  }
+  if (map.status != JobStatus::Ok) throw InputError("hbm --map: " + map.message);
+  if (!o.png.empty()) {
+    char map_title[512];
+    std::snprintf(map_title, sizeof map_title,
+                  "%s: bifurcation map, time simulation stepped %g N, %d periods per level", title,
+                  o.map_step, o.map_hold);
+    write_png_output(figures::map_figure(map_title, named, map), o.png + "-map.png");
+    std::printf("wrote %s-map.png\n", o.png.c_str());
+  }
+}
+
+void run(const HbmCommandOptions& o) {
+  const analysis::Model model = analysis::model_from_spec(o.model);
+  analysis::ContinuationOptions options = continuation_options(o);
+  const std::optional<Well> only_well = analysis::parse_well(o.well);  // none: both
+  std::vector<Well> wells;
+  if (only_well != Well::Negative) wells.push_back(Well::Positive);
+  if (only_well != Well::Positive) wells.push_back(Well::Negative);
+  // Every option is checked before the branch is computed and written: a refused --sweep or
+  // --map leaves no branch CSV behind.
+  analysis::AmplitudeSweepOptions sweep_options;
+  sweep_options.freq_hz = o.freq_hz;
+  sweep_options.f0_max_n = options.end;
+  sweep_options.up_s = sweep_options.down_s = o.sweep_time;
+  sweep_options.positive_well = wells[0] == Well::Positive;
+  if (!o.sweep.empty()) sweep_options.validate();
+  analysis::BifurcationMapOptions map_options;
+  map_options.freq_hz = o.freq_hz;
+  map_options.start_n = options.start;
+  map_options.end_n = options.end;
+  map_options.step_n = o.map_step;
+  map_options.hold_periods = o.map_hold;
+  map_options.sampled_periods = o.map_sampled;
+  map_options.positive_well = only_well != Well::Negative;
+  map_options.negative_well = only_well != Well::Positive;
+  if (!o.map.empty()) map_options.validate();
+  std::vector<analysis::Branch> branches = continue_in_wells(model, options, wells, o);
   std::vector<CsvBranch> csv;
   std::vector<std::unique_ptr<analysis::Branch>> doubled;
   for (std::size_t i = 0; i < branches.size(); ++i) {
@@ -203,63 +281,8 @@ void run(const HbmCommandOptions& o) {
     std::printf("wrote %s-branch.png\n", o.png.c_str());
   }
 
-  if (!o.sweep.empty()) {
-    analysis::AmplitudeSweep sweep;
-    {
-      ProgressBar bar("sweep");
-      sweep = analysis::amplitude_sweep(model, sweep_options, bar.callback());
-    }
-    write_output_file(o.sweep,
-                      [&](std::ostream& out) { analysis::write_amplitude_sweep_csv(sweep, out); });
-    std::printf("wrote %s: sweep 0 -> %g -> 0 N, %g s each way (%g N/s), %s well\n",
-                o.sweep.c_str(), sweep_options.f0_max_n, o.sweep_time,
-                sweep_options.f0_max_n / o.sweep_time, to_string(wells[0]).c_str());
-    std::printf("jump up   at f0 = %.4f N  (%.4g -> %.4g m)\n", sweep.jump_up.f0_n,
-                sweep.jump_up.amp_before_m, sweep.jump_up.amp_after_m);
-    std::printf("jump down at f0 = %.4f N  (%.4g -> %.4g m)\n", sweep.jump_down.f0_n,
-                sweep.jump_down.amp_before_m, sweep.jump_down.amp_after_m);
-    if (sweep.status != JobStatus::Ok) throw InputError("hbm --sweep: " + sweep.message);
-    if (!o.png.empty()) {
-      char sweep_title[512];
-      std::snprintf(sweep_title, sizeof sweep_title,
-                    "%s, time integration: f0 swept 0 -> %g -> 0 N at %.3g N/s", title,
-                    sweep_options.f0_max_n, sweep_options.f0_max_n / o.sweep_time);
-      write_png_output(figures::sweep_figure(sweep_title, branches[0], sweep),
-                       o.png + "-sweep.png");
-      std::printf("wrote %s-sweep.png\n", o.png.c_str());
-    }
-  }
-
-  if (!o.map.empty()) {
-    analysis::BifurcationMap map;
-    {
-      ProgressBar bar("map");
-      map = analysis::bifurcation_map(model, map_options, bar.callback());
-    }
-    write_output_file(o.map,
-                      [&](std::ostream& out) { analysis::write_bifurcation_map_csv(map, out); });
-    std::printf("wrote %s: %zu levels, %d periods each, last %d sampled at t = nT\n", o.map.c_str(),
-                map.levels.size(), o.map_hold, o.map_sampled);
-    for (const Well well : {Well::Positive, Well::Negative}) {
-      int previous = 0;
-      for (const analysis::BifurcationMapLevel& level : map.levels_of(well == Well::Positive)) {
-        if (level.distinct_points != previous) {
-          std::printf("%s well: %d distinct point%s from f0 = %.4g N\n", to_string(well).c_str(),
-                      level.distinct_points, level.distinct_points == 1 ? "" : "s", level.f0_n);
-          previous = level.distinct_points;
-        }
-      }
-    }
-    if (map.status != JobStatus::Ok) throw InputError("hbm --map: " + map.message);
-    if (!o.png.empty()) {
-      char map_title[512];
-      std::snprintf(map_title, sizeof map_title,
-                    "%s: bifurcation map, time simulation stepped %g N, %d periods per level",
-                    title, o.map_step, o.map_hold);
-      write_png_output(figures::map_figure(map_title, named, map), o.png + "-map.png");
-      std::printf("wrote %s-map.png\n", o.png.c_str());
-    }
-  }
+  if (!o.sweep.empty()) write_sweep(model, sweep_options, branches[0], wells[0], title, o);
+  if (!o.map.empty()) write_map(model, map_options, named, title, o);
 }
 
 }  // namespace
