@@ -16,6 +16,7 @@
 
 class QComboBox;
 class QCustomPlot;
+class QGroupBox;
 class QLabel;
 class QListWidget;
 class QProgressBar;
@@ -38,6 +39,7 @@ class DiagnosisJob;
 class FigureDataJob;
 class FigureDialog;
 class FitSettingsForm;
+class FlowLayout;
 class ResponseDialog;
 
 /// The fit and model-gap panel: recordings of a stepped-sine campaign, a fit of
@@ -136,6 +138,10 @@ class IdentificationPanel : public QWidget {
   void resizeEvent(QResizeEvent* event) override;
 
  private:
+  void connect_jobs();
+  QGroupBox* make_records_group();
+  FlowLayout* make_buttons();
+  void make_results();
   /// The recordings and the base model to fit or diagnose, or false with the reason shown.
   bool job_inputs(std::vector<std::string>& paths, analysis::FitSetup& setup);
   void set_busy(bool busy);

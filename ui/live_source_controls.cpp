@@ -33,7 +33,17 @@ LiveSourceControls::LiveSourceControls(QWidget* parent) : QWidget(parent) {
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
 
-  // Source.
+  layout->addWidget(make_source_group());
+  layout->addWidget(make_rig_group());
+  layout->addWidget(make_replay_group());
+  layout->addWidget(make_record_group());
+  layout->addWidget(make_alarm_group());
+  update_enabled();
+}
+
+// The source: its kind and each kind's settings (a file to replay, a port to listen on, JACK's
+// server, ports and calibration), the speed, Start and Stop.
+QGroupBox* LiveSourceControls::make_source_group() {
   auto* source_group = new QGroupBox(tr("Source"));
   source_box_ = new QComboBox;
   source_box_->setObjectName("source");
@@ -145,8 +155,11 @@ LiveSourceControls::LiveSourceControls(QWidget* parent) : QWidget(parent) {
   for (QComboBox* box : jack_port_boxes_) {
     connect(box, &QComboBox::currentTextChanged, this, &LiveSourceControls::settings_edited);
   }
+  return source_group;
+}
 
-  // The rig.
+// The virtual rig's excitation: the well it starts in, f0 and the frequency, a level step.
+QGroupBox* LiveSourceControls::make_rig_group() {
   auto* rig_group = new QGroupBox(tr("Virtual rig"));
   rig_group_ = rig_group;
   well_box_ = new QComboBox;
@@ -202,8 +215,11 @@ LiveSourceControls::LiveSourceControls(QWidget* parent) : QWidget(parent) {
     connect(box, &QDoubleSpinBox::valueChanged, this, &LiveSourceControls::settings_edited);
   }
   connect(well_box_, &QComboBox::currentIndexChanged, this, &LiveSourceControls::settings_edited);
+  return rig_group;
+}
 
-  // The replay.
+// The replay's pause and seek.
+QGroupBox* LiveSourceControls::make_replay_group() {
   auto* replay_group = new QGroupBox(tr("Replay"));
   replay_group_ = replay_group;
   replay_pause_button_ = new QPushButton(tr("Pause"));
@@ -222,8 +238,11 @@ LiveSourceControls::LiveSourceControls(QWidget* parent) : QWidget(parent) {
   replay_layout->addWidget(replay_pause_button_, 0, 0);
   replay_layout->addWidget(seek_label_, 0, 1);
   replay_layout->addWidget(seek_slider_, 1, 0, 1, 2);
+  return replay_group;
+}
 
-  // Recording and marks.
+// Recording to a file, and marks in the event log.
+QGroupBox* LiveSourceControls::make_record_group() {
   auto* record_group = new QGroupBox(tr("Recording"));
   record_button_ = new QPushButton(tr("Record\u2026"));
   record_button_->setObjectName("record");
@@ -255,8 +274,11 @@ LiveSourceControls::LiveSourceControls(QWidget* parent) : QWidget(parent) {
   record_layout->addWidget(stop_recording_button_, 0, 1);
   record_layout->addWidget(mark_edit_, 1, 0);
   record_layout->addWidget(mark_button_, 1, 1);
+  return record_group;
+}
 
-  // Alarm limits.
+// The alarm limits on |z|, |b| and |f|.
+QGroupBox* LiveSourceControls::make_alarm_group() {
   auto* alarm_group = new QGroupBox(tr("Alarms (next Start)"));
   const auto limit_box = [this](const char* name, double max, const QString& suffix,
                                 const QString& tip) {
@@ -279,13 +301,7 @@ LiveSourceControls::LiveSourceControls(QWidget* parent) : QWidget(parent) {
   alarm_form->addRow(tr("|z| >"), alarm_z_box_);
   alarm_form->addRow(tr("|b| >"), alarm_b_box_);
   alarm_form->addRow(tr("|f| >"), alarm_f_box_);
-
-  layout->addWidget(source_group);
-  layout->addWidget(rig_group);
-  layout->addWidget(replay_group);
-  layout->addWidget(record_group);
-  layout->addWidget(alarm_group);
-  update_enabled();
+  return alarm_group;
 }
 
 LiveSettings LiveSourceControls::settings() const {

@@ -13,6 +13,7 @@
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
+class QGroupBox;
 class QLabel;
 class QLineEdit;
 class QProgressBar;
@@ -93,6 +94,11 @@ class LiveSourceControls : public QWidget {
   void mark_requested(const QString& text);
 
  private:
+  QGroupBox* make_source_group();
+  QGroupBox* make_rig_group();
+  QGroupBox* make_replay_group();
+  QGroupBox* make_record_group();
+  QGroupBox* make_alarm_group();
   void update_enabled();
 
   std::vector<daq::ExcitationStep> rig_schedule_;

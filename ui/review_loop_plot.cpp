@@ -1,6 +1,7 @@
 #include "ui/review_loop_plot.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <qcustomplot.h>
@@ -40,8 +41,8 @@ ReviewLoopPlot::ReviewLoopPlot() {
   plot_->legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
 }
 
-void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelKey>& keys) {
-  // Curves first (their legend items go with them), then the labels and the extra well rects.
+// Curves first (their legend items go with them), then the labels and the extra well rects.
+void ReviewLoopPlot::clear() {
   plot_->clearPlottables();
   for (QCPAbstractItem* item : labels_) plot_->removeItem(item);
   labels_.clear();
@@ -49,6 +50,52 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
     if (grid_->element(0, c)) grid_->remove(grid_->element(0, c));
   }
   grid_->simplify();
+}
+
+// One axis rect per well present (`present`: positive, negative, other), in that order, each
+// with its axis labels and the well's name inside; `rect_of` maps a well's group to its rect.
+std::vector<QCPAxisRect*> ReviewLoopPlot::well_rects(const bool present[3],
+                                                     const DisplayUnit& z_unit,
+                                                     const QString& f_label,
+                                                     std::array<QCPAxisRect*, 3>& rect_of) {
+  std::vector<QCPAxisRect*> rects;
+  for (int g = 0; g < 3; ++g) {
+    if (!present[g]) continue;
+    QCPAxisRect* rect = rects.empty() ? plot_->axisRect() : new QCPAxisRect(plot_);
+    if (!rects.empty()) {
+      grid_->addElement(0, int(rects.size()), rect);
+      for (QCPAxis::AxisType side : {QCPAxis::atTop, QCPAxis::atRight}) {
+        rect->axis(side)->setVisible(true);
+        rect->axis(side)->setTicks(false);
+        rect->axis(side)->setTickLabels(false);
+      }
+      rect->axis(QCPAxis::atBottom)->setNumberFormat("gb");
+      rect->axis(QCPAxis::atLeft)->setNumberFormat("gb");
+    }
+    rect->axis(QCPAxis::atBottom)->setLabel(tr("z [%1]").arg(text(z_unit.symbol)));
+    rect->axis(QCPAxis::atLeft)->setLabel(rects.empty() ? f_label : QString());
+    // The well, top left inside the axes.
+    auto* label = new QCPItemText(plot_);
+    label->setClipAxisRect(rect);
+    label->position->setAxisRect(rect);
+    label->position->setType(QCPItemPosition::ptAxisRectRatio);
+    label->position->setCoords(0.03, 0.03);
+    label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+    label->setText(g == 0   ? tr("around z\u208a*")
+                   : g == 1 ? tr("around z\u208b*")
+                            : tr("cross-well / unknown"));
+    label->setColor(well_colour(g == 0   ? analysis::Well::Positive
+                                : g == 1 ? analysis::Well::Negative
+                                         : analysis::Well::Unknown));
+    labels_.push_back(label);
+    rect_of[g] = rect;
+    rects.push_back(rect);
+  }
+  return rects;
+}
+
+void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelKey>& keys) {
+  clear();
 
   std::vector<LevelLoop> loops;
   std::vector<LevelKey> shown;
@@ -91,40 +138,8 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
   };
   bool present[3] = {false, false, false};
   for (const LevelLoop& loop : loops) present[group_of(loop.well)] = true;
-  QCPAxisRect* rect_of[3] = {nullptr, nullptr, nullptr};
-  std::vector<QCPAxisRect*> rects;
-  for (int g = 0; g < 3; ++g) {
-    if (!present[g]) continue;
-    QCPAxisRect* rect = rects.empty() ? plot_->axisRect() : new QCPAxisRect(plot_);
-    if (!rects.empty()) {
-      grid_->addElement(0, int(rects.size()), rect);
-      for (QCPAxis::AxisType side : {QCPAxis::atTop, QCPAxis::atRight}) {
-        rect->axis(side)->setVisible(true);
-        rect->axis(side)->setTicks(false);
-        rect->axis(side)->setTickLabels(false);
-      }
-      rect->axis(QCPAxis::atBottom)->setNumberFormat("gb");
-      rect->axis(QCPAxis::atLeft)->setNumberFormat("gb");
-    }
-    rect->axis(QCPAxis::atBottom)->setLabel(tr("z [%1]").arg(text(z_unit.symbol)));
-    rect->axis(QCPAxis::atLeft)->setLabel(rects.empty() ? f_label : QString());
-    // The well, top left inside the axes.
-    auto* label = new QCPItemText(plot_);
-    label->setClipAxisRect(rect);
-    label->position->setAxisRect(rect);
-    label->position->setType(QCPItemPosition::ptAxisRectRatio);
-    label->position->setCoords(0.03, 0.03);
-    label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
-    label->setText(g == 0   ? tr("around z\u208a*")
-                   : g == 1 ? tr("around z\u208b*")
-                            : tr("cross-well / unknown"));
-    label->setColor(well_colour(g == 0   ? analysis::Well::Positive
-                                : g == 1 ? analysis::Well::Negative
-                                         : analysis::Well::Unknown));
-    labels_.push_back(label);
-    rect_of[g] = rect;
-    rects.push_back(rect);
-  }
+  std::array<QCPAxisRect*, 3> rect_of{};
+  const std::vector<QCPAxisRect*> rects = well_rects(present, z_unit, f_label, rect_of);
 
   int same_well[3] = {0, 0, 0};  // loops drawn so far per well: later ones darker
   double z_lo[3] = {INFINITY, INFINITY, INFINITY}, z_hi[3] = {-INFINITY, -INFINITY, -INFINITY};

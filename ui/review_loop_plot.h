@@ -1,12 +1,15 @@
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <QCoreApplication>
 
+#include "ui/display_units.h"
 #include "ui/review_model.h"
 
 class QCPAbstractItem;
+class QCPAxisRect;
 class QCPLayoutGrid;
 class QCustomPlot;
 
@@ -28,6 +31,11 @@ class ReviewLoopPlot {
   void show(const ReviewAnalysis* review, const std::vector<LevelKey>& keys);
 
  private:
+  void clear();
+  std::vector<QCPAxisRect*> well_rects(const bool present[3], const DisplayUnit& z_unit,
+                                       const QString& f_label,
+                                       std::array<QCPAxisRect*, 3>& rect_of);
+
   QCustomPlot* plot_ = nullptr;
   QCPLayoutGrid* grid_ = nullptr;         // the axis rects, one per well
   std::vector<QCPAbstractItem*> labels_;  // their well labels
