@@ -176,27 +176,100 @@ const char* status_name(JobStatus status) {
 
 std::string job_status_name(JobStatus status) { return status_name(status); }
 
+namespace {
+
+// Analysis: a record's motion signals, the MATLAB export of the EDC table, repr.
+void bind_analysis_methods(py::class_<AnalysisHandle>& cls) {
+  cls.def(
+         "motion",
+         [](const AnalysisHandle& h, int record) {
+           const auto& records = h.campaign->records;
+           if (record < 0 || record >= static_cast<int>(records.size())) {
+             throw InputError("record: " + std::to_string(record) + " is not in 0.." +
+                              std::to_string(static_cast<int>(records.size()) - 1));
+           }
+           const analysis::MotionSignals& s = records[static_cast<std::size_t>(record)].motion;
+           py::dict d;
+           d["t_s"] = to_array(s.t_s);
+           d["z_m"] = to_array(s.z_m);
+           d["z_dot_m_s"] = to_array(s.z_dot_m_s);
+           d["restoring_force_n"] = to_array(s.restoring_force_n);
+           d["z_absolute"] = s.z_absolute;
+           return d;
+         },
+         py::arg("record") = 0,
+         "The time signals of the restoring surface of one record (§3): t_s [s], z_m [m], "
+         "z_dot_m_s [m/s], restoring_force_n [N] R = f − m z̈, and z_absolute (False: z's mean "
+         "unknown).")
+      .def(
+          "export_edc_mat",
+          [](const AnalysisHandle& h, const py::object& path) {
+            const std::string p = path_string(path);
+            py::gil_scoped_release release;
+            daq::write_edc_mat(daq::edc_table_rows(*h.campaign), p);
+          },
+          py::arg("path"),
+          "Writes the EDC table as a MATLAB v5 .mat file (`oscilab-cli export --edc-mat`): one "
+          "column vector per column of the table (the keys of `edc`): double for numbers, "
+          "logical for usable, cell of char for well, record and flags.")
+      .def("__repr__", [](const AnalysisHandle& h) {
+        std::size_t levels = 0;
+        for (const auto& r : h.campaign->records) levels += r.levels.size();
+        return "<oscilab.Analysis " + std::to_string(h.campaign->records.size()) + " records, " +
+               std::to_string(levels) + " levels>";
+      });
+}
+
+// analyze(): recordings to an Analysis.
+void bind_analyze(py::module_& m) {
+  m.def(
+      "analyze",
+      [](const py::object& recordings, const py::object& freq_hz, const py::object& well,
+         bool detect_levels, int harmonics, double highpass_hz, double lowpass_hz,
+         double well_boundary_m, const py::object& progress) {
+        AnalysisArguments a{freq_hz,     well,       detect_levels,  harmonics,
+                            highpass_hz, lowpass_hz, well_boundary_m};
+        return AnalysisHandle{run_analysis(recordings, a, progress)};
+      },
+      py::arg("recordings"), py::kw_only(), py::arg("freq_hz") = py::none(),
+      py::arg("well") = py::none(), py::arg("detect_levels") = false, py::arg("harmonics") = 8,
+      py::arg("highpass_hz") = 1.0, py::arg("lowpass_hz") = 60.0, py::arg("well_boundary_m") = 0.0,
+      py::arg("progress") = py::none(),
+      R"doc(Measurement analysis of recordings (`oscilab-cli analyze`): per-level energy dissipated per
+cycle of stepped-sine records and the restoring-force surface of all records together.
+
+recordings: a path, a Recording, or a sequence of them (each file with its JSON sidecar).
+freq_hz: excitation frequency [Hz] (default: the sidecar's, else detected).
+well: 'positive' or 'negative' when the mass channel cannot tell.
+detect_levels: find levels from the force amplitude even when the sidecar lists them.
+harmonics: harmonics per cycle fit; highpass_hz: cut-off of the zero-phase double integration
+[Hz]; lowpass_hz: cut-off of the spectral differentiation [Hz]; well_boundary_m: z between the
+wells [m].
+progress: callable(info: dict) with info['fraction'] in [0, 1]; return False to cancel.
+Returns an Analysis. Ctrl-C stops it (KeyboardInterrupt); the GIL is released while it runs.)doc");
+}
+
+}  // namespace
+
 void bind_analysis(py::module_& m) {
-  py::class_<AnalysisHandle>(m, "Analysis", R"doc(
+  py::class_<AnalysisHandle> cls(m, "Analysis", R"doc(
 The offline analysis of one or more recordings (what `oscilab-cli analyze` computes): the EDC of
 every stepped-sine level, the restoring-force surface (stiffness slice with its cubic fit, damping
 slices), every fitted cycle. Tables are dicts of NumPy arrays named and ordered like the CLI's
 CSV columns (float64, int64, bool, unicode: docs/python.md); the summary is the CLI's --summary
 JSON as a dict. Pass it to ``fit`` or ``diagnose`` to reuse it.
-)doc")
-      .def_property_readonly(
-          "edc",
-          [](const AnalysisHandle& h) {
-            return level_table(analysis::edc_table_rows(*h.campaign));
-          },
-          "EDC table, one row per stepped-sine level of each record, records in order: a dict of "
-          "NumPy arrays keyed and ordered like the CSV of `analyze --edc` (docs/contracts.md §3): "
-          "well, f0_n [N], edc_mean_j [J], edc_std_j [J], cycles, record, edc_noise_floor_j [J], "
-          "edc_eq13_mean_j [J], edc_trapz_mean_j [J], z1_abs_m [m], lag_rad [rad], z_mean_m [m], "
-          "start_s [s], end_s [s], transient_cycles, period1_change, usable, flags. dtypes: "
-          "float64 for reals, int64 for counts (cycles, transient_cycles), bool for usable, "
-          "unicode (<U...) for well, record and flags; pandas.DataFrame(a.edc) takes it as it is. "
-          "J/kg and N/kg without mass_kg (flag per-unit-mass).")
+)doc");
+  cls.def_property_readonly(
+         "edc",
+         [](const AnalysisHandle& h) { return level_table(analysis::edc_table_rows(*h.campaign)); },
+         "EDC table, one row per stepped-sine level of each record, records in order: a dict of "
+         "NumPy arrays keyed and ordered like the CSV of `analyze --edc` (docs/contracts.md §3): "
+         "well, f0_n [N], edc_mean_j [J], edc_std_j [J], cycles, record, edc_noise_floor_j [J], "
+         "edc_eq13_mean_j [J], edc_trapz_mean_j [J], z1_abs_m [m], lag_rad [rad], z_mean_m [m], "
+         "start_s [s], end_s [s], transient_cycles, period1_change, usable, flags. dtypes: "
+         "float64 for reals, int64 for counts (cycles, transient_cycles), bool for usable, "
+         "unicode (<U...) for well, record and flags; pandas.DataFrame(a.edc) takes it as it is. "
+         "J/kg and N/kg without mass_kg (flag per-unit-mass).")
       .def_property_readonly(
           "cycles",
           [](const AnalysisHandle& h) {
@@ -290,71 +363,10 @@ JSON as a dict. Pass it to ``fit`` or ``diagnose`` to reuse it.
             return out;
           },
           "Per record: name, stepped_sine, excitation_freq_hz [Hz], frequency_detected, "
-          "per_unit_mass, levels, cycles, notes.")
-      .def(
-          "motion",
-          [](const AnalysisHandle& h, int record) {
-            const auto& records = h.campaign->records;
-            if (record < 0 || record >= static_cast<int>(records.size())) {
-              throw InputError("record: " + std::to_string(record) + " is not in 0.." +
-                               std::to_string(static_cast<int>(records.size()) - 1));
-            }
-            const analysis::MotionSignals& s = records[static_cast<std::size_t>(record)].motion;
-            py::dict d;
-            d["t_s"] = to_array(s.t_s);
-            d["z_m"] = to_array(s.z_m);
-            d["z_dot_m_s"] = to_array(s.z_dot_m_s);
-            d["restoring_force_n"] = to_array(s.restoring_force_n);
-            d["z_absolute"] = s.z_absolute;
-            return d;
-          },
-          py::arg("record") = 0,
-          "The time signals of the restoring surface of one record (§3): t_s [s], z_m [m], "
-          "z_dot_m_s [m/s], restoring_force_n [N] R = f − m z̈, and z_absolute (False: z's mean "
-          "unknown).")
-      .def(
-          "export_edc_mat",
-          [](const AnalysisHandle& h, const py::object& path) {
-            const std::string p = path_string(path);
-            py::gil_scoped_release release;
-            daq::write_edc_mat(daq::edc_table_rows(*h.campaign), p);
-          },
-          py::arg("path"),
-          "Writes the EDC table as a MATLAB v5 .mat file (`oscilab-cli export --edc-mat`): one "
-          "column vector per column of the table (the keys of `edc`): double for numbers, "
-          "logical for usable, cell of char for well, record and flags.")
-      .def("__repr__", [](const AnalysisHandle& h) {
-        std::size_t levels = 0;
-        for (const auto& r : h.campaign->records) levels += r.levels.size();
-        return "<oscilab.Analysis " + std::to_string(h.campaign->records.size()) + " records, " +
-               std::to_string(levels) + " levels>";
-      });
+          "per_unit_mass, levels, cycles, notes.");
+  bind_analysis_methods(cls);
 
-  m.def(
-      "analyze",
-      [](const py::object& recordings, const py::object& freq_hz, const py::object& well,
-         bool detect_levels, int harmonics, double highpass_hz, double lowpass_hz,
-         double well_boundary_m, const py::object& progress) {
-        AnalysisArguments a{freq_hz,     well,       detect_levels,  harmonics,
-                            highpass_hz, lowpass_hz, well_boundary_m};
-        return AnalysisHandle{run_analysis(recordings, a, progress)};
-      },
-      py::arg("recordings"), py::kw_only(), py::arg("freq_hz") = py::none(),
-      py::arg("well") = py::none(), py::arg("detect_levels") = false, py::arg("harmonics") = 8,
-      py::arg("highpass_hz") = 1.0, py::arg("lowpass_hz") = 60.0, py::arg("well_boundary_m") = 0.0,
-      py::arg("progress") = py::none(),
-      R"doc(Measurement analysis of recordings (`oscilab-cli analyze`): per-level energy dissipated per
-cycle of stepped-sine records and the restoring-force surface of all records together.
-
-recordings: a path, a Recording, or a sequence of them (each file with its JSON sidecar).
-freq_hz: excitation frequency [Hz] (default: the sidecar's, else detected).
-well: 'positive' or 'negative' when the mass channel cannot tell.
-detect_levels: find levels from the force amplitude even when the sidecar lists them.
-harmonics: harmonics per cycle fit; highpass_hz: cut-off of the zero-phase double integration
-[Hz]; lowpass_hz: cut-off of the spectral differentiation [Hz]; well_boundary_m: z between the
-wells [m].
-progress: callable(info: dict) with info['fraction'] in [0, 1]; return False to cancel.
-Returns an Analysis. Ctrl-C stops it (KeyboardInterrupt); the GIL is released while it runs.)doc");
+  bind_analyze(m);
 }
 
 }  // namespace oscilab::python

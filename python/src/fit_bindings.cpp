@@ -154,9 +154,8 @@ py::dict run_fit(const FitProblem& problem, const std::string& method, int popul
       objective->form().names());
 }
 
-}  // namespace
-
-void bind_fit(py::module_& m) {
+// The FitProblem class: a fit's problem made once, θ evaluated and fitted.
+void bind_fit_problem(py::module_& m) {
   // The search's defaults are analysis::FitOptions' (as `oscilab-cli fit` and the app's form).
   const analysis::FitOptions kSearch;
   py::class_<FitProblem>(m, "FitProblem", R"doc(
@@ -236,7 +235,10 @@ levels of both wells, and the objective: eq. (8) and the σ-weighted cost. Made 
           py::arg("bootstrap") = kSearch.uncertainty.bootstrap_replicates,
           py::arg("progress") = py::none(),
           "Runs the fit on this problem; arguments and result as oscilab.fit().");
+}
 
+// merge(): FIT JSONs to one table.
+void bind_merge(py::module_& m) {
   m.def(
       "merge",
       [](const py::object& fits) {
@@ -288,7 +290,12 @@ of the fits' parameters in first-seen order) as a dict of NumPy arrays: unicode 
 text, int64 for evaluations, float64 otherwise (NaN where a fit has no such parameter or error).
 fits: a path or a sequence of paths (str, bytes or os.PathLike) of FIT JSONs written by fit().
 pandas.DataFrame(oscilab.merge(paths)) takes it as it is.)doc");
+}
 
+// prepare_fit() and fit().
+void bind_fit_functions(py::module_& m) {
+  // The search's defaults are analysis::FitOptions' (as `oscilab-cli fit` and the app's form).
+  const analysis::FitOptions kSearch;
   m.def(
       "prepare_fit",
       [](const py::object& recordings, const py::object& model, const std::string& stiffness,
@@ -349,7 +356,10 @@ Ctrl-C cancels the fit and raises KeyboardInterrupt once it has stopped; the GIL
 Returns the FIT JSON of the CLI as a dict: parameters {fd_zminus_n, fd_zero_n, fd_zplus_n, ks,
 c_ns_m, vt_m_s}, cost_j [J], mean_deviation_pct {positive, negative} [%], evaluations, seconds,
 status, message, standard_errors, intervals_95, levels, model, notes ...)doc");
+}
 
+// diagnose().
+void bind_diagnose(py::module_& m) {
   m.def(
       "diagnose",
       [](const py::object& recordings, const py::object& model, std::uint64_t seed, int threads,
@@ -438,6 +448,15 @@ return False to cancel; other arguments as fit().
 Returns report.json as a dict: baseline {cost_j ...}, steps [{effect, evidence, cost_before_j,
 cost_after_j}], verdict (an effect name of contract §3, or 'none'), final_model, notes; and
 final_model_object (a Model) when there is one. Ctrl-C stops it (KeyboardInterrupt).)doc");
+}
+
+}  // namespace
+
+void bind_fit(py::module_& m) {
+  bind_fit_problem(m);
+  bind_merge(m);
+  bind_fit_functions(m);
+  bind_diagnose(m);
 }
 
 }  // namespace oscilab::python

@@ -120,9 +120,8 @@ py::dict branch_dict(const analysis::Branch& branch) {
   return d;
 }
 
-}  // namespace
-
-void bind_hbm(py::module_& m) {
+// hbm_branch(): a branch by harmonic balance with continuation.
+void bind_hbm_branch(py::module_& m) {
   m.def(
       "hbm_branch",
       [](const py::object& model_arg, double freq_hz, std::pair<double, double> f0_n,
@@ -216,7 +215,10 @@ branch and continue it over the f0 range (and once more at its first period doub
 as `hbm --follow-period-doubling`; the result then has period_doubled, a list of such dicts with
 period (in forcing periods), f0_flip_n and f0_pitchfork_n [N]. well='both' (as `hbm --well
 both`): {'positive': branch, 'negative': branch}, both computed in one call.)doc");
+}
 
+// amplitude_sweep(): the time-integrated sweep up and down in f0.
+void bind_amplitude_sweep(py::module_& m) {
   m.def(
       "amplitude_sweep",
       [](const py::object& model_arg, double freq_hz, double f0_max_n, double up_s,
@@ -276,7 +278,10 @@ Returns a dict: one entry per forcing period, named like the sweep CSV: f0_n [N]
 direction ('up'/'down'), amp_m [m] ((max z − min z) / 2 over the period, from
 samples_per_period samples), t_s [s] (its start); jump_up and jump_down ({f0_n, amp_before_m,
 amp_after_m}: the largest period-to-period change each way), status, message.)doc");
+}
 
+// bifurcation_map(): the stepped time simulation's Poincaré points.
+void bind_bifurcation_map(py::module_& m) {
   m.def(
       "bifurcation_map",
       [](const py::object& model_arg, double freq_hz, std::pair<double, double> f0_n, double step_n,
@@ -357,6 +362,14 @@ of hold_periods (ramp_periods of ramp). One point per level: period 1; two: peri
 Returns a dict: rows (columns f0_n [N], well, z_m [m], period: the map CSV), levels (columns
 f0_n, well, distinct_points (sections closer than cluster_tolerance_m [m] are one), spread_m,
 z_min_m, z_max_m), status ('ok', 'cancelled' with the levels done), message.)doc");
+}
+
+}  // namespace
+
+void bind_hbm(py::module_& m) {
+  bind_hbm_branch(m);
+  bind_amplitude_sweep(m);
+  bind_bifurcation_map(m);
 }
 
 }  // namespace oscilab::python

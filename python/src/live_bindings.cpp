@@ -190,7 +190,10 @@ py::dict next_update(LiveSession& session) {
 
 }  // namespace
 
-void bind_live(py::module_& m) {
+namespace {
+
+// The LiveSession class: a running acquisition read block by block.
+void bind_live_session(py::module_& m) {
   py::class_<LiveSession>(m, "LiveSession", R"doc(
 A live source running through the acquisition chain (the CLI's `record`): iterate it for updates,
 each a dict: t_s (stream time [s]), block (the samples since the last update in SI: t_s, base,
@@ -240,7 +243,10 @@ it on leaving. Made by oscilab.live().
             return layout ? to_python(daq::sidecar_to_json(*layout)) : py::none();
           },
           "The stream's sidecar (dict) once known, else None.");
+}
 
+// live(): a live session on a source.
+void bind_live_function(py::module_& m) {
   m.def(
       "live",
       [](const py::object& source, const py::object& duration_s, double speed,
@@ -322,6 +328,13 @@ the default; the signals are brought to the calibration's sample_rate_hz). speed
 duration_s: stop at this stream time [s]. record_to: also record to this path (.wav .w64 .rf64)
 with sidecar and event log. poll_s: seconds between updates. blocks: include the samples.
 excitation_freq_hz: override the layout's frequency for the live EDC [Hz].)doc");
+}
+
+}  // namespace
+
+void bind_live(py::module_& m) {
+  bind_live_session(m);
+  bind_live_function(m);
 }
 
 }  // namespace oscilab::python

@@ -85,87 +85,18 @@ Model model_argument(const py::handle& object) {
   throw InputError("model: expected a Model, a model dict, 'paper', 'illustrative' or a path");
 }
 
-void bind_models(py::module_& m) {
-  py::class_<Model>(m, "Model", R"doc(
-A single-degree-of-freedom model of eq. (1), m z̈ + Σ F_i(z, ż, s_i) = f(t): a mass [kg] and a
-list of named terms (polynomial stiffness, position-dependent friction, viscous damping, ...).
+namespace {
 
-``Model(mass_kg, terms, name='')`` builds one from term dicts in the model JSON's form, e.g.
-``{"type": "viscous-damping", "c_ns_m": 2.0}``; ``Model.paper()``, ``Model.illustrative()``,
-``Model.from_json(...)``, ``Model.load(path)`` and ``Model.from_spec('paper'|'illustrative'|path)``
-make the others. Raises InputError (a ValueError) naming the term and field for bad input.
-Models pickle, and compare equal when their model JSON is.
-)doc")
-      .def(py::init([](double mass_kg, const py::list& terms, const std::string& name) {
-             return model_from_terms(mass_kg, terms, name);
-           }),
-           py::arg("mass_kg"), py::arg("terms"), py::arg("name") = "")
-      .def_static(
-          "paper",
-          [](const py::object& fd_zminus_n, const py::object& fd_zero_n,
-             const py::object& fd_zplus_n, const py::object& ks, const py::object& c_ns_m,
-             const py::object& vt_m_s) {
-            const py::object given[] = {fd_zminus_n, fd_zero_n, fd_zplus_n, ks, c_ns_m, vt_m_s};
-            bool any = false;
-            for (const auto& g : given) any |= !g.is_none();
-            if (!any) return analysis::paper_model();
-            analysis::PaperFriction f;
-            double* fields[] = {&f.fd_zminus_n, &f.fd_zero_n, &f.fd_zplus_n,
-                                &f.ks,          &f.c_ns_m,    &f.vt_m_s};
-            const char* names[] = {"fd_zminus_n", "fd_zero_n", "fd_zplus_n",
-                                   "ks",          "c_ns_m",    "vt_m_s"};
-            for (int i = 0; i < 6; ++i) {
-              if (!given[i].is_none()) *fields[i] = number_argument(given[i], names[i]);
-            }
-            return analysis::paper_model(f);
-          },
-          py::kw_only(), py::arg("fd_zminus_n") = py::none(), py::arg("fd_zero_n") = py::none(),
-          py::arg("fd_zplus_n") = py::none(), py::arg("ks") = py::none(),
-          py::arg("c_ns_m") = py::none(), py::arg("vt_m_s") = py::none(),
-          "The paper's model, eq. (7): Table 1 stiffness, m = 0.26 kg, Table 3 friction. Give "
-          "any of θ of eq. (9) (fd_zminus_n, fd_zero_n, fd_zplus_n [N], ks [-], c_ns_m [N s/m], "
-          "vt_m_s [m/s]) to replace Table 3's value.")
-      .def_static("illustrative", &analysis::illustrative_model,
-                  "The illustrative linear oscillator with friction of eq. (14), Table 2: "
-                  "m = 1.3 kg, k = 800 N/m, c = 1 N s/m, f_d = 1 N, k_s = 1.2, v_t = 1e-2 m/s.")
-      .def_static(
-          "from_json",
-          [](const py::object& json) {
-            return analysis::model_from_json(json_argument(json, "model"), "model");
-          },
-          py::arg("json"), "A model from its JSON (a dict or JSON text, format oscilab-model/1).")
-      .def_static(
-          "load",
-          [](const py::object& path) {
-            return analysis::load_model(existing_model_file(path, "path: a model JSON file"));
-          },
-          py::arg("path"),
-          "Reads a model JSON file (MissingFileError, a FileNotFoundError, when it does not "
-          "exist; FileError, an OSError, when it cannot be opened).")
-      .def_static(
-          "from_spec",
-          [](const py::object& spec) { return model_from_spec_argument(spec, "spec"); },
-          py::arg("spec"),
-          "A model as the CLI's --model names it: 'paper', 'illustrative' or a model JSON path.")
-      .def(
-          "to_json", [](const Model& model) { return to_python(model.to_json()); },
-          "The model JSON as a dict: {format, name, mass_kg, terms: [...]}.")
-      .def(
-          "save",
-          [](const Model& model, const py::object& path) {
-            analysis::save_model(model, path_string(path));
-          },
-          py::arg("path"), "Writes the model JSON file (as `oscilab-cli model ... --out`).")
-      .def_property_readonly("name", &Model::name, "The model's name.")
-      .def_property_readonly("mass_kg", &Model::mass_kg, "Mass m [kg].")
-      .def_property_readonly(
-          "terms",
-          [](const Model& model) {
-            py::list terms;
-            for (const auto& t : model.terms()) terms.append(to_python(t->to_json()));
-            return terms;
-          },
-          "The terms as dicts ({type, parameters...}, SI units in the key names).")
+// Model: what it is made of and its equilibria, forces and potential; pickling and repr.
+void bind_model_queries(py::class_<Model>& cls) {
+  cls.def_property_readonly(
+         "terms",
+         [](const Model& model) {
+           py::list terms;
+           for (const auto& t : model.terms()) terms.append(to_python(t->to_json()));
+           return terms;
+         },
+         "The terms as dicts ({type, parameters...}, SI units in the key names).")
       .def(
           "summary", [](const Model& model) { return to_python(analysis::model_summary(model)); },
           "The model summary of `oscilab-cli model ... --summary` (contract §3): name, mass_kg, "
@@ -247,6 +178,84 @@ Models pickle, and compare equal when their model JSON is.
         return "<oscilab.Model " + model.name() + ", m = " + std::to_string(model.mass_kg()) +
                " kg, " + std::to_string(model.terms().size()) + " terms>";
       });
+}
+
+}  // namespace
+
+void bind_models(py::module_& m) {
+  py::class_<Model> cls(m, "Model", R"doc(
+A single-degree-of-freedom model of eq. (1), m z̈ + Σ F_i(z, ż, s_i) = f(t): a mass [kg] and a
+list of named terms (polynomial stiffness, position-dependent friction, viscous damping, ...).
+
+``Model(mass_kg, terms, name='')`` builds one from term dicts in the model JSON's form, e.g.
+``{"type": "viscous-damping", "c_ns_m": 2.0}``; ``Model.paper()``, ``Model.illustrative()``,
+``Model.from_json(...)``, ``Model.load(path)`` and ``Model.from_spec('paper'|'illustrative'|path)``
+make the others. Raises InputError (a ValueError) naming the term and field for bad input.
+Models pickle, and compare equal when their model JSON is.
+)doc");
+  cls.def(py::init([](double mass_kg, const py::list& terms, const std::string& name) {
+            return model_from_terms(mass_kg, terms, name);
+          }),
+          py::arg("mass_kg"), py::arg("terms"), py::arg("name") = "")
+      .def_static(
+          "paper",
+          [](const py::object& fd_zminus_n, const py::object& fd_zero_n,
+             const py::object& fd_zplus_n, const py::object& ks, const py::object& c_ns_m,
+             const py::object& vt_m_s) {
+            const py::object given[] = {fd_zminus_n, fd_zero_n, fd_zplus_n, ks, c_ns_m, vt_m_s};
+            bool any = false;
+            for (const auto& g : given) any |= !g.is_none();
+            if (!any) return analysis::paper_model();
+            analysis::PaperFriction f;
+            double* fields[] = {&f.fd_zminus_n, &f.fd_zero_n, &f.fd_zplus_n,
+                                &f.ks,          &f.c_ns_m,    &f.vt_m_s};
+            const char* names[] = {"fd_zminus_n", "fd_zero_n", "fd_zplus_n",
+                                   "ks",          "c_ns_m",    "vt_m_s"};
+            for (int i = 0; i < 6; ++i) {
+              if (!given[i].is_none()) *fields[i] = number_argument(given[i], names[i]);
+            }
+            return analysis::paper_model(f);
+          },
+          py::kw_only(), py::arg("fd_zminus_n") = py::none(), py::arg("fd_zero_n") = py::none(),
+          py::arg("fd_zplus_n") = py::none(), py::arg("ks") = py::none(),
+          py::arg("c_ns_m") = py::none(), py::arg("vt_m_s") = py::none(),
+          "The paper's model, eq. (7): Table 1 stiffness, m = 0.26 kg, Table 3 friction. Give "
+          "any of θ of eq. (9) (fd_zminus_n, fd_zero_n, fd_zplus_n [N], ks [-], c_ns_m [N s/m], "
+          "vt_m_s [m/s]) to replace Table 3's value.")
+      .def_static("illustrative", &analysis::illustrative_model,
+                  "The illustrative linear oscillator with friction of eq. (14), Table 2: "
+                  "m = 1.3 kg, k = 800 N/m, c = 1 N s/m, f_d = 1 N, k_s = 1.2, v_t = 1e-2 m/s.")
+      .def_static(
+          "from_json",
+          [](const py::object& json) {
+            return analysis::model_from_json(json_argument(json, "model"), "model");
+          },
+          py::arg("json"), "A model from its JSON (a dict or JSON text, format oscilab-model/1).")
+      .def_static(
+          "load",
+          [](const py::object& path) {
+            return analysis::load_model(existing_model_file(path, "path: a model JSON file"));
+          },
+          py::arg("path"),
+          "Reads a model JSON file (MissingFileError, a FileNotFoundError, when it does not "
+          "exist; FileError, an OSError, when it cannot be opened).")
+      .def_static(
+          "from_spec",
+          [](const py::object& spec) { return model_from_spec_argument(spec, "spec"); },
+          py::arg("spec"),
+          "A model as the CLI's --model names it: 'paper', 'illustrative' or a model JSON path.")
+      .def(
+          "to_json", [](const Model& model) { return to_python(model.to_json()); },
+          "The model JSON as a dict: {format, name, mass_kg, terms: [...]}.")
+      .def(
+          "save",
+          [](const Model& model, const py::object& path) {
+            analysis::save_model(model, path_string(path));
+          },
+          py::arg("path"), "Writes the model JSON file (as `oscilab-cli model ... --out`).")
+      .def_property_readonly("name", &Model::name, "The model's name.")
+      .def_property_readonly("mass_kg", &Model::mass_kg, "Mass m [kg].");
+  bind_model_queries(cls);
 }
 
 }  // namespace oscilab::python

@@ -160,105 +160,18 @@ daq::ChannelRole parse_role(const std::string& role) {
   throw InputError("role: unknown role \"" + role + "\" (base, mass, relative, force)");
 }
 
-}  // namespace
-
-void bind_recording(py::module_& m) {
-  py::class_<Recording>(m, "Recording", R"doc(
-A recording in memory: the sidecar (contract §1) and the samples in SI units (m/s², m/s, m, N),
-one column per sidecar channel, one row per sample at ``sample_rate_hz``.
-
-``Recording(sidecar, samples)`` builds one: ``sidecar`` is a dict (or JSON text) in the sidecar
-format of docs/contracts.md §1 (``sample_rate_hz``, ``mass_kg``, ``channels`` with ``name``,
-``role``, ``quantity``, ``unit``, ``scale`` ...), ``samples`` a 2-D array (samples × channels) in
-SI or a dict channel name → 1-D array; a channel without ``scale`` gets 1. Stored value =
-(SI / unit factor − offset) / scale when written. Raises InputError (a ValueError) with the
-reader's message for an invalid sidecar, and for a NaN or infinite sample outside the sidecar's
-``invalid_intervals`` (naming the channel and the first such sample), as the readers do.
-
-Recordings pickle, and compare equal when their sidecars and SI samples are.
-)doc")
-      .def(py::init([](const py::object& sidecar, const py::object& samples) {
-             return make_recording(sidecar, samples);
-           }),
-           py::arg("sidecar"), py::arg("samples"))
-      .def_property(
-          "sidecar", [](const Recording& r) { return to_python(daq::sidecar_to_json(r.sidecar)); },
-          [](Recording& r, const py::object& sidecar) {
-            daq::Sidecar parsed = sidecar_argument(sidecar);
-            if (parsed.channels.size() != static_cast<std::size_t>(r.samples_si.cols())) {
-              throw InputError("sidecar: " + std::to_string(parsed.channels.size()) +
-                               " channels for " + std::to_string(r.samples_si.cols()) +
-                               " sample columns");
-            }
-            r.sidecar = std::move(parsed);
-          },
-          "The sidecar as a dict (contract §1 keys); assign a dict to replace it.")
-      .def_property_readonly(
-          "sample_rate_hz", [](const Recording& r) { return r.sidecar.sample_rate_hz; },
-          "Sample rate [Hz].")
-      .def_property_readonly(
-          "mass_kg",
-          [](const Recording& r) -> py::object {
-            return r.sidecar.mass_kg ? py::object(py::float_(*r.sidecar.mass_kg))
-                                     : py::object(py::none());
-          },
-          "Mass of the oscillator [kg], or None when the sidecar does not give it.")
-      .def_property_readonly(
-          "channel_names",
-          [](const Recording& r) {
-            py::list names;
-            for (const auto& c : r.sidecar.channels) names.append(c.name);
-            return names;
-          },
-          "Channel names in column order.")
-      .def_property_readonly(
-          "channels",
-          [](const Recording& r) { return to_python(daq::sidecar_to_json(r.sidecar)["channels"]); },
-          "The sidecar's channel descriptions (list of dicts: name, role, quantity, unit, scale, "
-          "offset, sensor ...).")
-      .def_property_readonly(
-          "samples",
-          [](const py::object& self) {
-            return read_only_view(self.cast<const Recording&>().samples_si, self);
-          },
-          "Samples in SI units, 2-D array (samples × channels): a read-only view of the "
-          "recording's own samples (no copy; np.array(rec.samples) makes a writable copy).")
-      .def_property_readonly(
-          "samples_stored",
-          [](const Recording& r) -> py::object {
-            if (r.samples_stored.size() == 0) return py::none();
-            return to_array(r.samples_stored);
-          },
-          "The values exactly as the file stores them (before calibration), or None for a "
-          "recording made in memory.")
-      .def_property_readonly(
-          "t_s",
-          [](const Recording& r) {
-            Eigen::VectorXd t(r.sample_count());
-            for (Eigen::Index i = 0; i < t.size(); ++i) {
-              t[i] = static_cast<double>(i) / r.sidecar.sample_rate_hz;
-            }
-            return to_array(t);
-          },
-          "Sample times t = i / sample_rate_hz [s].")
-      .def_property_readonly(
-          "source_path", [](const Recording& r) { return r.source_path; },
-          "Where it was read from ('' when made in memory).")
-      .def_property_readonly(
-          "container", [](const Recording& r) { return r.container; },
-          "The file's container as the reader saw it, e.g. 'FLAC ...' or 'CSV'.")
-      .def_property_readonly("duration_s", &Recording::duration_s, "Duration [s].")
-      .def_property_readonly("sample_count", &Recording::sample_count, "Samples per channel.")
-      .def(
-          "channel",
-          [](const py::object& self, const std::string& name) {
-            const Recording& r = self.cast<const Recording&>();
-            const int index = r.channel_index(name);
-            if (index < 0) throw InputError("channel: no channel named \"" + name + "\"");
-            return read_only_column(r, index, self);
-          },
-          py::arg("name"),
-          "The SI samples of the channel named `name` (1-D array, a read-only view).")
+// Recording: its channels by name, conversions, writing, description, pickling and repr.
+void bind_recording_methods(py::class_<Recording>& cls) {
+  cls.def(
+         "channel",
+         [](const py::object& self, const std::string& name) {
+           const Recording& r = self.cast<const Recording&>();
+           const int index = r.channel_index(name);
+           if (index < 0) throw InputError("channel: no channel named \"" + name + "\"");
+           return read_only_column(r, index, self);
+         },
+         py::arg("name"),
+         "The SI samples of the channel named `name` (1-D array, a read-only view).")
       .def(
           "channel_by_role",
           [](const py::object& self, const std::string& role) {
@@ -359,7 +272,11 @@ Recordings pickle, and compare equal when their sidecars and SI samples are.
                std::to_string(r.sidecar.sample_rate_hz) + " Hz" +
                (r.source_path.empty() ? std::string() : ", " + r.source_path) + ">";
       });
+}
 
+// read_recording(), write_recording(), draft_sidecar() and describe_recording(): recordings as
+// files.
+void bind_recording_files(py::module_& m) {
   m.def(
       "read_recording",
       [](const py::object& path, const py::object& sidecar) {
@@ -425,6 +342,100 @@ is missing, one line each), complete (True when every required field has a value
       py::arg("path"),
       "The text `oscilab-cli info PATH` prints: channels, units, rate, "
       "duration, excitation.");
+}
+
+}  // namespace
+
+void bind_recording(py::module_& m) {
+  py::class_<Recording> cls(m, "Recording", R"doc(
+A recording in memory: the sidecar (contract §1) and the samples in SI units (m/s², m/s, m, N),
+one column per sidecar channel, one row per sample at ``sample_rate_hz``.
+
+``Recording(sidecar, samples)`` builds one: ``sidecar`` is a dict (or JSON text) in the sidecar
+format of docs/contracts.md §1 (``sample_rate_hz``, ``mass_kg``, ``channels`` with ``name``,
+``role``, ``quantity``, ``unit``, ``scale`` ...), ``samples`` a 2-D array (samples × channels) in
+SI or a dict channel name → 1-D array; a channel without ``scale`` gets 1. Stored value =
+(SI / unit factor − offset) / scale when written. Raises InputError (a ValueError) with the
+reader's message for an invalid sidecar, and for a NaN or infinite sample outside the sidecar's
+``invalid_intervals`` (naming the channel and the first such sample), as the readers do.
+
+Recordings pickle, and compare equal when their sidecars and SI samples are.
+)doc");
+  cls.def(py::init([](const py::object& sidecar, const py::object& samples) {
+            return make_recording(sidecar, samples);
+          }),
+          py::arg("sidecar"), py::arg("samples"))
+      .def_property(
+          "sidecar", [](const Recording& r) { return to_python(daq::sidecar_to_json(r.sidecar)); },
+          [](Recording& r, const py::object& sidecar) {
+            daq::Sidecar parsed = sidecar_argument(sidecar);
+            if (parsed.channels.size() != static_cast<std::size_t>(r.samples_si.cols())) {
+              throw InputError("sidecar: " + std::to_string(parsed.channels.size()) +
+                               " channels for " + std::to_string(r.samples_si.cols()) +
+                               " sample columns");
+            }
+            r.sidecar = std::move(parsed);
+          },
+          "The sidecar as a dict (contract §1 keys); assign a dict to replace it.")
+      .def_property_readonly(
+          "sample_rate_hz", [](const Recording& r) { return r.sidecar.sample_rate_hz; },
+          "Sample rate [Hz].")
+      .def_property_readonly(
+          "mass_kg",
+          [](const Recording& r) -> py::object {
+            return r.sidecar.mass_kg ? py::object(py::float_(*r.sidecar.mass_kg))
+                                     : py::object(py::none());
+          },
+          "Mass of the oscillator [kg], or None when the sidecar does not give it.")
+      .def_property_readonly(
+          "channel_names",
+          [](const Recording& r) {
+            py::list names;
+            for (const auto& c : r.sidecar.channels) names.append(c.name);
+            return names;
+          },
+          "Channel names in column order.")
+      .def_property_readonly(
+          "channels",
+          [](const Recording& r) { return to_python(daq::sidecar_to_json(r.sidecar)["channels"]); },
+          "The sidecar's channel descriptions (list of dicts: name, role, quantity, unit, scale, "
+          "offset, sensor ...).")
+      .def_property_readonly(
+          "samples",
+          [](const py::object& self) {
+            return read_only_view(self.cast<const Recording&>().samples_si, self);
+          },
+          "Samples in SI units, 2-D array (samples × channels): a read-only view of the "
+          "recording's own samples (no copy; np.array(rec.samples) makes a writable copy).")
+      .def_property_readonly(
+          "samples_stored",
+          [](const Recording& r) -> py::object {
+            if (r.samples_stored.size() == 0) return py::none();
+            return to_array(r.samples_stored);
+          },
+          "The values exactly as the file stores them (before calibration), or None for a "
+          "recording made in memory.")
+      .def_property_readonly(
+          "t_s",
+          [](const Recording& r) {
+            Eigen::VectorXd t(r.sample_count());
+            for (Eigen::Index i = 0; i < t.size(); ++i) {
+              t[i] = static_cast<double>(i) / r.sidecar.sample_rate_hz;
+            }
+            return to_array(t);
+          },
+          "Sample times t = i / sample_rate_hz [s].")
+      .def_property_readonly(
+          "source_path", [](const Recording& r) { return r.source_path; },
+          "Where it was read from ('' when made in memory).")
+      .def_property_readonly(
+          "container", [](const Recording& r) { return r.container; },
+          "The file's container as the reader saw it, e.g. 'FLAC ...' or 'CSV'.")
+      .def_property_readonly("duration_s", &Recording::duration_s, "Duration [s].")
+      .def_property_readonly("sample_count", &Recording::sample_count, "Samples per channel.");
+  bind_recording_methods(cls);
+
+  bind_recording_files(m);
 }
 
 }  // namespace oscilab::python

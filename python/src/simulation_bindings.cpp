@@ -129,7 +129,10 @@ std::vector<double> levels_argument(const py::object& levels) {
   return out;
 }
 
-void bind_simulation(py::module_& m) {
+namespace {
+
+// simulate(): the model integrated in time.
+void bind_simulate(py::module_& m) {
   m.def(
       "simulate",
       [](const py::object& model_arg, const std::string& test, const std::string& well,
@@ -197,7 +200,10 @@ Returns a dict of arrays at t = k / rate: t_s, z_m, z_dot_m_s, z_ddot_m_s2, f_n,
 damping_force_n, work_in_j, dissipated_j; status ('ok', 'cancelled', 'numerical-issue'),
 message, rhs_evaluations; for a stepped sine also levels (true steady EDC per level: f0_n, edc_j,
 cycles, start_s, end_s). progress: callable(info) with info['fraction']; Ctrl-C stops it.)doc");
+}
 
+// virtual_rig(): a stepped sine or random test recorded by the virtual rig.
+void bind_virtual_rig(py::module_& m) {
   m.def(
       "virtual_rig",
       [](const py::object& model_arg, const std::string& test, const std::string& well,
@@ -271,6 +277,13 @@ Returns a dict: recording (a Recording: base_acc [m/s²] and y [m] with its side
 gives the CLI's file), truth (arrays t_s, z_m, z_dot_m_s, z_ddot_m_s2, f_n, restoring_force_n,
 damping_force_n, work_in_j, dissipated_j, b_m), levels (true steady EDC per level), status,
 message. Raises InputError (a ValueError) when the integration fails.)doc");
+}
+
+}  // namespace
+
+void bind_simulation(py::module_& m) {
+  bind_simulate(m);
+  bind_virtual_rig(m);
 }
 
 }  // namespace oscilab::python
