@@ -105,73 +105,73 @@ ClockError server_clock_error(const Drain& drain, double s0, const JackTestPlaye
   return e;
 }
 
-TEST(JackSource, AnalysisSamplesSitOnTheServerClockWithTheSameDelayOnEveryChannel) {
-  // Two sines referenced to the server's frame clock, one per channel, at different
-  // frequencies and phases. Sample k of the stream is the signal at frame S0 + k × 48000 / 512
-  // (S0: the frame of sample 0, from the `connected` event), on both channels: soxr removes the
-  // filter's group delay and one interleaved instance gives both channels the same one. The
-  // tolerance, 2e-6 of full scale, is float32 input (6e-8) plus SOXR_HQ's 20-bit precision
-  // (1e-6); a delay of a single server frame would give 9 Hz × 2π / 48000 × 0.5 = 6e-4.
+// Two sines referenced to the server's frame clock, one per channel, at different frequencies
+// and phases, played through a test server and captured by a JackSource: at least 3 s of its
+// samples (a loaded machine takes longer, which is no error; a minute at most, so that a source
+// that delivers nothing fails instead of hanging). `stall_after` samples in, the player stalls
+// its process callback for 50 ms (0: never).
+struct SineCapture {
+  const JackTestPlayer::Sine a{0.5, 9.0, 0.3}, b{0.25, 37.0, -1.1};
+  Drain drain;
+  std::vector<StreamEvent> events;
+  SourceCounters counters;
+  int reach = 0;
+};
+void capture_sines(SineCapture& capture, std::size_t stall_after) {
   JackTestServer server;
   JackTestPlayer player(server.name(), 2);
-  const JackTestPlayer::Sine a{0.5, 9.0, 0.3}, b{0.25, 37.0, -1.1};
-  player.play_sines({a, b});
+  player.play_sines({capture.a, capture.b});
   auto source = std::make_unique<JackSource>(jack_options(server, player));
   BlockQueue queue(256, source->max_block_rows(), 2);
   source->start(queue);
-  Drain drain;
-  // Until 3 s of samples have arrived: a loaded machine takes longer, which is no error (a minute
-  // at most, so a source that delivers nothing fails below instead of hanging).
   const auto deadline = Clock::now() + std::chrono::seconds(60);
-  while (drain.index.size() < 3u * 512u && Clock::now() < deadline) {
-    drain.take(queue);
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  source->stop();
-  drain.take(queue);
-  const std::vector<StreamEvent> events = source->take_events();
-  const double s0 = server_frame_of_sample0(events);
-  ASSERT_GT(drain.index.size(), 2u * 512u) << "at least 2 s of samples";
-  const ClockError error = server_clock_error(drain, s0, a, b);
-  EXPECT_LT(error.worst, 2e-6) << "at sample " << error.at << ", xruns " << source->counters().xruns
-                               << "; events:" << events_text(events);
-  EXPECT_EQ(source->resampler_reach(), 24);  // the design's impulse response, ±47 ms
-  EXPECT_EQ(source->counters().dropped_frames, 0u);
-}
-
-// After an xrun (the player stalled for 50 ms, nine periods) JACK 2 may run a period again with
-// its frame clock one period back, or skip periods. Either way the stream keeps the server's
-// clock: every sample delivered after it is still the signal at S0 + k × 48000 / 512 within the
-// tolerance above, the doubtful stretch is withheld rather than delivered, and no discontinuity
-// (a new time base) is reported.
-TEST(JackSource, SamplesAfterAnXrunStayOnTheServerClock) {
-  JackTestServer server;
-  JackTestPlayer player(server.name(), 2);
-  const JackTestPlayer::Sine a{0.5, 9.0, 0.3}, b{0.25, 37.0, -1.1};
-  player.play_sines({a, b});
-  auto source = std::make_unique<JackSource>(jack_options(server, player));
-  BlockQueue queue(256, source->max_block_rows(), 2);
-  source->start(queue);
-  Drain drain;
-  const auto deadline = Clock::now() + std::chrono::seconds(60);
-  bool stalled = false;
-  while (drain.index.size() < 3u * 512u && Clock::now() < deadline) {
-    drain.take(queue);
-    if (!stalled && drain.index.size() > 512u) {
+  bool stalled = stall_after == 0;
+  while (capture.drain.index.size() < 3u * 512u && Clock::now() < deadline) {
+    capture.drain.take(queue);
+    if (!stalled && capture.drain.index.size() > stall_after) {
       player.stall(std::chrono::milliseconds(50));
       stalled = true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   source->stop();
-  drain.take(queue);
-  const std::vector<StreamEvent> events = source->take_events();
-  const double s0 = server_frame_of_sample0(events);
-  ASSERT_GT(drain.index.size(), 2u * 512u) << "at least 2 s of samples";
-  EXPECT_GE(source->counters().xruns, 1u) << events_text(events);
-  EXPECT_EQ(count_events(events, "discontinuity"), 0u) << events_text(events);
-  const ClockError error = server_clock_error(drain, s0, a, b);
-  EXPECT_LT(error.worst, 2e-6) << "at sample " << error.at << "; events:" << events_text(events);
+  capture.drain.take(queue);
+  capture.events = source->take_events();
+  capture.counters = source->counters();
+  capture.reach = source->resampler_reach();
+}
+
+TEST(JackSource, AnalysisSamplesSitOnTheServerClockWithTheSameDelayOnEveryChannel) {
+  // Sample k of the stream is the signal at frame S0 + k × 48000 / 512 (S0: the frame of sample
+  // 0, from the `connected` event), on both channels: soxr removes the filter's group delay and
+  // one interleaved instance gives both channels the same one. The tolerance, 2e-6 of full
+  // scale, is float32 input (6e-8) plus SOXR_HQ's 20-bit precision (1e-6); a delay of a single
+  // server frame would give 9 Hz × 2π / 48000 × 0.5 = 6e-4.
+  SineCapture c;
+  capture_sines(c, 0);
+  const double s0 = server_frame_of_sample0(c.events);
+  ASSERT_GT(c.drain.index.size(), 2u * 512u) << "at least 2 s of samples";
+  const ClockError error = server_clock_error(c.drain, s0, c.a, c.b);
+  EXPECT_LT(error.worst, 2e-6) << "at sample " << error.at << ", xruns " << c.counters.xruns
+                               << "; events:" << events_text(c.events);
+  EXPECT_EQ(c.reach, 24);  // the design's impulse response, ±47 ms
+  EXPECT_EQ(c.counters.dropped_frames, 0u);
+}
+
+// After an xrun (the player stalled for 50 ms, nine periods) JACK 2 may run a period again with
+// its frame clock one period back, or skip periods. Either way the stream keeps the server's
+// clock: every sample delivered after it is still the signal at S0 + k × 48000 / 512 within the
+// tolerance above, the xrun's stretch is withheld rather than delivered, and no discontinuity (a
+// new time base) is reported.
+TEST(JackSource, SamplesAfterAnXrunStayOnTheServerClock) {
+  SineCapture c;
+  capture_sines(c, 512);
+  const double s0 = server_frame_of_sample0(c.events);
+  ASSERT_GT(c.drain.index.size(), 2u * 512u) << "at least 2 s of samples";
+  EXPECT_GE(c.counters.xruns, 1u) << events_text(c.events);
+  EXPECT_EQ(count_events(c.events, "discontinuity"), 0u) << events_text(c.events);
+  const ClockError error = server_clock_error(c.drain, s0, c.a, c.b);
+  EXPECT_LT(error.worst, 2e-6) << "at sample " << error.at << "; events:" << events_text(c.events);
 }
 
 // The virtual rig's stepped sine (levels 0.5, 1.0, 1.5 N at 9 Hz), recorded at 512 Hz.
