@@ -25,7 +25,7 @@ QString text(const std::string& s) { return QString::fromStdString(s); }
 ReviewLoopPlot::ReviewLoopPlot() {
   plot_ = make_review_plot(tr("z [mm]"), tr("f = \u2212m d\u00b2b/dt\u00b2 [N]"));
   plot_->setObjectName("loop_plot");
-  add_plot_title(plot_, tr("Response-input loops of the selected levels (Fig. 9)"));
+  add_plot_title(plot_, tr("Response-input loops (Fig. 9)"));
   // Row 1: one axis rect per well side by side (each zoomed to its loops, as Fig. 9b/c); row 2:
   // the legend, below them so that it hides no loop.
   QCPAxisRect* first_rect = plot_->axisRect();
@@ -71,6 +71,9 @@ std::vector<QCPAxisRect*> ReviewLoopPlot::well_rects(const bool present[3],
       }
       rect->axis(QCPAxis::atBottom)->setNumberFormat("gb");
       rect->axis(QCPAxis::atLeft)->setNumberFormat("gb");
+      // A rect beside another is narrow: three z ticks, so that "-37.5" and its neighbours do
+      // not run into each other (the first rect's ticks follow the plot's width).
+      rect->axis(QCPAxis::atBottom)->ticker()->setTickCount(3);
     }
     rect->axis(QCPAxis::atBottom)->setLabel(tr("z [%1]").arg(text(z_unit.symbol)));
     rect->axis(QCPAxis::atLeft)->setLabel(rects.empty() ? f_label : QString());
@@ -141,6 +144,15 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
   std::array<QCPAxisRect*, 3> rect_of{};
   const std::vector<QCPAxisRect*> rects = well_rects(present, z_unit, f_label, rect_of);
 
+  // The record's name in the legend only where a well's loops come from more than one record
+  // (the rect and the colour say the well).
+  bool name_records = false;
+  for (std::size_t i = 1; i < loops.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      name_records = name_records || (group_of(loops[i].well) == group_of(loops[j].well) &&
+                                      shown[i].record != shown[j].record);
+    }
+  }
   int same_well[3] = {0, 0, 0};  // loops drawn so far per well: later ones darker
   double z_lo[3] = {INFINITY, INFINITY, INFINITY}, z_hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   double f_lo = INFINITY, f_hi = -INFINITY;
@@ -163,8 +175,8 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
     curve->data()->set(data, true);
     curve->setPen(QPen(colour, 1.2));
     const analysis::RecordAnalysis& record = review->campaign.records[std::size_t(shown[i].record)];
-    curve->setName(tr("%1, f\u2080 = %2 %5: EDC %3 %6 (%4 steady cycles)")
-                       .arg(text(record.name))
+    curve->setName(tr("%1f\u2080 = %2 %5: EDC %3 %6 (%4 steady cycles)")
+                       .arg(name_records ? text(record.name) + QStringLiteral(", ") : QString())
                        .arg(level.f0_n, 0, 'f', 2)
                        .arg(1e3 * level.edc_mean_j, 0, 'f', 3)
                        .arg(loop.cycles)

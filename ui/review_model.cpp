@@ -113,6 +113,27 @@ const analysis::LevelResult* find_level(const analysis::CampaignAnalysis& campai
   return &levels[std::size_t(key.level)];
 }
 
+std::vector<LevelKey> overview_levels(const analysis::CampaignAnalysis& campaign) {
+  std::vector<LevelKey> out;
+  for (const analysis::Well well : {analysis::Well::Positive, analysis::Well::Negative}) {
+    std::vector<std::pair<double, LevelKey>> levels;  // by f0
+    for (std::size_t r = 0; r < campaign.records.size(); ++r) {
+      const std::vector<analysis::LevelResult>& record = campaign.records[r].levels;
+      for (std::size_t l = 0; l < record.size(); ++l) {
+        if (record[l].well == well && record[l].usable()) {
+          levels.push_back({record[l].f0_n, {static_cast<int>(r), static_cast<int>(l)}});
+        }
+      }
+    }
+    if (levels.empty()) continue;
+    std::sort(levels.begin(), levels.end());
+    std::vector<std::size_t> picks = {0, levels.size() / 2, levels.size() - 1};
+    picks.erase(std::unique(picks.begin(), picks.end()), picks.end());
+    for (std::size_t k : picks) out.push_back(levels[k].second);
+  }
+  return out;
+}
+
 double level_cursor_time_s(const analysis::LevelResult& level) {
   return 0.5 * (level.start_s + level.end_s);
 }

@@ -67,6 +67,11 @@ std::vector<LevelRow> level_rows(const analysis::CampaignAnalysis& campaign);
 /// The level at `key`, or null when there is none.
 const analysis::LevelResult* find_level(const analysis::CampaignAnalysis& campaign, LevelKey key);
 
+/// The loops shown before any level is selected: in each well, its usable levels with the
+/// lowest, the middle and the highest forcing amplitude (fewer when it has fewer), positive well
+/// first, each well's by rising f0.
+std::vector<LevelKey> overview_levels(const analysis::CampaignAnalysis& campaign);
+
 /// Where the time cursor goes when a level is selected: the middle of its steady cycles.
 double level_cursor_time_s(const analysis::LevelResult& level);
 /// The time window that shows a level's steady cycles with `margin_rel` of their span on each

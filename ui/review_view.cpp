@@ -217,7 +217,9 @@ void ReviewView::set_analysis(std::shared_ptr<const ReviewAnalysis> analysis) {
   message_label_->setText(lines.join('\n'));
   message_label_->setVisible(!lines.isEmpty());
 
-  loops_.show(analysis_.get(), {});
+  // The measurement at first look: a few levels of each well until levels are selected.
+  loops_.show(analysis_.get(),
+              analysis_ ? overview_levels(analysis_->campaign) : std::vector<LevelKey>{});
   plot_cycles();
   plot_cycle_cursor();
   slices_.show(analysis_.get(), analysis_running_);
@@ -243,7 +245,9 @@ std::vector<LevelKey> ReviewView::selected_levels() const {
 }
 
 void ReviewView::on_levels_selected(const std::vector<LevelKey>& keys) {
-  loops_.show(analysis_.get(), keys);
+  // No selection: the overview's levels, as at first look.
+  loops_.show(analysis_.get(),
+              keys.empty() && analysis_ ? overview_levels(analysis_->campaign) : keys);
   const analysis::LevelResult* level =
       analysis_ && !keys.empty() ? find_level(analysis_->campaign, keys.front()) : nullptr;
   if (level && move_view_on_select_) {

@@ -4,6 +4,7 @@
 // draws its Fig. 9 loop (whose area is its EDC) and moves the shared cursor, annotations are
 // added, and a session saved and opened in a fresh window brings all of it back; a bad session
 // file is reported and changes nothing.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -164,6 +165,37 @@ class ReviewViewTest : public QObject {
       QVERIFY(table->item(row, LevelTable::kEdcMean)->data(LevelTable::kValueRole).toDouble() >=
               table->item(row - 1, LevelTable::kEdcMean)->data(LevelTable::kValueRole).toDouble());
     }
+  }
+
+  // At first look (nothing selected) the loop pane is not empty: each well's usable levels with
+  // the lowest, middle and highest f0, blue and orange, named by their f0.
+  void theLoopPaneShowsEachWellsLevelsBeforeAnySelection() {
+    ReviewView* review = window_->review_view();
+    review->select_levels({}, false);
+    QCustomPlot* loop_plot = review->loop_plot();
+    std::vector<QString> expected_names;
+    for (const auto well : {oscilab::analysis::Well::Positive, oscilab::analysis::Well::Negative}) {
+      std::vector<double> f0;
+      for (const auto& record : expected_.records) {
+        for (const LevelResult& level : record.levels) {
+          if (level.well == well && level.usable()) f0.push_back(level.f0_n);
+        }
+      }
+      QVERIFY(f0.size() >= 3);  // the samples: 26 levels a well, most of them usable
+      std::sort(f0.begin(), f0.end());
+      for (double value : {f0.front(), f0[f0.size() / 2], f0.back()}) {
+        expected_names.push_back(QString("f\u2080 = %1 N").arg(value, 0, 'f', 2));
+      }
+    }
+    QCOMPARE(loop_plot->plottableCount(), int(expected_names.size()));
+    for (int i = 0; i < loop_plot->plottableCount(); ++i) {
+      QVERIFY2(loop_plot->plottable(i)->name().contains(expected_names[std::size_t(i)]),
+               qPrintable(loop_plot->plottable(i)->name()));
+    }
+    QCOMPARE(loop_plot->plottable(0)->pen().color().rgba(),
+             oscilab::ui::well_colour(oscilab::analysis::Well::Positive).rgba());
+    QCOMPARE(loop_plot->plottable(3)->pen().color().rgba(),
+             oscilab::ui::well_colour(oscilab::analysis::Well::Negative).rgba());
   }
 
   void selectingALevelDrawsItsLoopAndMovesTheCursor() {
