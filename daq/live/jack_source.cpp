@@ -88,7 +88,7 @@ struct JackSource::Impl {
   void flush_staging(bool wait_for_room);
   void end_segment(bool wait_for_room);
   void begin_segment(std::uint64_t base);
-  void check_clipping(const FrameSlot& slot);
+  void check_clipping(const FrameSlot& slot, std::uint32_t first_frame);
   void close_clip_run();
   void handle_xruns();
   double time_of(std::uint64_t sample) const {
@@ -226,11 +226,12 @@ void JackSource::Impl::end_segment(bool wait_for_room) {
   segment_open = false;
 }
 
-void JackSource::Impl::check_clipping(const FrameSlot& slot) {
+// Clipping among the slot's frames from `first_frame` on (those not fed before).
+void JackSource::Impl::check_clipping(const FrameSlot& slot, std::uint32_t first_frame) {
   std::uint64_t clipped = 0;
   for (std::size_t c = 0; c < channels; ++c) {
     double peak = 0.0;
-    for (std::uint32_t f = 0; f < slot.frames; ++f) {
+    for (std::uint32_t f = first_frame; f < slot.frames; ++f) {
       const double x = std::abs(static_cast<double>(slot.data[f * channels + c]));
       peak = std::max(peak, x);
       if (x >= kClipLevel) ++clipped;
@@ -239,7 +240,7 @@ void JackSource::Impl::check_clipping(const FrameSlot& slot) {
     while (peak > shown && !peaks[c].compare_exchange_weak(shown, peak)) {
     }
   }
-  const std::uint64_t from = segment_in, to = segment_in + slot.frames;
+  const std::uint64_t from = segment_in, to = segment_in + (slot.frames - first_frame);
   if (clipped == 0) {
     close_clip_run();
     return;
@@ -370,7 +371,7 @@ void JackSource::Impl::drain(bool wait_for_room) {
     last_disconnected = slot->disconnected;
     const std::uint32_t fresh = slot->frames - repeated;
     if (slot->disconnected != 0) withhold_frames(segment_in, segment_in + fresh);
-    check_clipping(*slot);
+    check_clipping(*slot, repeated);
     feed(slot->data.data() + static_cast<std::size_t>(repeated) * channels, fresh, wait_for_room);
     client.ring().pop();
   }
