@@ -5,9 +5,9 @@
 #                                the system's Python: `python3 -c "import oscilab"`), start the app on
 #                                the bundled sample (headless: print the analysis of it instead)
 #   bash scripts/setup.sh test   install, build and run every test: clang-format check, release
-#                                build with -Werror (unit, integration, GUI offscreen, benchmarks
-#                                printed), then the headless tests again under ASan + UBSan, and the
-#                                live chain's tests under ThreadSanitizer
+#                                build with -Werror (GUI offscreen, Python, the `slow` end-to-end
+#                                tests, benchmarks printed), the headless unit and CLI tests under
+#                                ASan + UBSan, and the live chain's tests under ThreadSanitizer
 #   bash scripts/setup.sh deps   only install the Debian packages
 #   bash scripts/setup.sh build  only configure and build (release, ./build)
 #
@@ -112,15 +112,20 @@ run_tests() {
   phase "format check"
   format_check
   phase "release build"
-  build build -DOSCILAB_WERROR=ON
+  # Every test runs once. The headless unit tests (GoogleTest without Qt, the oscilab-cli scripts)
+  # run in the sanitizer build below, so the release tree leaves them out
+  # (OSCILAB_HEADLESS_UNIT_TESTS=OFF) and keeps what only it can run: the GUI tests, the Python
+  # module's, the `slow` end-to-end runs (a diagnosis, a fit, an adaptive test: release only) and
+  # the benchmarks, once each (their medians for notes come from runs of their own).
+  build build -DOSCILAB_WERROR=ON -DOSCILAB_HEADLESS_UNIT_TESTS=OFF -DOSCILAB_BENCHMARK_REPETITIONS=1
   phase "release tests"
   # `study`: suites that are studies more than checks (minutes each), run with `ctest -L study`.
   ctest --test-dir build --output-on-failure -j "$JOBS" -LE "benchmark|study"
   phase "benchmarks"
-  # Benchmarks one at a time, verbose, so their figures (medians) are printed.
+  # Benchmarks one at a time, verbose, so their figures are printed.
   ctest --test-dir build --output-on-failure -L benchmark -V | grep -E "^[0-9]+: (BM_|Benchmark )|tests passed|tests failed|Failed|rror"
   phase "ASan + UBSan build"
-  # Sanitizer build: the headless tests again under AddressSanitizer + UndefinedBehaviorSanitizer,
+  # Sanitizer build: the headless tests under AddressSanitizer + UndefinedBehaviorSanitizer,
   # at -O1 with light debug info (faster to build than -O2 -g; stack traces keep file and line).
   # The Qt GUI tests run in the release build above: a second, sanitized Qt build does not fit
   # the CI budget (20 minutes on 2 cores).
@@ -133,7 +138,7 @@ run_tests() {
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    ctest --test-dir build-asan --output-on-failure -j "$JOBS" -LE slow
+    ctest --test-dir build-asan --output-on-failure -j "$JOBS" -LE "slow|study"
   # ThreadSanitizer on the live chain (source threads, the block queue, the acquisition thread and
   # its readers, the recorder): only that test binary is built. ASLR off (setarch -R) because
   # GCC 12's ThreadSanitizer refuses the memory layout of kernels with high mmap randomisation.

@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # oscilab-cli adaptive-test on the virtual rig:
-#   adaptive_test_cli_test.sh OSCILAB_CLI SOURCE_DIR errors|run
+#   adaptive_test_cli_test.sh OSCILAB_CLI SOURCE_DIR errors|run [EFFECTS]
 # `errors`: bad options are refused with one line and exit 2, before any shaker time is spent.
 # `run`: a rig whose truth is the paper's model with quadratic damping at the diagnosis
 # campaign's reference strength (c2 = 6 N s^2/m^2) hidden in it. The test must name
 # quadratic-damping and decide with less shaker time than the fixed grid (2 wells x 26 levels x
-# 10 s); every decision is one JSON line. About two minutes of CPU (every hypothesis's global
-# search on the pilot, the levels, the final diagnosis), so `run` is in the slow suite.
+# 10 s); every decision is one JSON line. EFFECTS (comma-separated) narrows the candidates weighed:
+# with three rivals (another damping law, a stiffness term) about a minute of CPU; with the whole
+# vocabulary (no EFFECTS) about four minutes, every hypothesis's global search on the pilot.
 source "$(dirname "$0")/cli_checks.sh"
 mode=${3:-errors}
+effects=()
+[ -n "${4:-}" ] && effects=(--effects "$4")
 
 "$cli" model paper --out "$work/paper.json" > /dev/null
 python3 - "$work/paper.json" "$work/quad.json" << 'PY'
@@ -38,7 +41,7 @@ if [ "$mode" = errors ]; then
     fail "a refused run left a folder"
 else
   out=$work/adaptive
-  if "$cli" adaptive-test --source rig --rig-model "$work/quad.json" --out "$out" \
+  if "$cli" adaptive-test --source rig --rig-model "$work/quad.json" --out "$out" "${effects[@]}" \
     > "$work/run.log" 2>&1; then
     pass "adaptive-test ran"
   else
