@@ -25,6 +25,7 @@ from ._native._oscilab import (  # noqa: F401  (re-exported)
     MissingFileError,
     Model,
     Recording,
+    adaptive_test,
     amplitude_sweep,
     analyze,
     bifurcation_map,
@@ -54,6 +55,7 @@ __all__ = [
     "Model",
     "Recording",
     "Result",
+    "adaptive_test",
     "amplitude_sweep",
     "analyze",
     "bifurcation_map",
@@ -145,7 +147,7 @@ def _give_signatures():
     from . import _signatures
 
     # The calls whose dict is a report with the CLI's JSON keys: returned as a Result.
-    reports = {"fit", "diagnose", "FitProblem.fit"}
+    reports = {"fit", "diagnose", "adaptive_test", "FitProblem.fit"}
 
     def wrap(native, signature, qualname):
         if qualname in reports:

@@ -14,7 +14,7 @@ _ModelLike = Model | dict[str, Any] | _StrPath
 _Progress = Callable[[dict[str, Any]], object]
 
 __version__: str
-__all__ = ['Analysis', 'Error', 'FileError', 'FitProblem', 'InputError', 'LiveSession', 'MissingFileError', 'Model', 'Recording', 'Result', 'amplitude_sweep', 'analyze', 'bifurcation_map', 'describe_recording', 'diagnose', 'draft_sidecar', 'fit', 'hbm_branch', 'live', 'merge', 'prepare_fit', 'read_recording', 'simulate', 'to_dataframe', 'virtual_rig', 'write_recording']
+__all__ = ['Analysis', 'Error', 'FileError', 'FitProblem', 'InputError', 'LiveSession', 'MissingFileError', 'Model', 'Recording', 'Result', 'adaptive_test', 'amplitude_sweep', 'analyze', 'bifurcation_map', 'describe_recording', 'diagnose', 'draft_sidecar', 'fit', 'hbm_branch', 'live', 'merge', 'prepare_fit', 'read_recording', 'simulate', 'to_dataframe', 'virtual_rig', 'write_recording']
 
 
 class Analysis:
@@ -165,6 +165,8 @@ class Recording:
 class Result(dict):
     def __reduce__(self) -> Any: ...
 
+
+def adaptive_test(rig_model: _ModelLike, out: _StrPath, *, model: _ModelLike = 'paper', stiffness: str = 'identified', freq_hz: float = 9.0, freq_span_hz: float = 0.0, freq_step_hz: float = 0.25, f0_range_n: tuple[float, float] | ArrayLike = [0.2, 2.7], f0_step_n: float = 0.1, wells: str = 'both', pilot_levels_n: ArrayLike = [0.2, 1.0, 1.8, 2.7], hold_s: float = 10.0, ramp_s: float = 1.0, lead_in_s: float = 2.5, well_change_s: float = 10.0, budget_s: float = 520.0, leader_weight: float = 0.99, min_discrimination: float = 1.0, max_levels: int = 40, effects: list[str] = [], global_evaluations: int = 400, initial_evaluations: int = 400, refit_evaluations: int = 300, seed: int = 1, threads: int = 0, harmonics: int = 7, max_harmonics: int = 63, model_error: float = -1.0, max_seconds: float = 120.0, progress: _Progress | None = None) -> Result: ...
 
 def amplitude_sweep(model: _ModelLike = 'paper', *, freq_hz: float = 9.0, f0_max_n: float = 3.7, up_s: float = 400.0, down_s: Any = None, well: str = 'positive', samples_per_period: int = 64, progress: _Progress | None = None) -> dict: ...
 

@@ -48,6 +48,10 @@ ARGUMENT_TYPES = {
     "ks": "float",
     "c_ns_m": "float",
     "vt_m_s": "float",
+    "rig_model": "_ModelLike",
+    "out": "_StrPath",
+    "f0_range_n": "tuple[float, float] | ArrayLike",
+    "pilot_levels_n": "ArrayLike",
 }
 
 _NATIVE = "oscilab._native._oscilab."

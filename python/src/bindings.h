@@ -27,6 +27,7 @@ void bind_models(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_hbm(py::module_& m);
 void bind_fit(py::module_& m);
+void bind_design(py::module_& m);
 void bind_live(py::module_& m);
 void bind_bench(py::module_& m);
 

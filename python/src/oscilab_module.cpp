@@ -139,6 +139,7 @@ PYBIND11_MODULE(_oscilab, m) {
   bind_simulation(m);
   bind_hbm(m);
   bind_fit(m);
+  bind_design(m);
   bind_live(m);
   bind_bench(m);
 }

@@ -1,0 +1,204 @@
+// The adaptive test's loop (run_adaptive_test) on the virtual rig, small enough for the unit
+// suite: its options refused before any run, the shaker time it books against what the runs and
+// the changes of well took, the decisions it reports, and a cancel between runs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/common/input_error.h"
+#include "analysis/design/adaptive_test.h"
+#include "analysis/design/adaptive_test_report.h"
+#include "analysis/model/reference_models.h"
+#include "analysis/model/velocity_power_damping.h"
+#include "daq/rig/rig_level_runner.h"
+
+namespace oscilab::analysis {
+namespace {
+
+// The rig, with every call counted and its shaker time kept, and a hook before each run.
+class CountingRunner : public LevelRunner {
+ public:
+  explicit CountingRunner(const std::string& folder) : rig_(truth(), folder, {6.0, 1.0, 2.5}, 7) {}
+
+  LevelRun run(const std::vector<double>& levels_n, double freq_hz, bool positive_well,
+               const std::string& purpose) override {
+    if (before_run) before_run(static_cast<int>(calls.size()));
+    calls.push_back({levels_n, freq_hz, positive_well, purpose});
+    LevelRun out = rig_.run(levels_n, freq_hz, positive_well, purpose);
+    run_shaker_s += out.shaker_s;
+    return out;
+  }
+
+  struct Call {
+    std::vector<double> levels_n;
+    double freq_hz;
+    bool positive_well;
+    std::string purpose;
+  };
+  std::vector<Call> calls;
+  double run_shaker_s = 0.0;
+  std::function<void(int)> before_run;
+
+ private:
+  static Model truth() {
+    Model m = paper_model();
+    m.add_term(std::make_unique<VelocityPowerDamping>(2, 6.0));  // quadratic damping, c2 = 6
+    return m;
+  }
+  daq::RigLevelRunner rig_;
+};
+
+std::string temporary_folder(const std::string& name) {
+  const std::string folder =
+      (std::filesystem::temp_directory_path() / ("oscilab_adaptive_" + name)).string();
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
+// A small test: two pilot levels per well, one candidate, short fits, at most two adaptive
+// levels, no final diagnosis.
+AdaptiveTestOptions small_options() {
+  AdaptiveTestOptions o;
+  o.settings.dwell_s = 6.0;
+  o.settings.settling_s = 2.5;
+  o.settings.well_change_s = 10.0;
+  o.settings.f0_step_n = 0.5;
+  o.pilot_levels_n = {0.5, 1.5};
+  o.max_levels = 2;
+  o.hypotheses.effects = {"quadratic-damping"};
+  o.hypotheses.global_evaluations = 0;
+  o.hypotheses.initial_evaluations = 40;
+  o.hypotheses.refit_evaluations = 20;
+  o.hypotheses.threads = 2;
+  o.next.threads = 2;
+  o.final_diagnosis = false;
+  return o;
+}
+
+TEST(AdaptiveTest, RefusesBadOptionsNamingTheFieldBeforeAnyRun) {
+  CountingRunner runner(temporary_folder("refused"));
+  const auto refused = [&](AdaptiveTestOptions o, const std::string& field) {
+    try {
+      run_adaptive_test(runner, o);
+      ADD_FAILURE() << field << ": accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  AdaptiveTestOptions o = small_options();
+  o.pilot_levels_n = {};
+  refused(o, "pilot_levels_n");
+  o = small_options();
+  o.pilot_levels_n = {1.0, -0.5};
+  refused(o, "pilot_levels_n");
+  o = small_options();
+  o.stop.leader_weight = 1.5;
+  refused(o, "stop.leader_weight");
+  o = small_options();
+  o.stop.budget_s = 0.0;
+  refused(o, "stop.budget_s");
+  o = small_options();
+  o.hypotheses.effects = {"quadratic-damping", "drag"};
+  refused(o, "unknown effect \"drag\"");
+  o = small_options();
+  o.hypotheses.refit_evaluations = 3;
+  refused(o, "refit_evaluations");
+  o = small_options();
+  o.max_levels = 0;
+  refused(o, "max_levels");
+  EXPECT_TRUE(runner.calls.empty());
+}
+
+TEST(AdaptiveTest, BooksTheShakerTimeOfEveryRunAndWellChangeAndReportsEachDecision) {
+  CountingRunner runner(temporary_folder("booked"));
+  const AdaptiveTestOptions options = small_options();
+  std::vector<AdaptiveDecision> decisions;
+  std::vector<double> fractions;
+  const AdaptiveTestResult result = run_adaptive_test(
+      runner, options,
+      [&](const AdaptiveDecision& d, const std::vector<ModelHypothesis>& h) {
+        decisions.push_back(d);
+        ASSERT_EQ(h.size(), 2u);  // the baseline and the one candidate
+        EXPECT_EQ(h[0].effect, "none");
+        EXPECT_EQ(h[1].effect, "quadratic-damping");
+        EXPECT_NEAR(h[0].weight + h[1].weight, 1.0, 1e-12);
+      },
+      [&](double f) { fractions.push_back(f); });
+  ASSERT_EQ(result.status, JobStatus::Ok) << result.message;
+  // On four pilot levels with short fits the damping laws are not yet told apart: the loop runs
+  // levels of its own (up to max_levels).
+  ASSERT_GE(result.adaptive_levels, 1) << result.message;
+
+  // The pilot, positive well first, then one run per adaptive level.
+  ASSERT_EQ(runner.calls.size(), 2u + static_cast<std::size_t>(result.adaptive_levels));
+  EXPECT_TRUE(runner.calls[0].positive_well);
+  EXPECT_FALSE(runner.calls[1].positive_well);
+  EXPECT_EQ(runner.calls[0].levels_n, options.pilot_levels_n);
+  EXPECT_EQ(runner.calls[0].purpose, "pilot");
+  int well_changes = 1;  // between the two pilots
+  for (std::size_t i = 2; i < runner.calls.size(); ++i) {
+    EXPECT_EQ(runner.calls[i].purpose, "level");
+    ASSERT_EQ(runner.calls[i].levels_n.size(), 1u);
+    well_changes += runner.calls[i].positive_well != runner.calls[i - 1].positive_well;
+  }
+  // Each run books its lead-in and dwells (the rig's schedule: 2.5 s + 6 s per level), each
+  // change of well 10 s more; nothing else.
+  EXPECT_NEAR(runner.run_shaker_s, 2 * (2.5 + 2 * 6.0) + result.adaptive_levels * (2.5 + 6.0),
+              1e-9);
+  EXPECT_NEAR(result.shaker_time_s, runner.run_shaker_s + 10.0 * well_changes, 1e-9);
+
+  // One decision after the pilot and one after each adaptive level; only the last stops, and
+  // each that goes on proposes the setting the next run was made at.
+  ASSERT_EQ(decisions.size(), static_cast<std::size_t>(result.adaptive_levels) + 1);
+  for (std::size_t i = 0; i < decisions.size(); ++i) {
+    EXPECT_EQ(decisions[i].index, static_cast<int>(i));
+    EXPECT_EQ(decisions[i].decision.stop, i + 1 == decisions.size());
+    EXPECT_FALSE(decisions[i].decision.reason.empty());
+    if (!decisions[i].decision.stop) {
+      const SettingScore& p = decisions[i].next.best;
+      EXPECT_DOUBLE_EQ(runner.calls[i + 2].levels_n[0], p.f0_n);
+      EXPECT_EQ(runner.calls[i + 2].positive_well, p.positive_well);
+      EXPECT_TRUE(p.admissible);
+    }
+  }
+  EXPECT_NEAR(decisions.back().shaker_time_s, result.shaker_time_s, 1e-9);
+  // Every level measured joins the dataset: the pilot's four and the adaptive ones.
+  EXPECT_EQ(result.levels, 4 + result.adaptive_levels);
+  EXPECT_EQ(decisions.back().levels, result.levels);
+  // Progress never goes back and stays within the loop's share.
+  ASSERT_FALSE(fractions.empty());
+  for (std::size_t i = 1; i < fractions.size(); ++i) EXPECT_GE(fractions[i], fractions[i - 1]);
+  EXPECT_LE(fractions.back(), 0.8);
+
+  // The report carries the loop's answer; without a diagnosis, its own status.
+  const nlohmann::json report = adaptive_test_report_json(result, {"a.wav"});
+  EXPECT_EQ(report["status"], "ok");
+  EXPECT_EQ(report["adaptive_test"]["levels"], result.levels);
+  EXPECT_DOUBLE_EQ(report["shaker_time_s"].get<double>(), result.shaker_time_s);
+  EXPECT_FALSE(report["adaptive_test"].contains("agrees_with_diagnosis"));
+  // The decision log's line names the proposal of a decision that goes on.
+  const nlohmann::json first = adaptive_decision_json(decisions.front(), result.hypotheses);
+  EXPECT_EQ(first["stop"], decisions.front().decision.stop);
+  EXPECT_EQ(first.contains("proposal"), !decisions.front().decision.stop);
+}
+
+TEST(AdaptiveTest, ACancelBetweenRunsReturnsWhatWasMeasured) {
+  CountingRunner runner(temporary_folder("cancelled"));
+  const CancelToken cancel;
+  runner.before_run = [&](int call) {
+    if (call == 1) cancel.cancel();  // while the negative well's pilot runs
+  };
+  const AdaptiveTestResult result = run_adaptive_test(runner, small_options(), {}, {}, cancel);
+  EXPECT_EQ(result.status, JobStatus::Cancelled);
+  EXPECT_EQ(runner.calls.size(), 2u);  // the run under way is finished, no other started
+  EXPECT_EQ(result.runs.size(), 2u);
+  EXPECT_FALSE(result.diagnosed);
+  EXPECT_EQ(adaptive_test_report_json(result, {})["status"], "cancelled");
+}
+
+}  // namespace
+}  // namespace oscilab::analysis
