@@ -13,8 +13,9 @@ from conftest import STEPPED, run_cli
 
 scipy_io = pytest.importorskip("scipy.io")
 
-# UFF ID line 3 holds the creation date and time ("DD-MMM-YY HH:MM:SS"), which differs by run.
-UFF_DATE = re.compile(r"\d\d-[A-Z][a-z][a-z]-\d\d \d\d:\d\d:\d\d")
+# UFF ID line 3 holds the creation date and time ("DD-MMM-YY HH:MM:SS", the month in capitals:
+# "28-NOV-26 14:35:09"), which differs by run.
+UFF_DATE = re.compile(r"\d\d-[A-Z]{3}-\d\d \d\d:\d\d:\d\d")
 
 
 @pytest.fixture(scope="module")
