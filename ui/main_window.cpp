@@ -97,7 +97,28 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
     if (dialog.exec() != QDialog::Accepted) return std::nullopt;
     return dialog.sidecar();
   };
+  QDockWidget* dock = build_views();
+  build_status_bar();
+  build_menus(dock);
+  build_toolbar();
+  connect(review_view_, &ReviewView::recording_shown, this, &MainWindow::update_title);
 
+  setWindowTitle(tr("Oscilab"));
+  statusBar()->showMessage(tr("Open recordings with File \u25b8 Open (Ctrl+O)."));
+  // 1500×900, or less on a smaller screen: the window never starts larger than the screen.
+  QSize size(1500, 900);
+  if (const QScreen* screen = QGuiApplication::primaryScreen()) {
+    size = size.boundedTo(screen->availableGeometry().size());
+  }
+  resize(size);
+  // The panel takes about two fifths of the width, the review the rest.
+  resizeDocks({dock}, {std::max(400, size.width() * 2 / 5)}, Qt::Horizontal);
+  setAcceptDrops(true);
+  new PlotHoverReadouts(this);  // the value under the mouse on every plot
+  new PlotPalettes(this);
+}
+
+QDockWidget* MainWindow::build_views() {
   review_view_ = new ReviewView;
   central_tabs_ = new QTabWidget(this);
   central_tabs_->setObjectName("central_tabs");
@@ -122,7 +143,10 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
           [this](std::shared_ptr<const analysis::Model> model) {
             live_monitor_->set_prediction_model(std::move(model), tr("fitted model"));
           });
+  return dock;
+}
 
+void MainWindow::build_status_bar() {
   analysis_job_ = new BackgroundJob(this);
   analysis_timer_ = new QTimer(this);
   analysis_timer_->setSingleShot(true);
@@ -153,7 +177,9 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   connect(analysis_job_, &BackgroundJob::progress, this, [this](double fraction) {
     analysis_progress_->setValue(static_cast<int>(1000 * fraction));
   });
+}
 
+void MainWindow::build_menus(QDockWidget* dock) {
   QMenu* file_menu = menuBar()->addMenu(tr("&File"));
   open_action_ = file_menu->addAction(tr("&Open\u2026"), this, &MainWindow::choose_and_open);
   open_action_->setShortcut(QKeySequence::Open);
@@ -208,29 +234,15 @@ MainWindow::MainWindow(QWidget* parent, Loader loader)
   help_menu->addAction(tr("&Keyboard shortcuts"), this, [this] {
     QMessageBox::information(this, tr("Keyboard shortcuts"), shortcut_lines().join('\n'));
   });
+}
 
+void MainWindow::build_toolbar() {
   QToolBar* tools = addToolBar(tr("Main"));
   tools->setObjectName("main_toolbar");
   tools->setMovable(false);
   tools->addAction(open_action_);
   tools->addAction(fit_action_);
   tools->addAction(mark_action_);
-
-  connect(review_view_, &ReviewView::recording_shown, this, &MainWindow::update_title);
-
-  setWindowTitle(tr("Oscilab"));
-  statusBar()->showMessage(tr("Open recordings with File \u25b8 Open (Ctrl+O)."));
-  // 1500×900, or less on a smaller screen: the window never starts larger than the screen.
-  QSize size(1500, 900);
-  if (const QScreen* screen = QGuiApplication::primaryScreen()) {
-    size = size.boundedTo(screen->availableGeometry().size());
-  }
-  resize(size);
-  // The panel takes about two fifths of the width, the review the rest.
-  resizeDocks({dock}, {std::max(400, size.width() * 2 / 5)}, Qt::Horizontal);
-  setAcceptDrops(true);
-  new PlotHoverReadouts(this);  // the value under the mouse on every plot
-  new PlotPalettes(this);
 }
 
 void MainWindow::add_zoom_actions(QMenu* menu) {

@@ -18,6 +18,7 @@
 #include "ui/review_session.h"
 
 class QAction;
+class QDockWidget;
 class QDragEnterEvent;
 class QDropEvent;
 class QLabel;
@@ -157,6 +158,12 @@ class MainWindow : public QMainWindow {
  private:
   struct OpenedRecording;
   void open_live_recording(const QString& path);
+  // The constructor's parts: the Review and Live tabs with the fit panel's dock (returned), the
+  // status bar's analysis and fit-set widgets, the menus and the toolbar.
+  QDockWidget* build_views();
+  void build_status_bar();
+  void build_menus(QDockWidget* dock);
+  void build_toolbar();
   void add_zoom_actions(QMenu* menu);
   void step_level(int step);
   void choose_and_open();

@@ -18,15 +18,23 @@ std::vector<std::pair<std::string, double>> named(const ModelForm& form,
   return out;
 }
 
+// A number, or null where it is not finite (JSON has no NaN).
+nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
 nlohmann::json slope_json(const LogSlope& s) {
-  const auto number = [](double v) {
-    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-  };
   if (!s.valid()) return {{"points", s.points}};
   return {{"points", s.points},
           {"slope", s.slope},
-          {"standard_error", number(s.standard_error)},
-          {"interval_95", {number(s.lower_95), number(s.upper_95)}}};
+          {"standard_error", finite_or_null(s.standard_error)},
+          {"interval_95", {finite_or_null(s.lower_95), finite_or_null(s.upper_95)}}};
+}
+
+nlohmann::json missing_energy_slope_json(const DiscrepancyMaps& maps) {
+  return {{"low", slope_json(maps.slopes.missing_low)},
+          {"high", slope_json(maps.slopes.missing_high)},
+          {"all", slope_json(maps.slopes.missing_all)}};
 }
 
 nlohmann::json maps_json(const DiscrepancyMaps& maps) {
@@ -39,9 +47,7 @@ nlohmann::json maps_json(const DiscrepancyMaps& maps) {
                       {"edc_mod_j", d.edc_mod_j},
                       {"sigma_j", d.sigma_j},
                       {"residual_sigma", d.residual_sigma},
-                      {"residual_cycle_sigma", std::isfinite(d.residual_cycles)
-                                                   ? nlohmann::json(d.residual_cycles)
-                                                   : nlohmann::json(nullptr)}});
+                      {"residual_cycle_sigma", finite_or_null(d.residual_cycles)}});
   }
   nlohmann::json stiffness = {{"available", maps.stiffness.available}};
   if (maps.stiffness.available) {
@@ -58,23 +64,17 @@ nlohmann::json maps_json(const DiscrepancyMaps& maps) {
   nlohmann::json response = nlohmann::json::array();
   for (const ResponseFingerprint& f : maps.response.items) {
     nlohmann::json residuals = nlohmann::json::array();
-    for (double r : f.residual_sigma) {
-      residuals.push_back(std::isfinite(r) ? nlohmann::json(r) : nlohmann::json(nullptr));
-    }
+    for (double r : f.residual_sigma) residuals.push_back(finite_or_null(r));
     response.push_back(
         {{"name", f.name}, {"chi2", f.chi2}, {"levels", f.levels}, {"residual_sigma", residuals}});
   }
   return {{"max_abs_residual_sigma", maps.max_abs_residual_sigma},
           {"response_fingerprints", response},
-          {"reduced_chi2", std::isfinite(maps.reduced_chi2) ? nlohmann::json(maps.reduced_chi2)
-                                                            : nlohmann::json(nullptr)},
+          {"reduced_chi2", finite_or_null(maps.reduced_chi2)},
           {"edc_slope_measured",
            {{"low", slope_json(maps.slopes.measured_low)},
             {"high", slope_json(maps.slopes.measured_high)}}},
-          {"missing_energy_slope",
-           {{"low", slope_json(maps.slopes.missing_low)},
-            {"high", slope_json(maps.slopes.missing_high)},
-            {"all", slope_json(maps.slopes.missing_all)}}},
+          {"missing_energy_slope", missing_energy_slope_json(maps)},
           {"missing_levels", maps.slopes.missing_levels},
           {"excess_levels", maps.slopes.excess_levels},
           {"stiffness_residual", stiffness},
@@ -172,16 +172,104 @@ std::string candidate_outcome(const DiagnosisStep& step, const CandidateTrial& t
   return "rejected";
 }
 
+namespace {
+
+nlohmann::json deviations_json(const EdcEvaluation& e) {
+  return {{"positive", finite_or_null(e.mean_deviation_pct_positive)},
+          {"negative", finite_or_null(e.mean_deviation_pct_negative)}};
+}
+
+nlohmann::json supported_by_json(const std::vector<EvidenceChange>& evidence) {
+  nlohmann::json supported = nlohmann::json::array();
+  for (const EvidenceChange& e : evidence) {
+    if (e.supports()) supported.push_back(e.name);
+  }
+  return supported;
+}
+
+nlohmann::json baseline_json(const DiagnosisResult& result) {
+  const FitResult& b = result.baseline;
+  std::vector<std::pair<std::string, double>> parameters;
+  for (std::size_t i = 0; i < b.names.size(); ++i) {
+    parameters.emplace_back(b.names[i], b.theta(static_cast<Eigen::Index>(i)));
+  }
+  return {{"cost_j", b.evaluation.cost_j},
+          {"weighted_cost", b.evaluation.weighted_cost},
+          {"reduced_chi2", result.baseline_maps.reduced_chi2},
+          {"mean_deviation_pct", deviations_json(b.evaluation)},
+          {"evaluations", b.evaluations},
+          {"parameters", parameters_json(parameters)},
+          {"maps", maps_json(result.baseline_maps)},
+          {"restarted_at_bound", result.baseline_restarts > 0},
+          {"restart_improved", result.baseline_restart_improved}};
+}
+
+// One step: the evidence before it, every candidate refitted with its outcome, and for an
+// accepted effect the evidence after and its parameters.
+nlohmann::json step_json(const DiagnosisStep& s, double bic_threshold) {
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const CandidateTrial& t : s.trials) {
+    candidates.push_back({{"effect", t.effect},
+                          {"embodiment", t.embodiment},
+                          {"fingerprint_score", t.fingerprint_score},
+                          {"weighted_cost", t.weighted_cost},
+                          {"cost_j", t.cost_j},
+                          {"delta_bic", t.delta_bic},
+                          {"delta_bic_joint", t.delta_bic_joint},
+                          {"evidence", evidence_json(t.evidence)},
+                          {"outcome", candidate_outcome(s, t, bic_threshold)},
+                          {"solved", t.solved}});
+  }
+  nlohmann::json evidence = {
+      {"weighted_cost_before", s.weighted_before},
+      {"reduced_chi2_before", s.reduced_chi2_before},
+      {"max_abs_residual_sigma_before", s.maps_before.max_abs_residual_sigma},
+      {"missing_energy_slope", missing_energy_slope_json(s.maps_before)},
+      {"candidates", candidates}};
+  nlohmann::json step = {
+      {"effect", s.effect}, {"evidence", evidence}, {"cost_before_j", s.cost_before_j}};
+  if (s.effect == "none") {
+    step["cost_after_j"] = s.cost_before_j;  // nothing was added
+    return step;
+  }
+  step["evidence"]["delta_bic"] = s.delta_bic;
+  step["evidence"]["delta_bic_joint"] = s.delta_bic_joint;
+  step["evidence"]["changes"] = evidence_json(s.evidence);
+  step["evidence"]["supported_by"] = supported_by_json(s.evidence);
+  step["evidence"]["weighted_cost_after"] = s.weighted_after;
+  step["evidence"]["reduced_chi2_after"] = s.reduced_chi2_after;
+  step["cost_after_j"] = s.cost_after_j;
+  step["embodiment"] = s.embodiment;
+  step["evidence"]["dispersion"] = s.dispersion;
+  step["withdrawn"] = s.withdrawn;
+  if (s.withdrawn) {
+    step["withdrawn_reason"] = "its strength " + s.strength_parameter +
+                               " vanished in the final model after later effects were added";
+  }
+  step["parameters_after"] = parameters_json(s.parameters_after);
+  return step;
+}
+
+// The gap the final model leaves: its reduced χ² against the noise level, and the levels of
+// largest residual.
+nlohmann::json gap_json(const DiagnosisResult& result) {
+  nlohmann::json gap = {{"final_reduced_chi2", finite_or_null(result.final_maps.reduced_chi2)},
+                        {"noise_reduced_chi2", result.final_noise_reduced_chi2}};
+  nlohmann::json largest = nlohmann::json::array();
+  for (const LevelDiscrepancy& d : result.largest_residual_levels) {
+    largest.push_back({{"well", to_string(well_of(d.positive_well))},
+                       {"f0_n", d.f0_n},
+                       {"residual_sigma", d.residual_sigma}});
+  }
+  gap["largest_residual_levels"] = largest;
+  return gap;
+}
+
+}  // namespace
+
 nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
                                      const std::vector<std::string>& records,
                                      double bic_threshold) {
-  const auto deviations = [](const EdcEvaluation& e) {
-    const auto number = [](double v) {
-      return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-    };
-    return nlohmann::json{{"positive", number(e.mean_deviation_pct_positive)},
-                          {"negative", number(e.mean_deviation_pct_negative)}};
-  };
   nlohmann::json out;
   out["format"] = "oscilab-diagnosis/1";
   out["records"] = records;
@@ -190,81 +278,13 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
                                                  : "ok";
   if (!result.message.empty()) out["message"] = result.message;
   out["sigma_budget"] = result.sigma_budget;
-  const FitResult& b = result.baseline;
-  out["baseline"] = {{"cost_j", b.evaluation.cost_j},
-                     {"weighted_cost", b.evaluation.weighted_cost},
-                     {"reduced_chi2", result.baseline_maps.reduced_chi2},
-                     {"mean_deviation_pct", deviations(b.evaluation)},
-                     {"evaluations", b.evaluations},
-                     {"parameters", parameters_json([&] {
-                        std::vector<std::pair<std::string, double>> p;
-                        for (std::size_t i = 0; i < b.names.size(); ++i)
-                          p.emplace_back(b.names[i], b.theta(static_cast<Eigen::Index>(i)));
-                        return p;
-                      }())},
-                     {"maps", maps_json(result.baseline_maps)},
-                     {"restarted_at_bound", result.baseline_restarts > 0},
-                     {"restart_improved", result.baseline_restart_improved}};
+  out["baseline"] = baseline_json(result);
   nlohmann::json steps = nlohmann::json::array();
-  for (const DiagnosisStep& s : result.steps) {
-    nlohmann::json candidates = nlohmann::json::array();
-    for (const CandidateTrial& t : s.trials) {
-      candidates.push_back({{"effect", t.effect},
-                            {"embodiment", t.embodiment},
-                            {"fingerprint_score", t.fingerprint_score},
-                            {"weighted_cost", t.weighted_cost},
-                            {"cost_j", t.cost_j},
-                            {"delta_bic", t.delta_bic},
-                            {"delta_bic_joint", t.delta_bic_joint},
-                            {"evidence", evidence_json(t.evidence)},
-                            {"outcome", candidate_outcome(s, t, bic_threshold)},
-                            {"solved", t.solved}});
-    }
-    nlohmann::json evidence = {
-        {"weighted_cost_before", s.weighted_before},
-        {"reduced_chi2_before", s.reduced_chi2_before},
-        {"max_abs_residual_sigma_before", s.maps_before.max_abs_residual_sigma},
-        {"missing_energy_slope",
-         {{"low", slope_json(s.maps_before.slopes.missing_low)},
-          {"high", slope_json(s.maps_before.slopes.missing_high)},
-          {"all", slope_json(s.maps_before.slopes.missing_all)}}},
-        {"candidates", candidates}};
-    nlohmann::json step = {
-        {"effect", s.effect}, {"evidence", evidence}, {"cost_before_j", s.cost_before_j}};
-    if (s.effect != "none") {
-      step["evidence"]["delta_bic"] = s.delta_bic;
-      step["evidence"]["delta_bic_joint"] = s.delta_bic_joint;
-      step["evidence"]["changes"] = evidence_json(s.evidence);
-      nlohmann::json supported = nlohmann::json::array();
-      for (const EvidenceChange& e : s.evidence) {
-        if (e.supports()) supported.push_back(e.name);
-      }
-      step["evidence"]["supported_by"] = supported;
-      step["evidence"]["weighted_cost_after"] = s.weighted_after;
-      step["evidence"]["reduced_chi2_after"] = s.reduced_chi2_after;
-      step["cost_after_j"] = s.cost_after_j;
-      step["embodiment"] = s.embodiment;
-      step["evidence"]["dispersion"] = s.dispersion;
-      step["withdrawn"] = s.withdrawn;
-      if (s.withdrawn) {
-        step["withdrawn_reason"] = "its strength " + s.strength_parameter +
-                                   " vanished in the final model after later effects were added";
-      }
-      step["parameters_after"] = parameters_json(s.parameters_after);
-    } else {
-      step["cost_after_j"] = s.cost_before_j;  // nothing was added
-    }
-    steps.push_back(step);
-  }
+  for (const DiagnosisStep& s : result.steps) steps.push_back(step_json(s, bic_threshold));
   out["steps"] = steps;
   out["verdict"] = result.verdict;
   for (const DiagnosisStep& s : result.steps) {
-    if (s.effect != result.verdict) continue;
-    nlohmann::json supported = nlohmann::json::array();
-    for (const EvidenceChange& e : s.evidence) {
-      if (e.supports()) supported.push_back(e.name);
-    }
-    out["verdict_supported_by"] = supported;
+    if (s.effect == result.verdict) out["verdict_supported_by"] = supported_by_json(s.evidence);
   }
   if (result.verdict == "none") {
     out["verdict_reason"] =
@@ -278,27 +298,13 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
   out["noise_reduced_chi2"] = result.noise_reduced_chi2;
   // Whether the final model explains the data within its noise (scripts read this field).
   out["gap_explained"] = result.gap_explained;
-  {
-    nlohmann::json gap = {
-        {"final_reduced_chi2", std::isfinite(result.final_maps.reduced_chi2)
-                                   ? nlohmann::json(result.final_maps.reduced_chi2)
-                                   : nlohmann::json(nullptr)},
-        {"noise_reduced_chi2", result.final_noise_reduced_chi2}};
-    nlohmann::json largest = nlohmann::json::array();
-    for (const LevelDiscrepancy& d : result.largest_residual_levels) {
-      largest.push_back({{"well", to_string(well_of(d.positive_well))},
-                         {"f0_n", d.f0_n},
-                         {"residual_sigma", d.residual_sigma}});
-    }
-    gap["largest_residual_levels"] = largest;
-    out["gap"] = gap;
-  }
+  out["gap"] = gap_json(result);
   if (result.final_form) {
     out["final_model"] = result.final_form->build(result.final_theta).to_json();
     out["final"] = {{"cost_j", result.final_evaluation.cost_j},
                     {"weighted_cost", result.final_evaluation.weighted_cost},
                     {"reduced_chi2", result.final_maps.reduced_chi2},
-                    {"mean_deviation_pct", deviations(result.final_evaluation)},
+                    {"mean_deviation_pct", deviations_json(result.final_evaluation)},
                     {"parameters", parameters_json(named(*result.final_form, result.final_theta))},
                     {"maps", maps_json(result.final_maps)}};
   }

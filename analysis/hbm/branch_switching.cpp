@@ -51,6 +51,179 @@ double odd_harmonic_norm_m(const Eigen::VectorXd& coefficients) {
   return std::sqrt(sum);
 }
 
+namespace {
+
+// The period-2νT ansatz's harmonic balance at the switch, with its residual and Jacobian buffers
+// and the odd (sub-harmonic) block of that Jacobian: the harmonics the period-νT orbit lacks.
+class DoubledAnsatz {
+ public:
+  DoubledAnsatz(const Model& model, double freq_hz, const HbmOptions& doubled)
+      : hbm(model, freq_hz, doubled), n(hbm.size()), r(n), jacobian(n, n) {
+    for (int k = 1; k <= hbm.base_harmonics(); k += 2) {
+      odd.push_back(2 * k - 1);
+      odd.push_back(2 * k);
+    }
+    n_odd = static_cast<int>(odd.size());
+    odd_block.resize(n_odd, n_odd);
+  }
+
+  void fill_odd_block(const Eigen::VectorXd& x_embedded, double f0_n) {
+    hbm.residual_and_jacobian(x_embedded, f0_n, r, jacobian);
+    for (int i = 0; i < n_odd; ++i) {
+      for (int j = 0; j < n_odd; ++j) odd_block(i, j) = jacobian(odd[i], odd[j]);
+    }
+  }
+
+  // Signed smallest singular value of the odd block, sign(det J_o) σ_min: continuous along the
+  // period-νT branch and zero exactly where J_o is singular (det itself would overflow at H = 21).
+  double singularity_test(const Eigen::VectorXd& x_embedded, double f0_n) {
+    fill_odd_block(x_embedded, f0_n);
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(odd_block);
+    double sign = lu.permutationP().determinant();
+    for (int i = 0; i < n_odd; ++i) sign *= lu.matrixLU()(i, i) < 0.0 ? -1.0 : 1.0;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(odd_block);
+    return sign * svd.singularValues()[n_odd - 1];
+  }
+
+  HarmonicBalance hbm;
+  int n;
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jacobian;
+  std::vector<int> odd;
+  int n_odd = 0;
+  Eigen::MatrixXd odd_block;
+};
+
+// The harmonic-balance pitchfork: where J_o of the period-νT orbit is singular. The Floquet
+// flip (monodromy of the HBM orbit) and the singularity of the truncated Hill matrix J_o agree
+// only as H grows (docs/hbm.md, "Period-2 branch"), so the switch happens at the latter, found
+// by scanning the period-νT branch from the flip outwards within (low, high) and refining by
+// regula falsi. Sets out.f0_pitchfork_n and `x_source` (the period-νT orbit there); false when
+// no sign change was bracketed.
+bool locate_pitchfork(DoubledAnsatz& ansatz, HarmonicBalance& source_hbm, const BranchPoint& flip,
+                      const PeriodDoublingSwitchOptions& options, double low, double high,
+                      PeriodDoublingSwitch& out, Eigen::VectorXd& x_source) {
+  out.f0_pitchfork_n = flip.f0_n;
+  x_source = flip.coefficients;
+  NewtonOptions newton;
+  newton.residual_tolerance_n = options.residual_tolerance_n;
+  const double g_flip = ansatz.singularity_test(embed_in_doubled_ansatz(x_source), flip.f0_n);
+  bool bracketed = g_flip == 0.0;
+  if (bracketed || !(options.pitchfork_search_n > 0.0)) return bracketed;
+  for (double side : {-1.0, 1.0}) {
+    Eigen::VectorXd x_b = flip.coefficients;
+    double a = flip.f0_n, g_a = g_flip;
+    for (double b = flip.f0_n + side * options.pitchfork_scan_step_n;
+         std::abs(b - flip.f0_n) <= options.pitchfork_search_n && b > low && b < high && !bracketed;
+         b += side * options.pitchfork_scan_step_n) {
+      if (!source_hbm.solve(x_b, b, newton).converged()) break;
+      const double g_b = ansatz.singularity_test(embed_in_doubled_ansatz(x_b), b);
+      if ((g_b > 0.0) != (g_a > 0.0)) {
+        // Illinois regula falsi on [a, b].
+        double fa = g_a, fb = g_b, lo = a, hi = b;
+        Eigen::VectorXd x_c = x_b;
+        for (int iteration = 0; iteration < 60 && std::abs(hi - lo) > 1e-12; ++iteration) {
+          const double c = (lo * fb - hi * fa) / (fb - fa);
+          if (!source_hbm.solve(x_c, c, newton).converged()) break;
+          const double fc = ansatz.singularity_test(embed_in_doubled_ansatz(x_c), c);
+          out.f0_pitchfork_n = c;
+          x_source = x_c;
+          if (fc == 0.0) break;
+          if ((fc > 0.0) != (fb > 0.0)) {
+            lo = hi;
+            fa = fb;
+          } else {
+            fa *= 0.5;
+          }
+          hi = c;
+          fb = fc;
+        }
+        bracketed = true;
+      }
+      a = b;
+      g_a = g_b;
+    }
+    if (bracketed) break;
+  }
+  return bracketed;
+}
+
+// The critical (null) direction v of the odd block at the pitchfork (out.critical_direction, and
+// the block's extreme singular values), then the predictor x_p + ε v and the corrector: Newton on
+// [r(x, f0); vᵀ(x − x_pred)] = 0 with the bordered Jacobian [∂r/∂x, ∂r/∂f0; vᵀ, 0], left in
+// `bordered` with `dr_df0`. Returns whether it converged; (x, f0) is the corrected point.
+bool correct_onto_doubled_branch(DoubledAnsatz& ansatz, const BranchPoint& flip,
+                                 const PeriodDoublingSwitchOptions& options,
+                                 PeriodDoublingSwitch& out, Eigen::VectorXd& x, double& f0,
+                                 Eigen::MatrixXd& bordered, Eigen::VectorXd& dr_df0) {
+  const int n = ansatz.n, n_odd = ansatz.n_odd;
+  ansatz.fill_odd_block(out.embedded, out.f0_pitchfork_n);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(ansatz.odd_block, Eigen::ComputeFullV);
+  out.odd_block_sigma_max_n_m = svd.singularValues()[0];
+  out.odd_block_sigma_min_n_m = svd.singularValues()[n_odd - 1];
+  out.critical_direction = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n_odd; ++i) {
+    out.critical_direction[ansatz.odd[i]] = svd.matrixV()(i, n_odd - 1);
+  }
+
+  out.perturbation_m =
+      options.perturbation_m > 0.0 ? options.perturbation_m : 0.02 * flip.measures.amp_m;
+  const Eigen::VectorXd x_pred = out.embedded + out.perturbation_m * out.critical_direction;
+  x = x_pred;
+  f0 = out.f0_pitchfork_n;
+  dr_df0.resize(n);
+  ansatz.hbm.d_residual_d_f0(dr_df0);
+  bordered = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  Eigen::VectorXd rhs(n + 1);
+  for (out.corrector_iterations = 0;; ++out.corrector_iterations) {
+    ansatz.hbm.residual_and_jacobian(x, f0, ansatz.r, ansatz.jacobian);
+    const double constraint = out.critical_direction.dot(x - x_pred);
+    if (!ansatz.r.allFinite()) return false;
+    if (ansatz.r.norm() <= options.residual_tolerance_n && std::abs(constraint) <= 1e-12) {
+      return true;
+    }
+    if (out.corrector_iterations >= options.max_corrector_iterations) return false;
+    bordered.topLeftCorner(n, n) = ansatz.jacobian;
+    bordered.topRightCorner(n, 1) = dr_df0;
+    bordered.bottomLeftCorner(1, n) = out.critical_direction.transpose();
+    rhs.head(n) = -ansatz.r;
+    rhs[n] = -constraint;
+    const Eigen::VectorXd delta = bordered.partialPivLu().solve(rhs);
+    if (!delta.allFinite()) return false;
+    x += delta.head(n);
+    f0 += delta[n];
+  }
+}
+
+// The flip orbit itself heads the continued branch, marked as the branch point.
+void head_with_flip_orbit(DoubledAnsatz& ansatz, const PeriodDoublingSwitchOptions& options,
+                          PeriodDoublingSwitch& out) {
+  BranchPoint head;
+  head.f0_n = out.f0_pitchfork_n;
+  head.freq_hz = options.continuation.freq_hz;
+  head.coefficients = out.embedded;
+  head.measures = ansatz.hbm.measure(out.embedded, out.f0_pitchfork_n);
+  if (options.continuation.stability) {
+    head.floquet = FloquetAnalysis(options.continuation.floquet).analyse(ansatz.hbm, out.embedded);
+    head.stability_known = true;
+  }
+  head.marker = PointMarker::BranchPoint;
+  ansatz.hbm.residual(out.embedded, out.f0_pitchfork_n, ansatz.r);
+  head.residual_norm_n = ansatz.r.norm();
+  if (!out.branch.points.empty()) {
+    out.branch.points.front().marker = PointMarker::None;
+    head.tangent_parameter = 0.0;  // the new branch leaves the flip along (v, 0)
+  }
+  out.branch.points.insert(out.branch.points.begin(), std::move(head));
+  for (BranchEvent& event : out.branch.events) ++event.point_index;
+  out.branch.events.insert(
+      out.branch.events.begin(),
+      {PointMarker::BranchPoint, out.f0_pitchfork_n, options.continuation.freq_hz,
+       out.branch.points.front().measures.amp_m, 0});
+}
+
+}  // namespace
+
 PeriodDoublingSwitch switch_at_period_doubling(const Model& model, const BranchPoint& flip,
                                                const PeriodDoublingSwitchOptions& options,
                                                const ProgressFn& progress,
@@ -69,86 +242,13 @@ PeriodDoublingSwitch switch_at_period_doubling(const Model& model, const BranchP
   HbmOptions doubled = source;
   doubled.subharmonic = out.subharmonic;
   doubled.samples = source.samples > 0 ? 2 * source.samples : 0;
-  HarmonicBalance hbm(model, options.continuation.freq_hz, doubled);
+  DoubledAnsatz ansatz(model, options.continuation.freq_hz, doubled);
   HarmonicBalance source_hbm(model, options.continuation.freq_hz, source);
-  const int n = hbm.size();
-  Eigen::VectorXd r(n);
-  Eigen::MatrixXd jacobian(n, n);
-  std::vector<int> odd;
-  for (int k = 1; k <= hbm.base_harmonics(); k += 2) {
-    odd.push_back(2 * k - 1);
-    odd.push_back(2 * k);
-  }
-  const int n_odd = static_cast<int>(odd.size());
-  Eigen::MatrixXd odd_block(n_odd, n_odd);
-  auto fill_odd_block = [&](const Eigen::VectorXd& x_embedded, double f0_n) {
-    hbm.residual_and_jacobian(x_embedded, f0_n, r, jacobian);
-    for (int i = 0; i < n_odd; ++i) {
-      for (int j = 0; j < n_odd; ++j) odd_block(i, j) = jacobian(odd[i], odd[j]);
-    }
-  };
-  // Signed smallest singular value of the odd block, sign(det J_o) σ_min: continuous along the
-  // period-νT branch and zero exactly where J_o is singular (det itself would overflow at H = 21).
-  auto singularity_test = [&](const Eigen::VectorXd& x_embedded, double f0_n) {
-    fill_odd_block(x_embedded, f0_n);
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(odd_block);
-    double sign = lu.permutationP().determinant();
-    for (int i = 0; i < n_odd; ++i) sign *= lu.matrixLU()(i, i) < 0.0 ? -1.0 : 1.0;
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(odd_block);
-    return sign * svd.singularValues()[n_odd - 1];
-  };
 
-  // The harmonic-balance pitchfork: where J_o of the period-νT orbit is singular. The Floquet
-  // flip (monodromy of the HBM orbit) and the singularity of the truncated Hill matrix J_o agree
-  // only as H grows (docs/hbm.md, "Period-2 branch"), so the switch happens at the latter, found
-  // by scanning the period-νT branch from the flip outwards and refining by regula falsi.
   const double low = std::min(options.continuation.start, options.continuation.end);
   const double high = std::max(options.continuation.start, options.continuation.end);
-  out.f0_pitchfork_n = flip.f0_n;
-  Eigen::VectorXd x_source = flip.coefficients;
-  NewtonOptions newton;
-  newton.residual_tolerance_n = options.residual_tolerance_n;
-  const double g_flip = singularity_test(embed_in_doubled_ansatz(x_source), flip.f0_n);
-  bool bracketed = g_flip == 0.0;
-  if (!bracketed && options.pitchfork_search_n > 0.0) {
-    for (double side : {-1.0, 1.0}) {
-      Eigen::VectorXd x_b = flip.coefficients;
-      double a = flip.f0_n, g_a = g_flip;
-      for (double b = flip.f0_n + side * options.pitchfork_scan_step_n;
-           std::abs(b - flip.f0_n) <= options.pitchfork_search_n && b > low && b < high &&
-           !bracketed;
-           b += side * options.pitchfork_scan_step_n) {
-        if (!source_hbm.solve(x_b, b, newton).converged()) break;
-        const double g_b = singularity_test(embed_in_doubled_ansatz(x_b), b);
-        if ((g_b > 0.0) != (g_a > 0.0)) {
-          // Illinois regula falsi on [a, b].
-          double fa = g_a, fb = g_b, lo = a, hi = b;
-          Eigen::VectorXd x_c = x_b;
-          for (int iteration = 0; iteration < 60 && std::abs(hi - lo) > 1e-12; ++iteration) {
-            const double c = (lo * fb - hi * fa) / (fb - fa);
-            if (!source_hbm.solve(x_c, c, newton).converged()) break;
-            const double fc = singularity_test(embed_in_doubled_ansatz(x_c), c);
-            out.f0_pitchfork_n = c;
-            x_source = x_c;
-            if (fc == 0.0) break;
-            if ((fc > 0.0) != (fb > 0.0)) {
-              lo = hi;
-              fa = fb;
-            } else {
-              fa *= 0.5;
-            }
-            hi = c;
-            fb = fc;
-          }
-          bracketed = true;
-        }
-        a = b;
-        g_a = g_b;
-      }
-      if (bracketed) break;
-    }
-  }
-  if (!bracketed) {
+  Eigen::VectorXd x_source;
+  if (!locate_pitchfork(ansatz, source_hbm, flip, options, low, high, out, x_source)) {
     out.status = JobStatus::NoConvergence;
     out.message =
         "period-doubling switch: the harmonic-balance Jacobian's sub-harmonic block is "
@@ -159,63 +259,31 @@ PeriodDoublingSwitch switch_at_period_doubling(const Model& model, const BranchP
   }
   out.embedded = embed_in_doubled_ansatz(x_source);
 
-  // The critical (null) direction of the odd block at the pitchfork.
-  fill_odd_block(out.embedded, out.f0_pitchfork_n);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(odd_block, Eigen::ComputeFullV);
-  out.odd_block_sigma_max_n_m = svd.singularValues()[0];
-  out.odd_block_sigma_min_n_m = svd.singularValues()[n_odd - 1];
-  out.critical_direction = Eigen::VectorXd::Zero(n);
-  for (int i = 0; i < n_odd; ++i) out.critical_direction[odd[i]] = svd.matrixV()(i, n_odd - 1);
-
-  // Predictor x_p + ε v at the pitchfork; corrector: Newton on [r(x, f0); vᵀ(x − x_pred)] = 0 with
-  // the bordered Jacobian [∂r/∂x, ∂r/∂f0; vᵀ, 0].
-  out.perturbation_m =
-      options.perturbation_m > 0.0 ? options.perturbation_m : 0.02 * flip.measures.amp_m;
-  const Eigen::VectorXd x_pred = out.embedded + out.perturbation_m * out.critical_direction;
-  Eigen::VectorXd x = x_pred;
-  double f0 = out.f0_pitchfork_n;
-  Eigen::VectorXd dr_df0(n);
-  hbm.d_residual_d_f0(dr_df0);
-  Eigen::MatrixXd bordered = Eigen::MatrixXd::Zero(n + 1, n + 1);
-  Eigen::VectorXd rhs(n + 1);
-  bool converged = false;
-  for (out.corrector_iterations = 0;; ++out.corrector_iterations) {
-    hbm.residual_and_jacobian(x, f0, r, jacobian);
-    const double constraint = out.critical_direction.dot(x - x_pred);
-    if (!r.allFinite()) break;
-    if (r.norm() <= options.residual_tolerance_n && std::abs(constraint) <= 1e-12) {
-      converged = true;
-      break;
-    }
-    if (out.corrector_iterations >= options.max_corrector_iterations) break;
-    bordered.topLeftCorner(n, n) = jacobian;
-    bordered.topRightCorner(n, 1) = dr_df0;
-    bordered.bottomLeftCorner(1, n) = out.critical_direction.transpose();
-    rhs.head(n) = -r;
-    rhs[n] = -constraint;
-    const Eigen::VectorXd delta = bordered.partialPivLu().solve(rhs);
-    if (!delta.allFinite()) break;
-    x += delta.head(n);
-    f0 += delta[n];
-  }
+  Eigen::VectorXd x, dr_df0;
+  double f0 = 0.0;
+  Eigen::MatrixXd bordered;
+  const bool converged =
+      correct_onto_doubled_branch(ansatz, flip, options, out, x, f0, bordered, dr_df0);
   out.branch.parameter = BranchParameter::ForcingAmplitude;
   out.branch.hbm = doubled;
-  out.branch.samples = hbm.samples();
+  out.branch.samples = ansatz.hbm.samples();
   out.branch.positive_well = options.continuation.positive_well;
   if (!converged) {
     out.status = JobStatus::NoConvergence;
     out.message = "period-doubling switch at " + std::to_string(flip.f0_n) +
                   " N: the corrector did not converge from x + eps v (eps = " +
-                  std::to_string(out.perturbation_m) + " m, |r| = " + std::to_string(r.norm()) +
-                  " N after " + std::to_string(out.corrector_iterations) + " iterations)";
+                  std::to_string(out.perturbation_m) +
+                  " m, |r| = " + std::to_string(ansatz.r.norm()) + " N after " +
+                  std::to_string(out.corrector_iterations) + " iterations)";
     return out;
   }
 
   // Continue from the corrected point away from the pitchfork: along the tangent t whose
   // sub-harmonic component grows, [∂r/∂x, ∂r/∂f0; vᵀ, 0] t = [0; 1]; the sign of its f0 component
   // says which end of the range the branch bends to (up for a supercritical flip).
-  bordered.topLeftCorner(n, n) = jacobian;
-  rhs.setZero();
+  const int n = ansatz.n;
+  bordered.topLeftCorner(n, n) = ansatz.jacobian;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + 1);
   rhs[n] = 1.0;
   const Eigen::VectorXd tangent = bordered.partialPivLu().solve(rhs);
   ContinuationOptions continuation = options.continuation;
@@ -231,30 +299,7 @@ PeriodDoublingSwitch switch_at_period_doubling(const Model& model, const BranchP
     return out;
   }
   out.branch = continue_branch(model, continuation, progress, cancel);
-
-  // The flip orbit itself heads the branch.
-  BranchPoint head;
-  head.f0_n = out.f0_pitchfork_n;
-  head.freq_hz = options.continuation.freq_hz;
-  head.coefficients = out.embedded;
-  head.measures = hbm.measure(out.embedded, out.f0_pitchfork_n);
-  if (options.continuation.stability) {
-    head.floquet = FloquetAnalysis(options.continuation.floquet).analyse(hbm, out.embedded);
-    head.stability_known = true;
-  }
-  head.marker = PointMarker::BranchPoint;
-  hbm.residual(out.embedded, out.f0_pitchfork_n, r);
-  head.residual_norm_n = r.norm();
-  if (!out.branch.points.empty()) {
-    out.branch.points.front().marker = PointMarker::None;
-    head.tangent_parameter = 0.0;  // the new branch leaves the flip along (v, 0)
-  }
-  out.branch.points.insert(out.branch.points.begin(), std::move(head));
-  for (BranchEvent& event : out.branch.events) ++event.point_index;
-  out.branch.events.insert(
-      out.branch.events.begin(),
-      {PointMarker::BranchPoint, out.f0_pitchfork_n, options.continuation.freq_hz,
-       out.branch.points.front().measures.amp_m, 0});
+  head_with_flip_orbit(ansatz, options, out);
   out.branch.newton_iterations += out.corrector_iterations;
   out.status = out.branch.status;
   out.message = out.branch.message;

@@ -193,6 +193,13 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
                                   const PipelineSettings& settings, const ProgressFn& progress,
                                   const CancelToken& cancel) {
   settings.validate();
+  // A cancelled campaign keeps nothing of what was made, only its settings and status.
+  const auto cancelled = [&settings] {
+    CampaignAnalysis out;
+    out.settings = settings;
+    out.status = JobStatus::Cancelled;
+    return out;
+  };
   CampaignAnalysis campaign;
   campaign.settings = settings;
   // The records are independent until the restoring-force slices, which pool them: one per
@@ -215,11 +222,7 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
   for (const std::exception_ptr& error : errors) {
     if (error) std::rethrow_exception(error);
   }
-  if (cancel.cancelled()) {
-    campaign.records.clear();
-    campaign.status = JobStatus::Cancelled;
-    return campaign;
-  }
+  if (cancel.cancelled()) return cancelled();
   const std::vector<const MotionSignals*> signals = slice_records(campaign.records);
   campaign.z_about_mean =
       !signals.empty() && std::none_of(campaign.records.begin(), campaign.records.end(),
@@ -240,12 +243,7 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
       campaign.rfs_message = error.what();
     }
   }
-  if (cancel.cancelled()) {  // during the slices: what was made is dropped as above
-    campaign = CampaignAnalysis();
-    campaign.settings = settings;
-    campaign.status = JobStatus::Cancelled;
-    return campaign;
-  }
+  if (cancel.cancelled()) return cancelled();  // during the slices
   if (progress) progress(1.0);
   return campaign;
 }

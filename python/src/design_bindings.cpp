@@ -24,6 +24,31 @@ std::pair<double, double> range_argument(const py::handle& object, const std::st
   return {range(0), range(1)};
 }
 
+// adaptive_test's docstring.
+constexpr const char* kAdaptiveTestDoc =
+    R"doc(The adaptive stepped-sine test on the virtual rig (`oscilab-cli adaptive-test`): a pilot
+in each well, then after every level the baseline and each candidate effect refitted and weighed
+(BIC weights), the next setting proposed where the plausible models differ most per second of
+shaker time, run and analysed, until one model is clear at the noise, nothing is left to tell
+apart or the budget is spent; then the diagnosis of every recording made.
+
+rig_model: the rig's truth (a Model, 'paper' or a model JSON path); out: the folder the
+recordings are written to (NN_pilot_positive.wav ...). model, stiffness, harmonics,
+max_harmonics, model_error, seed, threads, max_seconds: as diagnose(). freq_hz, freq_span_hz,
+freq_step_hz: the admissible frequencies [Hz]; f0_range_n (min, max) and f0_step_n: the forcing
+grid [N]; wells: 'both', 'positive' or 'negative'; pilot_levels_n [N]; hold_s, ramp_s, lead_in_s:
+each level's dwell and ramp and the rest before a run [s]; well_change_s: shaker time of a change
+of well [s]; budget_s: shaker-time budget [s]; leader_weight, min_discrimination: the stop rule;
+max_levels: adaptive levels at most; effects: the candidate effects weighed (empty: all);
+global_evaluations, initial_evaluations, refit_evaluations: model evaluations of the fits.
+progress: callable(info) with fraction and, from the first decision on, decision (the latest
+line of the CLI's decisions.jsonl; its 'decision' counts them); return False to cancel (the
+result then has status 'cancelled').
+Returns the CLI's report.json as a dict (verdict, steps, shaker_time_s, adaptive_test {levels,
+leader, stop_reason, weights, agrees_with_diagnosis ...}) with status, decisions (every line of
+decisions.jsonl) and recordings (the paths written); and final_model_object when there is one.
+Ctrl-C stops it (KeyboardInterrupt); the GIL is released.)doc";
+
 }  // namespace
 
 void bind_design(py::module_& m) {
@@ -133,29 +158,7 @@ void bind_design(py::module_& m) {
       py::arg("initial_evaluations") = 400, py::arg("refit_evaluations") = 300, py::arg("seed") = 1,
       py::arg("threads") = 0, py::arg("harmonics") = 7, py::arg("max_harmonics") = 63,
       py::arg("model_error") = -1.0, py::arg("max_seconds") = 120.0,
-      py::arg("progress") = py::none(),
-      R"doc(The adaptive stepped-sine test on the virtual rig (`oscilab-cli adaptive-test`): a pilot
-in each well, then after every level the baseline and each candidate effect refitted and weighed
-(BIC weights), the next setting proposed where the plausible models differ most per second of
-shaker time, run and analysed, until one model is clear at the noise, nothing is left to tell
-apart or the budget is spent; then the diagnosis of every recording made.
-
-rig_model: the rig's truth (a Model, 'paper' or a model JSON path); out: the folder the
-recordings are written to (NN_pilot_positive.wav ...). model, stiffness, harmonics,
-max_harmonics, model_error, seed, threads, max_seconds: as diagnose(). freq_hz, freq_span_hz,
-freq_step_hz: the admissible frequencies [Hz]; f0_range_n (min, max) and f0_step_n: the forcing
-grid [N]; wells: 'both', 'positive' or 'negative'; pilot_levels_n [N]; hold_s, ramp_s, lead_in_s:
-each level's dwell and ramp and the rest before a run [s]; well_change_s: shaker time of a change
-of well [s]; budget_s: shaker-time budget [s]; leader_weight, min_discrimination: the stop rule;
-max_levels: adaptive levels at most; effects: the candidate effects weighed (empty: all);
-global_evaluations, initial_evaluations, refit_evaluations: model evaluations of the fits.
-progress: callable(info) with fraction and, from the first decision on, decision (the latest
-line of the CLI's decisions.jsonl; its 'decision' counts them); return False to cancel (the
-result then has status 'cancelled').
-Returns the CLI's report.json as a dict (verdict, steps, shaker_time_s, adaptive_test {levels,
-leader, stop_reason, weights, agrees_with_diagnosis ...}) with status, decisions (every line of
-decisions.jsonl) and recordings (the paths written); and final_model_object when there is one.
-Ctrl-C stops it (KeyboardInterrupt); the GIL is released.)doc");
+      py::arg("progress") = py::none(), kAdaptiveTestDoc);
 }
 
 }  // namespace oscilab::python

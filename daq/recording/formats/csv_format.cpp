@@ -113,6 +113,140 @@ class CsvLineReader {
   long line_number_ = 0;
 };
 
+// Where each channel and the time are in a row, and how many cells a row has.
+struct ColumnMap {
+  std::vector<std::size_t> column;  // per channel
+  long time_column = -1;            // -1: none
+  std::size_t expected_cells = 0;   // 0: set by the first data row
+};
+
+// The sidecar's 0-based "column"s (and csv.time_column) against the `available` cells; throws
+// InputError naming the channel and `what` (the line) when one is beyond them.
+void check_columns(const std::string& path, const Sidecar& sidecar, std::size_t available,
+                   const std::string& what, ColumnMap& map) {
+  for (std::size_t c = 0; c < sidecar.channels.size(); ++c) {
+    const ChannelInfo& channel = sidecar.channels[c];
+    if (channel.column >= 0 && static_cast<std::size_t>(channel.column) >= available) {
+      throw InputError(path + ": " + what + ": channel " + in_quotes(channel.name) +
+                       " reads column " + std::to_string(channel.column) +
+                       " (0-based), but there are only " + std::to_string(available));
+    }
+    if (channel.column >= 0) map.column[c] = static_cast<std::size_t>(channel.column);
+  }
+  if (map.time_column >= 0 && static_cast<std::size_t>(map.time_column) >= available) {
+    throw InputError(path + ": " + what + ": csv.time_column is " +
+                     std::to_string(map.time_column) + " (0-based), but there are only " +
+                     std::to_string(available) + " columns");
+  }
+}
+
+// The header line: the first line not blank. Each channel without a "column" is found by its
+// name (once), the time by "t_s" unless csv.time_column says; a time column that is also a
+// channel's is read as the channel.
+void read_header(CsvLineReader& reader, const std::string& path, const Sidecar& sidecar,
+                 const std::string& sidecar_name, const CsvLayout& layout, ColumnMap& map) {
+  bool found = false;
+  while (reader.next()) {
+    if (!blank_line(reader.line())) {
+      found = true;
+      break;
+    }
+  }
+  if (!found) throw InputError(path + ": no samples (empty file: no header line)");
+  const std::string where = "line " + std::to_string(reader.line_number());
+  std::vector<std::string_view> cells;
+  split(reader.line(), layout.delimiter, cells);
+  std::vector<std::string> names;
+  for (const std::string_view cell : cells) names.emplace_back(clean_cell(cell));
+  map.expected_cells = names.size();
+  check_columns(path, sidecar, map.expected_cells, where + " (header)", map);
+  for (std::size_t c = 0; c < sidecar.channels.size(); ++c) {
+    const ChannelInfo& channel = sidecar.channels[c];
+    if (channel.column >= 0) continue;
+    const auto matches = std::count(names.begin(), names.end(), channel.name);
+    if (matches == 0) {
+      std::string list;
+      for (std::size_t i = 0; i < names.size() && i < 12; ++i) {
+        list += (i == 0 ? "" : ", ") + in_quotes(names[i].substr(0, 40));
+      }
+      if (names.size() > 12) list += ", ...";
+      const bool numeric = std::all_of(names.begin(), names.end(), [](const std::string& name) {
+        double value = 0.0;
+        return parse_number(name, value).empty();
+      });
+      throw InputError(path + ": " + where + ": the header has no column " +
+                       in_quotes(channel.name) + " for that channel of " + sidecar_name +
+                       " (found " + list + ")" +
+                       (numeric ? "; a file without a header needs \"csv\": {\"header\": "
+                                  "false} and a \"column\" for each channel"
+                                : ""));
+    }
+    if (matches > 1) {
+      throw InputError(path + ": " + where + ": the header names " + in_quotes(channel.name) +
+                       " more than once");
+    }
+    map.column[c] = static_cast<std::size_t>(std::find(names.begin(), names.end(), channel.name) -
+                                             names.begin());
+  }
+  if (map.time_column < 0) {
+    const auto it = std::find(names.begin(), names.end(), "t_s");
+    if (it != names.end()) map.time_column = it - names.begin();
+  }
+  for (std::size_t c = 0; c < sidecar.channels.size(); ++c) {
+    if (static_cast<long>(map.column[c]) == map.time_column) map.time_column = -1;
+  }
+}
+
+// The data rows: blank lines skipped, every row with the header's (or the first row's) number of
+// cells, every channel's cell a number, the time column (when there is one) on the sidecar's
+// rate. Throws InputError naming the line and column.
+StoredSamples read_rows(CsvLineReader& reader, const std::string& path, const Sidecar& sidecar,
+                        const std::string& sidecar_name, const CsvLayout& layout, ColumnMap& map) {
+  StoredSamples stored;
+  TimeAxisCheck time_check(sidecar.sample_rate_hz, sidecar_name);
+  const auto cell_error = [&](std::size_t index, const std::string& what,
+                              const std::string& problem) {
+    throw InputError(path + ": line " + std::to_string(reader.line_number()) + ", column " +
+                     std::to_string(index + 1) + " (" + what + "): " + problem);
+  };
+  std::vector<std::string_view> cells;
+  while (reader.next()) {
+    if (blank_line(reader.line())) continue;
+    split(reader.line(), layout.delimiter, cells);
+    if (map.expected_cells == 0) {
+      map.expected_cells = cells.size();
+      check_columns(path, sidecar, map.expected_cells,
+                    "line " + std::to_string(reader.line_number()), map);
+    }
+    if (cells.size() != map.expected_cells) {
+      throw InputError(path + ": line " + std::to_string(reader.line_number()) + ": expected " +
+                       std::to_string(map.expected_cells) + " columns, found " +
+                       std::to_string(cells.size()) + " (truncated or malformed row)");
+    }
+    for (std::size_t c = 0; c < sidecar.channels.size(); ++c) {
+      double value = 0.0;
+      const std::string problem = parse_number(cells[map.column[c]], value);
+      if (!problem.empty()) {
+        cell_error(map.column[c], "channel " + in_quotes(sidecar.channels[c].name), problem);
+      }
+      stored.values.push_back(value);
+    }
+    stored.lines.push_back(reader.line_number());
+    if (map.time_column >= 0) {
+      const auto index = static_cast<std::size_t>(map.time_column);
+      double t_s = 0.0;
+      const std::string problem = parse_number(cells[index], t_s);
+      if (!problem.empty()) cell_error(index, "time", problem);
+      if (const std::string time_problem = time_check.next(t_s); !time_problem.empty()) {
+        cell_error(index, "time", time_problem);
+      }
+    }
+  }
+  if (reader.bad()) throw InputError(path + ": cannot read: " + std::strerror(errno));
+  if (stored.lines.empty()) throw InputError(path + ": no samples (the file holds no data rows)");
+  return stored;
+}
+
 Recording read_csv(const std::string& path, const Sidecar& sidecar,
                    const std::string& sidecar_name) {
   CsvLayout layout;
@@ -129,122 +263,11 @@ Recording read_csv(const std::string& path, const Sidecar& sidecar,
                        std::to_string(layout.skip_lines) + " lines csv.skip_lines skips");
     }
   }
-
-  const std::size_t channel_count = sidecar.channels.size();
-  std::vector<std::size_t> column(channel_count, 0);
-  long time_column = layout.time_column;
-  std::size_t expected_cells = 0;  // 0: set by the first data row
-  std::vector<std::string_view> cells;
-  std::string where;  // "line N" of the header, for messages about columns
-
-  auto check_columns = [&](std::size_t available, const std::string& what) {
-    for (std::size_t c = 0; c < channel_count; ++c) {
-      const ChannelInfo& channel = sidecar.channels[c];
-      if (channel.column >= 0 && static_cast<std::size_t>(channel.column) >= available) {
-        throw InputError(path + ": " + what + ": channel " + in_quotes(channel.name) +
-                         " reads column " + std::to_string(channel.column) +
-                         " (0-based), but there are only " + std::to_string(available));
-      }
-      if (channel.column >= 0) column[c] = static_cast<std::size_t>(channel.column);
-    }
-    if (time_column >= 0 && static_cast<std::size_t>(time_column) >= available) {
-      throw InputError(path + ": " + what + ": csv.time_column is " + std::to_string(time_column) +
-                       " (0-based), but there are only " + std::to_string(available) + " columns");
-    }
-  };
-
-  if (layout.header) {
-    bool found = false;
-    while (reader.next()) {
-      if (!blank_line(reader.line())) {
-        found = true;
-        break;
-      }
-    }
-    if (!found) throw InputError(path + ": no samples (empty file: no header line)");
-    where = "line " + std::to_string(reader.line_number());
-    split(reader.line(), layout.delimiter, cells);
-    std::vector<std::string> names;
-    for (const std::string_view cell : cells) names.emplace_back(clean_cell(cell));
-    expected_cells = names.size();
-    check_columns(expected_cells, where + " (header)");
-    for (std::size_t c = 0; c < channel_count; ++c) {
-      const ChannelInfo& channel = sidecar.channels[c];
-      if (channel.column >= 0) continue;
-      const auto matches = std::count(names.begin(), names.end(), channel.name);
-      if (matches == 0) {
-        std::string list;
-        for (std::size_t i = 0; i < names.size() && i < 12; ++i) {
-          list += (i == 0 ? "" : ", ") + in_quotes(names[i].substr(0, 40));
-        }
-        if (names.size() > 12) list += ", ...";
-        const bool numeric = std::all_of(names.begin(), names.end(), [](const std::string& name) {
-          double value = 0.0;
-          return parse_number(name, value).empty();
-        });
-        throw InputError(path + ": " + where + ": the header has no column " +
-                         in_quotes(channel.name) + " for that channel of " + sidecar_name +
-                         " (found " + list + ")" +
-                         (numeric ? "; a file without a header needs \"csv\": {\"header\": "
-                                    "false} and a \"column\" for each channel"
-                                  : ""));
-      }
-      if (matches > 1) {
-        throw InputError(path + ": " + where + ": the header names " + in_quotes(channel.name) +
-                         " more than once");
-      }
-      column[c] = static_cast<std::size_t>(std::find(names.begin(), names.end(), channel.name) -
-                                           names.begin());
-    }
-    if (time_column < 0) {
-      const auto it = std::find(names.begin(), names.end(), "t_s");
-      if (it != names.end()) time_column = it - names.begin();
-    }
-    for (std::size_t c = 0; c < channel_count; ++c) {
-      if (static_cast<long>(column[c]) == time_column) time_column = -1;  // read as a channel
-    }
-  }
-
-  StoredSamples stored;
-  TimeAxisCheck time_check(sidecar.sample_rate_hz, sidecar_name);
-  long row = 0;
-  auto cell_error = [&](std::size_t index, const std::string& what, const std::string& problem) {
-    throw InputError(path + ": line " + std::to_string(reader.line_number()) + ", column " +
-                     std::to_string(index + 1) + " (" + what + "): " + problem);
-  };
-  while (reader.next()) {
-    if (blank_line(reader.line())) continue;
-    split(reader.line(), layout.delimiter, cells);
-    if (expected_cells == 0) {
-      expected_cells = cells.size();
-      check_columns(expected_cells, "line " + std::to_string(reader.line_number()));
-    }
-    if (cells.size() != expected_cells) {
-      throw InputError(path + ": line " + std::to_string(reader.line_number()) + ": expected " +
-                       std::to_string(expected_cells) + " columns, found " +
-                       std::to_string(cells.size()) + " (truncated or malformed row)");
-    }
-    for (std::size_t c = 0; c < channel_count; ++c) {
-      double value = 0.0;
-      const std::string problem = parse_number(cells[column[c]], value);
-      if (!problem.empty())
-        cell_error(column[c], "channel " + in_quotes(sidecar.channels[c].name), problem);
-      stored.values.push_back(value);
-    }
-    stored.lines.push_back(reader.line_number());
-    if (time_column >= 0) {
-      const auto index = static_cast<std::size_t>(time_column);
-      double t_s = 0.0;
-      const std::string problem = parse_number(cells[index], t_s);
-      if (!problem.empty()) cell_error(index, "time", problem);
-      if (const std::string time_problem = time_check.next(t_s); !time_problem.empty()) {
-        cell_error(index, "time", time_problem);
-      }
-    }
-    ++row;
-  }
-  if (reader.bad()) throw InputError(path + ": cannot read: " + std::strerror(errno));
-  if (row == 0) throw InputError(path + ": no samples (the file holds no data rows)");
+  ColumnMap map;
+  map.column.assign(sidecar.channels.size(), 0);
+  map.time_column = layout.time_column;
+  if (layout.header) read_header(reader, path, sidecar, sidecar_name, layout, map);
+  const StoredSamples stored = read_rows(reader, path, sidecar, sidecar_name, layout, map);
 
   Recording recording;
   recording.sidecar = sidecar;

@@ -198,90 +198,102 @@ std::size_t TdmsParser::find_or_add(const std::string& path, const std::string& 
 std::shared_ptr<const RawIndex> TdmsParser::read_index(MetadataCursor& cursor, std::uint32_t header,
                                                        const std::string& object_where) {
   auto index = std::make_shared<RawIndex>();
-  const std::uint64_t file_size = file_.size_bytes();
   if (header == kIndexFormatChangingScaler || header == kIndexDigitalLineScaler) {
-    index->daqmx = true;
-    index->data_type = cursor.u32("a DAQmx data type");
-    if (index->data_type != kTypeDaqmxRaw) {
-      const TypeInfo* type = type_info(index->data_type);
-      if (!type || !type->sample) {
-        fail(object_where + "DAQmx raw data of data type " + type_name(index->data_type) +
-             " is not read");
-      }
-    }
-    const std::uint32_t dimension = cursor.u32("the array dimension");
-    if (dimension != 1) {
-      fail(object_where + "array dimension " + std::to_string(dimension) + " (only 1 is defined)");
-    }
-    index->values = cursor.u64("the number of values");
-    if (index->values > file_size) {
-      fail(object_where + "it declares " + std::to_string(index->values) +
-           " values per chunk, more than the file's " + std::to_string(file_size) + " bytes");
-    }
-    const bool digital = header == kIndexDigitalLineScaler;
-    const std::size_t scaler_bytes = digital ? 17 : 20;
-    const std::uint32_t scalers = cursor.u32("the number of DAQmx scalers");
-    if (scalers == 0 || scalers > cursor.remaining() / scaler_bytes) {
-      fail(object_where + "it declares " + std::to_string(scalers) +
-           " DAQmx scalers, which the metadata cannot hold");
-    }
-    for (std::uint32_t s = 0; s < scalers; ++s) {
-      DaqmxScaler scaler;
-      scaler.type = cursor.u32("a DAQmx scaler");
-      scaler.buffer = cursor.u32("a DAQmx scaler");
-      const std::uint32_t offset = cursor.u32("a DAQmx scaler");
-      if (digital) {
-        cursor.skip(1, "a DAQmx scaler");  // sample format bitmap
-        scaler.byte_offset = offset / 8;
-        scaler.bit = static_cast<int>(offset % 8);
-      } else {
-        cursor.skip(4, "a DAQmx scaler");  // sample format bitmap
-        scaler.byte_offset = offset;
-      }
-      scaler.scale_id = cursor.u32("a DAQmx scaler");
-      const TypeInfo* type = daqmx_type_info(scaler.type);
-      if (!type) {
-        fail(object_where + "DAQmx scaler " + std::to_string(s) + ": unknown data type " +
-             std::to_string(scaler.type));
-      }
-      if (digital && (type->sample == Sample::F32 || type->sample == Sample::F64)) {
-        fail(object_where + "a digital line scaler of data type " + type->name);
-      }
-      index->scalers.push_back(scaler);
-    }
-    const std::uint32_t widths = cursor.u32("the number of raw data widths");
-    if (widths > cursor.remaining() / 4) {
-      fail(object_where + "it declares " + std::to_string(widths) +
-           " raw data widths, which the metadata cannot hold");
-    }
-    for (std::uint32_t w = 0; w < widths; ++w) {
-      const std::uint32_t width = cursor.u32("a raw data width");
-      if (width == 0) fail(object_where + "raw buffer " + std::to_string(w) + " has width 0");
-      if (index->values > file_size / width) {
-        fail(object_where + "raw buffer " + std::to_string(w) + " of " +
-             std::to_string(index->values) + " values of " + std::to_string(width) +
-             " bytes would be larger than the file");
-      }
-      index->widths_bytes.push_back(width);
-    }
-    for (std::size_t s = 0; s < index->scalers.size(); ++s) {
-      const DaqmxScaler& scaler = index->scalers[s];
-      if (scaler.buffer >= index->widths_bytes.size()) {
-        fail(object_where + "DAQmx scaler " + std::to_string(s) + " reads raw buffer " +
-             std::to_string(scaler.buffer) + ", but there are " +
-             std::to_string(index->widths_bytes.size()));
-      }
-      const std::uint64_t end =
-          std::uint64_t{scaler.byte_offset} + daqmx_type_info(scaler.type)->size_bytes;
-      if (end > index->widths_bytes[scaler.buffer]) {
-        fail(object_where + "DAQmx scaler " + std::to_string(s) + " reads bytes up to " +
-             std::to_string(end) + " of a " + std::to_string(index->widths_bytes[scaler.buffer]) +
-             "-byte stride");
-      }
-    }
-    return index;
+    read_daqmx_index(cursor, header, object_where, *index);
+  } else {
+    read_plain_index(cursor, header, object_where, *index);
   }
-  // A plain raw data index; `header` is its length in bytes, itself included.
+  return index;
+}
+
+void TdmsParser::read_daqmx_index(MetadataCursor& cursor, std::uint32_t header,
+                                  const std::string& object_where, RawIndex& index) {
+  const std::uint64_t file_size = file_.size_bytes();
+  index.daqmx = true;
+  index.data_type = cursor.u32("a DAQmx data type");
+  if (index.data_type != kTypeDaqmxRaw) {
+    const TypeInfo* type = type_info(index.data_type);
+    if (!type || !type->sample) {
+      fail(object_where + "DAQmx raw data of data type " + type_name(index.data_type) +
+           " is not read");
+    }
+  }
+  const std::uint32_t dimension = cursor.u32("the array dimension");
+  if (dimension != 1) {
+    fail(object_where + "array dimension " + std::to_string(dimension) + " (only 1 is defined)");
+  }
+  index.values = cursor.u64("the number of values");
+  if (index.values > file_size) {
+    fail(object_where + "it declares " + std::to_string(index.values) +
+         " values per chunk, more than the file's " + std::to_string(file_size) + " bytes");
+  }
+  const bool digital = header == kIndexDigitalLineScaler;
+  const std::size_t scaler_bytes = digital ? 17 : 20;
+  const std::uint32_t scalers = cursor.u32("the number of DAQmx scalers");
+  if (scalers == 0 || scalers > cursor.remaining() / scaler_bytes) {
+    fail(object_where + "it declares " + std::to_string(scalers) +
+         " DAQmx scalers, which the metadata cannot hold");
+  }
+  for (std::uint32_t s = 0; s < scalers; ++s) {
+    DaqmxScaler scaler;
+    scaler.type = cursor.u32("a DAQmx scaler");
+    scaler.buffer = cursor.u32("a DAQmx scaler");
+    const std::uint32_t offset = cursor.u32("a DAQmx scaler");
+    if (digital) {
+      cursor.skip(1, "a DAQmx scaler");  // sample format bitmap
+      scaler.byte_offset = offset / 8;
+      scaler.bit = static_cast<int>(offset % 8);
+    } else {
+      cursor.skip(4, "a DAQmx scaler");  // sample format bitmap
+      scaler.byte_offset = offset;
+    }
+    scaler.scale_id = cursor.u32("a DAQmx scaler");
+    const TypeInfo* type = daqmx_type_info(scaler.type);
+    if (!type) {
+      fail(object_where + "DAQmx scaler " + std::to_string(s) + ": unknown data type " +
+           std::to_string(scaler.type));
+    }
+    if (digital && (type->sample == Sample::F32 || type->sample == Sample::F64)) {
+      fail(object_where + "a digital line scaler of data type " + type->name);
+    }
+    index.scalers.push_back(scaler);
+  }
+  const std::uint32_t widths = cursor.u32("the number of raw data widths");
+  if (widths > cursor.remaining() / 4) {
+    fail(object_where + "it declares " + std::to_string(widths) +
+         " raw data widths, which the metadata cannot hold");
+  }
+  for (std::uint32_t w = 0; w < widths; ++w) {
+    const std::uint32_t width = cursor.u32("a raw data width");
+    if (width == 0) fail(object_where + "raw buffer " + std::to_string(w) + " has width 0");
+    if (index.values > file_size / width) {
+      fail(object_where + "raw buffer " + std::to_string(w) + " of " +
+           std::to_string(index.values) + " values of " + std::to_string(width) +
+           " bytes would be larger than the file");
+    }
+    index.widths_bytes.push_back(width);
+  }
+  for (std::size_t s = 0; s < index.scalers.size(); ++s) {
+    const DaqmxScaler& scaler = index.scalers[s];
+    if (scaler.buffer >= index.widths_bytes.size()) {
+      fail(object_where + "DAQmx scaler " + std::to_string(s) + " reads raw buffer " +
+           std::to_string(scaler.buffer) + ", but there are " +
+           std::to_string(index.widths_bytes.size()));
+    }
+    const std::uint64_t end =
+        std::uint64_t{scaler.byte_offset} + daqmx_type_info(scaler.type)->size_bytes;
+    if (end > index.widths_bytes[scaler.buffer]) {
+      fail(object_where + "DAQmx scaler " + std::to_string(s) + " reads bytes up to " +
+           std::to_string(end) + " of a " + std::to_string(index.widths_bytes[scaler.buffer]) +
+           "-byte stride");
+    }
+  }
+}
+
+// A plain raw data index; `header` is its length in bytes, itself included.
+void TdmsParser::read_plain_index(MetadataCursor& cursor, std::uint32_t header,
+                                  const std::string& object_where, RawIndex& index) {
+  const std::uint64_t file_size = file_.size_bytes();
   const std::size_t start = cursor.position() - 4;
   if (header < 20) {
     fail(object_where + "raw data index length " + std::to_string(header) +
@@ -291,38 +303,37 @@ std::shared_ptr<const RawIndex> TdmsParser::read_index(MetadataCursor& cursor, s
     fail(object_where + "its raw data index of " + std::to_string(header) +
          " bytes points beyond the end of the metadata");
   }
-  index->data_type = cursor.u32("a data type");
-  const TypeInfo* type = type_info(index->data_type);
-  if (!type) fail(object_where + "unknown data type " + hex(index->data_type));
+  index.data_type = cursor.u32("a data type");
+  const TypeInfo* type = type_info(index.data_type);
+  if (!type) fail(object_where + "unknown data type " + hex(index.data_type));
   const std::uint32_t dimension = cursor.u32("the array dimension");
   if (dimension != 1) {
     fail(object_where + "array dimension " + std::to_string(dimension) + " (only 1 is defined)");
   }
-  index->values = cursor.u64("the number of values");
-  if (index->data_type == kTypeString) {
+  index.values = cursor.u64("the number of values");
+  if (index.data_type == kTypeString) {
     if (header < 28) {
       fail(object_where + "a raw data index of strings needs 28 bytes, not " +
            std::to_string(header));
     }
-    index->size_bytes = cursor.u64("the size of the strings");
+    index.size_bytes = cursor.u64("the size of the strings");
     // Each string has a 4-byte end offset before the text.
-    if (index->size_bytes > file_size || index->values > index->size_bytes / 4) {
-      fail(object_where + "strings of " + std::to_string(index->size_bytes) + " bytes for " +
-           std::to_string(index->values) + " values do not fit the file");
+    if (index.size_bytes > file_size || index.values > index.size_bytes / 4) {
+      fail(object_where + "strings of " + std::to_string(index.size_bytes) + " bytes for " +
+           std::to_string(index.values) + " values do not fit the file");
     }
   } else {
     if (type->size_bytes == 0) {
-      fail(object_where + "data type " + type_name(index->data_type) +
+      fail(object_where + "data type " + type_name(index.data_type) +
            " is not read (its size in the raw data is not documented)");
     }
-    if (index->values > file_size / type->size_bytes) {
-      fail(object_where + "it declares " + std::to_string(index->values) + " values of " +
+    if (index.values > file_size / type->size_bytes) {
+      fail(object_where + "it declares " + std::to_string(index.values) + " values of " +
            type->name + " per chunk, more than the file holds");
     }
-    index->size_bytes = index->values * type->size_bytes;
+    index.size_bytes = index.values * type->size_bytes;
   }
   cursor.skip(start + header - cursor.position(), "the raw data index");
-  return index;
 }
 
 void TdmsParser::update_layout(std::uint32_t toc) {

@@ -129,6 +129,12 @@ class TdmsParser {
   std::size_t find_or_add(const std::string& path, const std::string& object_where);
   std::shared_ptr<const RawIndex> read_index(MetadataCursor& cursor, std::uint32_t header,
                                              const std::string& object_where);
+  // The two kinds of raw data index read_index reads: a DAQmx one (`header` its kind: the
+  // scalers and raw buffer widths) and a plain one (`header` its length).
+  void read_daqmx_index(MetadataCursor& cursor, std::uint32_t header,
+                        const std::string& object_where, RawIndex& index);
+  void read_plain_index(MetadataCursor& cursor, std::uint32_t header,
+                        const std::string& object_where, RawIndex& index);
   // The layout of a chunk for the current object list (recomputed when the metadata or the
   // kind of segment changes).
   void update_layout(std::uint32_t toc);
