@@ -73,7 +73,7 @@ python_module() {  # builds the Python module and installs it into the system's 
 }
 
 run_main() {  # only what the main job needs: the app, the CLI, the optimiser and Python modules
-  cmake -S . -B build -G Ninja
+  cmake -S . -B build -G Ninja -DOSCILAB_UNITY_BUILD=ON
   cmake --build build -j "$JOBS" --target oscilab oscilab-cli oscilab_cmaes
   python_module
   if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
@@ -117,7 +117,9 @@ run_tests() {
   # (OSCILAB_HEADLESS_UNIT_TESTS=OFF) and keeps what only it can run: the GUI tests, the Python
   # module's, the `slow` end-to-end runs (a diagnosis, a fit, an adaptive test: release only) and
   # the benchmarks, once each (their medians for notes come from runs of their own).
-  build build -DOSCILAB_WERROR=ON -DOSCILAB_HEADLESS_UNIT_TESTS=OFF -DOSCILAB_BENCHMARK_REPETITIONS=1
+  # The core libraries compile as a unity build (batches of 8 units) in each of the three trees.
+  build build -DOSCILAB_WERROR=ON -DOSCILAB_HEADLESS_UNIT_TESTS=OFF -DOSCILAB_BENCHMARK_REPETITIONS=1 \
+    -DOSCILAB_UNITY_BUILD=ON
   phase "release tests"
   # `study`: suites that are studies more than checks (minutes each), run with `ctest -L study`.
   ctest --test-dir build --output-on-failure -j "$JOBS" -LE "benchmark|study"
@@ -133,7 +135,7 @@ run_tests() {
   # labelled `slow` (multi-seed campaigns, whole diagnoses) ran in the release build and are not
   # built or repeated at -O1.
   build build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-    -DOSCILAB_SANITIZE=ON -DOSCILAB_WERROR=ON -DOSCILAB_BUILD_GUI=OFF
+    -DOSCILAB_SANITIZE=ON -DOSCILAB_WERROR=ON -DOSCILAB_BUILD_GUI=OFF -DOSCILAB_UNITY_BUILD=ON
   phase "ASan + UBSan tests"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp \
@@ -144,7 +146,7 @@ run_tests() {
   # GCC 12's ThreadSanitizer refuses the memory layout of kernels with high mmap randomisation.
   phase "TSan build"
   cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-    -DOSCILAB_SANITIZE_THREAD=ON -DOSCILAB_WERROR=ON -DOSCILAB_BUILD_GUI=OFF
+    -DOSCILAB_SANITIZE_THREAD=ON -DOSCILAB_WERROR=ON -DOSCILAB_BUILD_GUI=OFF -DOSCILAB_UNITY_BUILD=ON
   cmake --build build-tsan -j "$JOBS" --target daq_live_tests
   phase "TSan tests"
   TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \

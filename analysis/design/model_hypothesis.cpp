@@ -86,11 +86,12 @@ JointRefit best_refit(const EdcObjective& objective, const std::vector<Eigen::Ve
   return best;
 }
 
-// Starting values of a candidate's own parameters besides its scan points: each parameter on a
+// Starting values of a candidate's own parameters besides its scan points (unlike the diagnosis's
+// candidate_grid, one or two parameters of non-negative bounds only): each parameter on a
 // log-spaced grid from 1e-3 of its upper bound (or its lower bound, when larger) to the upper
 // bound, 10 values for one parameter and 5 × 5 for two (the diagnosis's grid); more parameters
 // keep the scan points only.
-std::vector<Eigen::VectorXd> candidate_grid(const EffectCandidate& c) {
+std::vector<Eigen::VectorXd> start_grid(const EffectCandidate& c) {
   const int p = static_cast<int>(c.free.size());
   if (p < 1 || p > 2) return {};
   const int per = p == 1 ? 10 : 5;
@@ -170,7 +171,7 @@ std::vector<ModelHypothesis> initial(const ModelForm& form, const Eigen::VectorX
       // too strong needs more than one start, as in the diagnosis).
       const EffectCandidate& c = candidates[slot - 1];
       std::vector<std::pair<double, Eigen::VectorXd>> scored;
-      std::vector<Eigen::VectorXd> points = candidate_grid(c);
+      std::vector<Eigen::VectorXd> points = start_grid(c);
       points.insert(points.end(), c.scan.begin(), c.scan.end());
       for (const Eigen::VectorXd& s : points) {
         if (cancel.cancelled()) return;

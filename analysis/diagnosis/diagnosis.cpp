@@ -43,13 +43,6 @@ double fingerprint_score(const EffectCandidate& c, const DiscrepancyMaps& maps) 
   return std::abs(slope.slope - c.expected_slope) / std::max(slope.standard_error, 0.25);
 }
 
-std::vector<std::pair<std::string, double>> named(const ModelForm& form,
-                                                  const Eigen::VectorXd& theta) {
-  std::vector<std::pair<std::string, double>> out;
-  for (int i = 0; i < form.size(); ++i) out.emplace_back(form.parameters()[i].name, theta(i));
-  return out;
-}
-
 // A cancellation token that fires when the caller cancels or the deadline passes, whichever
 // comes first (a watcher thread polls both every 20 ms and stops when the work is done).
 class DeadlineToken {
@@ -412,7 +405,7 @@ void DiagnosisRun::accept(DiagnosisStep& record, std::size_t slot, const ModelFo
   record.delta_bic =
       (evaluation_.weighted_cost - record.weighted_before) / record.dispersion +
       static_cast<double>(current_.size() - form_size_before) * std::log(static_cast<double>(n_));
-  record.parameters_after = named(current_, theta_);
+  record.parameters_after = current_.named(theta_);
   accepted_effects_.push_back(accepted.effect);
   result_.steps.push_back(std::move(record));
 }

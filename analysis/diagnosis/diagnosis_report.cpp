@@ -11,13 +11,6 @@
 namespace oscilab::analysis {
 namespace {
 
-std::vector<std::pair<std::string, double>> named(const ModelForm& form,
-                                                  const Eigen::VectorXd& theta) {
-  std::vector<std::pair<std::string, double>> out;
-  for (int i = 0; i < form.size(); ++i) out.emplace_back(form.parameters()[i].name, theta(i));
-  return out;
-}
-
 // A number, or null where it is not finite (JSON has no NaN).
 nlohmann::json finite_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
@@ -305,7 +298,7 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
                     {"weighted_cost", result.final_evaluation.weighted_cost},
                     {"reduced_chi2", result.final_maps.reduced_chi2},
                     {"mean_deviation_pct", deviations_json(result.final_evaluation)},
-                    {"parameters", parameters_json(named(*result.final_form, result.final_theta))},
+                    {"parameters", parameters_json(result.final_form->named(result.final_theta))},
                     {"maps", maps_json(result.final_maps)}};
   }
   out["excluded_levels"] = result.excluded_levels;

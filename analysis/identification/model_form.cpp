@@ -232,6 +232,12 @@ std::vector<std::string> ModelForm::names() const {
   return out;
 }
 
+std::vector<std::pair<std::string, double>> ModelForm::named(const Eigen::VectorXd& theta) const {
+  std::vector<std::pair<std::string, double>> out;
+  for (int i = 0; i < size(); ++i) out.emplace_back(parameters_[i].name, theta(i));
+  return out;
+}
+
 Model ModelForm::build(const Eigen::VectorXd& theta) const {
   if (theta.size() != size()) {
     throw InputError("model form: θ has " + std::to_string(theta.size()) + " values, expected " +

@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -74,6 +75,8 @@ class ModelForm {
   int size() const { return static_cast<int>(parameters_.size()); }
   const std::vector<FreeParameter>& parameters() const { return parameters_; }
   std::vector<std::string> names() const;
+  /// θ with each value's parameter name, in θ's order.
+  std::vector<std::pair<std::string, double>> named(const Eigen::VectorXd& theta) const;
   const Model& base() const { return base_; }
   /// "paper" or "terms"; a diagnosis appends the effects it adds.
   const std::string& description() const { return description_; }

@@ -8,13 +8,10 @@
 
 #include <matio.h>
 
+#include "daq/recording/formats/matio_handles.h"
+
 namespace oscilab::daq {
 namespace {
-
-struct MatVarFree {
-  void operator()(matvar_t* variable) const { Mat_VarFree(variable); }
-};
-using MatVar = std::unique_ptr<matvar_t, MatVarFree>;
 
 // UTF-8 to UTF-16 code units, which is how MATLAB stores char arrays (miUINT16). A byte that does
 // not start a valid sequence becomes U+FFFD, so any std::string can be written.
@@ -117,16 +114,12 @@ MatVar make_variable(const OscilabMatVariableV1& v) {
   }
 }
 
-struct MatClose {
-  void operator()(mat_t* mat) const { Mat_Close(mat); }
-};
-
 }  // namespace
 
 OscilabMatWriteResultV1 write_mat_file(const char* path, const OscilabMatVariableV1* variables,
                                        std::size_t count) {
   errno = 0;
-  std::unique_ptr<mat_t, MatClose> mat(Mat_CreateVer(path, nullptr, MAT_FT_MAT5));
+  MatFile mat(Mat_CreateVer(path, nullptr, MAT_FT_MAT5));
   if (!mat) return {kOscilabMatCannotCreate, 0, errno};
   for (std::size_t i = 0; i < count; ++i) {
     const MatVar variable = make_variable(variables[i]);

@@ -14,7 +14,6 @@ namespace oscilab::daq {
 namespace {
 
 constexpr std::size_t kMaxChannels = 16;
-constexpr double kNoTime = std::numeric_limits<double>::quiet_NaN();
 constexpr auto kIdleWait = std::chrono::milliseconds(2);  // ring empty: look again after this
 // Frames lost within a segment are bridged with zeros up to this long (the resampler stays on
 // its clock); a longer jump of the frame clock starts a new segment.

@@ -14,7 +14,6 @@ namespace {
 
 constexpr int kPollMs = 50;  // how often a waiting thread looks at its stop flag
 constexpr std::chrono::milliseconds kBackpressure{2000};
-constexpr double kNoTime = std::numeric_limits<double>::quiet_NaN();
 // The longest gap a DATA frame may open in its stream, s. The reference sender resumes after a
 // break within --retry (10 s by default); a sender away longer starts a new stream (another
 // stream_id), placed after the last sample. A larger jump is refused: its samples would move the

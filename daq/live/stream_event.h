@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -70,6 +71,9 @@ EventKind event_kind_from_string(std::string_view name);
 /// Something that happened in a live stream, for the status display and the event log (one JSON
 /// object per line in `<stem>.events.jsonl`). `t_s` is stream time (sample clock), NaN where it
 /// has none; `wall` ISO-8601 UTC.
+/// The t_s of an event that has no stream time (a connection, a server's state).
+inline constexpr double kNoTime = std::numeric_limits<double>::quiet_NaN();
+
 struct StreamEvent {
   StreamEvent() = default;
   StreamEvent(double t_s_, EventKind kind_, std::string text_ = {},

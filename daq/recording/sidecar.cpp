@@ -55,7 +55,7 @@ std::string format_number(double value) {
   return buffer;
 }
 
-std::string in_quotes(const std::string& text) { return json_excerpt(json(text)); }
+std::string quoted_excerpt(const std::string& text) { return json_excerpt(json(text)); }
 
 // A positive number within [lo, hi] of `unit`: values outside are unit mistakes or corrupt files,
 // which would otherwise run the analysis into overflow or unbounded work.
@@ -75,7 +75,7 @@ ChannelRole parse_role(const json& value, const JsonField& field) {
   if (text == "mass") return ChannelRole::Mass;
   if (text == "relative") return ChannelRole::Relative;
   if (text == "force") return ChannelRole::Force;
-  field.fail("unknown role " + in_quotes(text) + " (expected base, mass, relative or force)");
+  field.fail("unknown role " + quoted_excerpt(text) + " (expected base, mass, relative or force)");
 }
 
 Quantity parse_quantity(const json& value, const JsonField& field) {
@@ -84,7 +84,7 @@ Quantity parse_quantity(const json& value, const JsonField& field) {
   if (text == "velocity") return Quantity::Velocity;
   if (text == "displacement") return Quantity::Displacement;
   if (text == "force") return Quantity::Force;
-  field.fail("unknown quantity " + in_quotes(text) +
+  field.fail("unknown quantity " + quoted_excerpt(text) +
              " (expected acceleration, velocity, displacement or force)");
 }
 
@@ -105,7 +105,7 @@ ChannelInfo parse_channel(const json& value, const JsonField& field) {
   if (has_control_character(channel.name) || is_blank(channel.name.front()) ||
       is_blank(channel.name.back())) {
     (field / "name")
-        .fail("invalid name " + in_quotes(channel.name) +
+        .fail("invalid name " + quoted_excerpt(channel.name) +
               " (no control characters, no leading or trailing spaces)");
   }
   if (channel.name == "t_s") {
@@ -115,8 +115,8 @@ ChannelInfo parse_channel(const json& value, const JsonField& field) {
   channel.quantity = parse_quantity(field.require(object, "quantity"), field / "quantity");
   if ((channel.role == ChannelRole::Force) != (channel.quantity == Quantity::Force)) {
     (field / "quantity")
-        .fail("quantity " + in_quotes(to_string(channel.quantity)) + " does not fit role " +
-              in_quotes(to_string(channel.role)) +
+        .fail("quantity " + quoted_excerpt(to_string(channel.quantity)) + " does not fit role " +
+              quoted_excerpt(to_string(channel.role)) +
               " (a force channel measures a force, and only force channels do)");
   }
   channel.unit = (field / "unit").string(field.require(object, "unit"));
@@ -483,10 +483,10 @@ double unit_to_si(const std::string& unit, Quantity quantity, const std::string&
   }
   const std::string prefix = where.empty() ? "" : where + ": ";
   if (known == nullptr) {
-    throw InputError(prefix + "unknown unit " + in_quotes(unit) + " (known for " +
+    throw InputError(prefix + "unknown unit " + quoted_excerpt(unit) + " (known for " +
                      to_string(quantity) + ": " + units_for(quantity) + ")");
   }
-  throw InputError(prefix + "unit " + in_quotes(unit) + " is a " + to_string(known->quantity) +
+  throw InputError(prefix + "unit " + quoted_excerpt(unit) + " is a " + to_string(known->quantity) +
                    " unit, not one of " + to_string(quantity) + " (" + units_for(quantity) + ")");
 }
 
@@ -521,7 +521,7 @@ Sidecar parse_sidecar(const json& json_value, const std::string& file_name) {
     const auto [it, inserted] = names.emplace(channel.name, i);
     if (!inserted) {
       (here / "name")
-          .fail("duplicate name " + in_quotes(channel.name) + " (also channels[" +
+          .fail("duplicate name " + quoted_excerpt(channel.name) + " (also channels[" +
                 std::to_string(it->second) + "])");
     }
     if (channel.ac_coupling_hz && *channel.ac_coupling_hz >= 0.5 * sidecar.sample_rate_hz) {

@@ -9,6 +9,7 @@
 
 #include "analysis/common/input_error.h"
 #include "daq/hdf5_module/hdf5_module_loader.h"
+#include "daq/recording/file_bytes.h"
 #include "daq/recording/formats/contents_text.h"
 #include "daq/recording/formats/formats.h"
 #include "daq/recording/formats/hdf5_format.h"
@@ -18,20 +19,15 @@
 namespace oscilab::daq {
 namespace {
 
-constexpr const char* kLibrary = "libhdf5";
+constexpr const char* kHdf5Library = "libhdf5";
 constexpr std::string_view kSignature = "\x89HDF\r\n\x1a\n";
-
-std::size_t file_bytes(const std::string& path) {
-  std::error_code error;
-  const auto size = std::filesystem::file_size(path, error);
-  return error ? 0 : static_cast<std::size_t>(size);
-}
 
 // A libhdf5 call of the module in a child process, with the module loaded in this one first.
 std::string run_hdf5(const std::string& path, std::size_t reply,
                      const std::function<ChildReply(const OscilabHdf5ModuleV1&)>& work) {
   const OscilabHdf5ModuleV1& module = hdf5_module("reading " + path);
-  return run_in_child(path, kLibrary, child_limits_for(path, reply), [&] { return work(module); });
+  return run_in_child(path, kHdf5Library, child_limits_for(path, reply),
+                      [&] { return work(module); });
 }
 
 class Hdf5Format final : public SignalFileReader {

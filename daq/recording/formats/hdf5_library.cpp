@@ -3,6 +3,7 @@
 // the unit come from attributes. See "HDF5 File Format Specification Version 3.0" (The HDF
 // Group).
 #include "daq/recording/formats/hdf5_library.h"
+#include "daq/recording/file_bytes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,12 +51,6 @@ class Handle {
   hid_t id_;
   Closer closer_;
 };
-
-std::size_t file_bytes(const std::string& path) {
-  std::error_code error;
-  const auto size = std::filesystem::file_size(path, error);
-  return error ? 0 : static_cast<std::size_t>(size);
-}
 
 // The value of a numeric attribute holding one value, a string attribute, or null otherwise.
 nlohmann::json attribute_value(hid_t attribute) {

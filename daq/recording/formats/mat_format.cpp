@@ -8,6 +8,7 @@
 
 #include "analysis/common/input_error.h"
 #include "daq/hdf5_module/hdf5_module_loader.h"
+#include "daq/recording/file_bytes.h"
 #include "daq/recording/formats/contents_text.h"
 #include "daq/recording/formats/formats.h"
 #include "daq/recording/formats/hdf5_format.h"
@@ -17,13 +18,7 @@
 namespace oscilab::daq {
 namespace {
 
-constexpr const char* kLibrary = "matio";
-
-std::size_t file_bytes(const std::string& path) {
-  std::error_code error;
-  const auto size = std::filesystem::file_size(path, error);
-  return error ? 0 : static_cast<std::size_t>(size);
-}
+constexpr const char* kMatioLibrary = "matio";
 
 // Whether the file starts with MATLAB's v7.3 header (its HDF5 part is then read by libhdf5).
 bool is_mat73(const std::string& path) {
@@ -47,7 +42,7 @@ class MatFormat final : public SignalFileReader {
     // A variable's description takes well under 64 bytes of the file per 1 KiB of text.
     const std::size_t reply = (std::size_t{1} << 20) + 64 * file_bytes(path);
     const OscilabHdf5ModuleV1& module = hdf5_module("reading " + path);
-    const std::string text = run_in_child(path, kLibrary, child_limits_for(path, reply), [&] {
+    const std::string text = run_in_child(path, kMatioLibrary, child_limits_for(path, reply), [&] {
       return child_reply(module.describe_mat(path.c_str()));
     });
     return contents_from_text(text, path);
@@ -58,7 +53,7 @@ class MatFormat final : public SignalFileReader {
     if (is_mat73(path)) return read_mat73_signal(path, signal, column);
     const std::size_t reply = static_cast<std::size_t>(signal.sample_count) * sizeof(double);
     const OscilabHdf5ModuleV1& module = hdf5_module("reading " + path);
-    const std::string bytes = run_in_child(path, kLibrary, child_limits_for(path, reply), [&] {
+    const std::string bytes = run_in_child(path, kMatioLibrary, child_limits_for(path, reply), [&] {
       return child_reply(module.read_mat(path.c_str(), signal.name.c_str(), signal.sample_count,
                                          signal.columns, column));
     });

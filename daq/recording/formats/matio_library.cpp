@@ -2,6 +2,7 @@
 // child process. Real numeric matrices of Level 4 and Level 5 files are signals; see "MAT-File
 // Format" (The MathWorks, 2021) for the Level 5 layout. (v7.3 files are read by hdf5_library.)
 #include "daq/recording/formats/matio_library.h"
+#include "daq/recording/file_bytes.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <matio.h>
 
 #include "daq/recording/formats/contents_text.h"
+#include "daq/recording/formats/matio_handles.h"
 #include "daq/recording/message_text.h"
 
 namespace oscilab::daq {
@@ -45,15 +47,6 @@ std::string with_matio_message(std::string problem) {
   if (!matio_message().empty()) problem += " (matio: " + matio_message() + ")";
   return problem;
 }
-
-struct MatClose {
-  void operator()(mat_t* mat) const { Mat_Close(mat); }
-};
-using MatFile = std::unique_ptr<mat_t, MatClose>;
-struct MatVarFree {
-  void operator()(matvar_t* variable) const { Mat_VarFree(variable); }
-};
-using MatVar = std::unique_ptr<matvar_t, MatVarFree>;
 
 // The numeric classes: their name as a stored type and their size in bytes; 0 for the others.
 std::size_t class_bytes(matio_classes class_type) {
@@ -116,12 +109,6 @@ std::string class_name(matio_classes class_type) {
     default:
       return "of no class (empty)";
   }
-}
-
-std::size_t file_bytes(const std::string& path) {
-  std::error_code error;
-  const auto size = std::filesystem::file_size(path, error);
-  return error ? 0 : static_cast<std::size_t>(size);
 }
 
 // Samples run along the longer dimension of a matrix (rows when it is square): the dimension
