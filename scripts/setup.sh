@@ -132,8 +132,8 @@ run_tests() {
   # The Qt GUI tests run in the release build above: a second, sanitized Qt build does not fit
   # the CI budget (20 minutes on 2 cores).
   # Benchmarks are neither built nor registered there: their timings would mean nothing. Suites
-  # labelled `slow` (multi-seed campaigns, whole diagnoses) ran in the release build and are not
-  # built or repeated at -O1.
+  # labelled `slow` (whole diagnoses, fits, an adaptive test) ran in the release build and are
+  # not built or repeated at -O1; `study` suites are not built either.
   build build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
     -DOSCILAB_SANITIZE=ON -DOSCILAB_WERROR=ON -DOSCILAB_BUILD_GUI=OFF -DOSCILAB_UNITY_BUILD=ON
   phase "ASan + UBSan tests"
