@@ -4,17 +4,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "analysis/common/json_number.h"
 #include "analysis/edc/well.h"
 #include "analysis/identification/sigma_budget_report.h"
 
 // The diagnosis report (docs/contracts.md §3) and the words for each candidate's outcome.
 namespace oscilab::analysis {
 namespace {
-
-// A number, or null where it is not finite (JSON has no NaN).
-nlohmann::json finite_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
 
 nlohmann::json slope_json(const LogSlope& s) {
   if (!s.valid()) return {{"points", s.points}};

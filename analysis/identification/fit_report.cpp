@@ -3,19 +3,13 @@
 #include <cmath>
 
 #include "analysis/common/input_error.h"
+#include "analysis/common/json_number.h"
 #include "analysis/edc/well.h"
 #include "analysis/identification/sigma_budget_report.h"
 #include "analysis/model/position_dependent_friction.h"
 
 namespace oscilab::analysis {
-namespace {
-
-// JSON has no NaN or infinity: such values are written as null.
-nlohmann::json number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 nlohmann::json fit_report_json(const FitResult& fit, const EdcObjective& objective,
                                const std::vector<std::string>& records) {
@@ -33,8 +27,9 @@ nlohmann::json fit_report_json(const FitResult& fit, const EdcObjective& objecti
   for (int i = 0; i < form.size(); ++i) parameters[form.parameters()[i].name] = fit.theta(i);
   out["parameters"] = parameters;
   out["cost_j"] = fit.evaluation.cost_j;
-  out["mean_deviation_pct"] = {{"positive", number(fit.evaluation.mean_deviation_pct_positive)},
-                               {"negative", number(fit.evaluation.mean_deviation_pct_negative)}};
+  out["mean_deviation_pct"] = {
+      {"positive", finite_or_null(fit.evaluation.mean_deviation_pct_positive)},
+      {"negative", finite_or_null(fit.evaluation.mean_deviation_pct_negative)}};
   out["evaluations"] = fit.evaluations;
   out["seconds"] = fit.seconds;
   out["fit_cost"] = {{"name", objective.weighted_cost_name()},
@@ -46,8 +41,9 @@ nlohmann::json fit_report_json(const FitResult& fit, const EdcObjective& objecti
                                         : nlohmann::json("sigma budget")}};
   out["sigma_budget"] = sigma_budget_json(objective);
   if (fit.check_harmonics > 0) {
-    out["hbm"]["truncation_check"] = {{"harmonics", fit.check_harmonics},
-                                      {"max_edc_change_rel", number(fit.truncation_change_rel)}};
+    out["hbm"]["truncation_check"] = {
+        {"harmonics", fit.check_harmonics},
+        {"max_edc_change_rel", finite_or_null(fit.truncation_change_rel)}};
   }
 
   const Model model = form.build(fit.theta);
@@ -65,21 +61,23 @@ nlohmann::json fit_report_json(const FitResult& fit, const EdcObjective& objecti
                    boot_std = nlohmann::json::object(), boot_ci = nlohmann::json::object();
     nlohmann::json weak = nlohmann::json::array();
     for (const ParameterUncertainty& p : u.parameters) {
-      se[p.name] = number(p.standard_error);
-      ci[p.name] = {number(p.lower_95), number(p.upper_95)};
-      boot_std[p.name] = number(p.bootstrap_std);
-      boot_ci[p.name] = {number(p.bootstrap_lower_95), number(p.bootstrap_upper_95)};
+      se[p.name] = finite_or_null(p.standard_error);
+      ci[p.name] = {finite_or_null(p.lower_95), finite_or_null(p.upper_95)};
+      boot_std[p.name] = finite_or_null(p.bootstrap_std);
+      boot_ci[p.name] = {finite_or_null(p.bootstrap_lower_95),
+                         finite_or_null(p.bootstrap_upper_95)};
       if (p.weakly_identified) weak.push_back({{"parameter", p.name}, {"reason", p.note}});
     }
     out["standard_errors"] = se;
     out["intervals_95"] = ci;
     out["weakly_identified"] = weak;
-    out["reduced_chi2"] = number(u.reduced_chi2);
+    out["reduced_chi2"] = finite_or_null(u.reduced_chi2);
     out["degrees_of_freedom"] = u.dof;
     nlohmann::json matrix = nlohmann::json::array();
     for (int i = 0; i < u.correlation.rows(); ++i) {
       nlohmann::json row = nlohmann::json::array();
-      for (int j = 0; j < u.correlation.cols(); ++j) row.push_back(number(u.correlation(i, j)));
+      for (int j = 0; j < u.correlation.cols(); ++j)
+        row.push_back(finite_or_null(u.correlation(i, j)));
       matrix.push_back(row);
     }
     out["correlation"] = {{"parameters", form.names()}, {"matrix", matrix}};

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <ctime>
 
+#include "analysis/common/json_number.h"
+
 namespace oscilab::daq {
 
 namespace {
@@ -64,7 +66,7 @@ std::string StreamEvent::kind_name() const {
 
 nlohmann::json StreamEvent::to_json() const {
   nlohmann::json out;
-  out["t_s"] = std::isfinite(t_s) ? nlohmann::json(t_s) : nlohmann::json(nullptr);
+  out["t_s"] = finite_or_null(t_s);
   out["kind"] = kind_name();
   if (!text.empty()) out["text"] = text;
   if (!data.empty()) out["data"] = data;
