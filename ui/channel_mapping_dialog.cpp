@@ -1,4 +1,5 @@
 #include "ui/channel_mapping_dialog.h"
+#include "ui/qt_text.h"
 
 #include <utility>
 
@@ -16,8 +17,6 @@
 
 namespace oscilab::ui {
 namespace {
-
-QString text(const std::string& utf8) { return QString::fromStdString(utf8); }
 
 const char* const kQuantities[] = {"acceleration", "velocity", "displacement"};
 
@@ -55,10 +54,10 @@ ChannelMappingDialog::ChannelMappingDialog(const QString& path, const daq::FileC
     ChannelRow& row = rows_[i];
     row.signal = new QComboBox;
     for (const daq::FileSignal& signal : contents_.file_signals) {
-      QString label = text(signal.name) + tr(" (%1 samples").arg(signal.sample_count);
+      QString label = qtext(signal.name) + tr(" (%1 samples").arg(signal.sample_count);
       if (signal.columns > 1) label += tr(" \u00d7 %1").arg(signal.columns);
-      if (!signal.unit.empty()) label += ", " + text(signal.unit);
-      row.signal->addItem(label + ")", text(signal.name));
+      if (!signal.unit.empty()) label += ", " + qtext(signal.unit);
+      row.signal->addItem(label + ")", qtext(signal.name));
     }
     row.column = new QSpinBox;
     row.column->setRange(-1, 0);
@@ -146,15 +145,15 @@ void ChannelMappingDialog::fill_from_draft(const daq::SidecarDraft& draft) {
   for (std::size_t i = 0; i < 2 && i < channels.size(); ++i) {
     const auto& channel = channels[i];
     ChannelRow& row = rows_[i];
-    const QString source = text(channel.value("source", channel.value("name", std::string())));
+    const QString source = qtext(channel.value("source", channel.value("name", std::string())));
     row.signal->setCurrentIndex(std::max(0, row.signal->findData(source)));
     update_column_range(row);
     if (channel.contains("column")) row.column->setValue(channel["column"].get<int>());
-    row.quantity->setCurrentText(text(channel["quantity"].get<std::string>()));
-    row.unit->setCurrentText(text(channel["unit"].get<std::string>()));
+    row.quantity->setCurrentText(qtext(channel["quantity"].get<std::string>()));
+    row.unit->setCurrentText(qtext(channel["unit"].get<std::string>()));
   }
   QStringList notes;
-  for (const std::string& note : draft.notes) notes << text(note);
+  for (const std::string& note : draft.notes) notes << qtext(note);
   notes_label_->setText(tr("Guessed from the file:\n%1").arg(notes.join('\n')));
 }
 

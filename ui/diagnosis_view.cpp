@@ -17,9 +17,6 @@
 namespace oscilab::ui {
 namespace {
 
-QTableWidgetItem* cell(const QString& text) { return read_only_cell(text); }
-QString number(double value, int digits = 4) { return number_text(value, digits); }
-
 // Each column's header says its name on hover (a narrow panel cuts it).
 void add_header_tooltips(QTableWidget* table) {
   for (int c = 0; c < table->columnCount(); ++c) {
@@ -178,27 +175,32 @@ void DiagnosisView::show_steps(const analysis::DiagnosisResult& r, double bic_th
   for (int i = 0; i < static_cast<int>(r.steps.size()); ++i) {
     const auto& s = r.steps[static_cast<std::size_t>(i)];
     for (const auto& t : s.trials) {
-      step_table_->setItem(row, 0, cell(QString::number(i + 1)));
+      step_table_->setItem(row, 0, read_only_cell(QString::number(i + 1)));
+      step_table_->setItem(row, 1,
+                           read_only_cell(QString::fromStdString(
+                               analysis::candidate_label(t.effect, t.embodiment))));
       step_table_->setItem(
-          row, 1, cell(QString::fromStdString(analysis::candidate_label(t.effect, t.embodiment))));
+          row, 2,
+          read_only_cell(QString::fromStdString(analysis::candidate_outcome(s, t, bic_threshold))));
       step_table_->setItem(
-          row, 2, cell(QString::fromStdString(analysis::candidate_outcome(s, t, bic_threshold))));
-      step_table_->setItem(row, 3,
-                           cell(t.solved ? number(t.delta_bic_joint) : QStringLiteral("—")));
-      step_table_->setItem(row, 4, cell(t.solved ? number(t.delta_bic) : QStringLiteral("—")));
+          row, 3, read_only_cell(t.solved ? number_text(t.delta_bic_joint) : QStringLiteral("—")));
+      step_table_->setItem(
+          row, 4, read_only_cell(t.solved ? number_text(t.delta_bic) : QStringLiteral("—")));
       QString supported;
-      for (int column = 5; column < 9; ++column) step_table_->setItem(row, column, cell("—"));
+      for (int column = 5; column < 9; ++column)
+        step_table_->setItem(row, column, read_only_cell("—"));
       for (const auto& e : t.evidence) {
         const int column = e.name == "edc"          ? 5
                            : e.name == "amplitude"  ? 6
                            : e.name == "harmonic-2" ? 7
                                                     : 8;
-        step_table_->setItem(row, column, cell(number(e.delta_chi2())));
+        step_table_->setItem(row, column, read_only_cell(number_text(e.delta_chi2())));
         if (e.supports()) {
           supported += (supported.isEmpty() ? "" : ", ") + QString::fromStdString(e.name);
         }
       }
-      step_table_->setItem(row, 9, cell(supported.isEmpty() ? QStringLiteral("—") : supported));
+      step_table_->setItem(row, 9,
+                           read_only_cell(supported.isEmpty() ? QStringLiteral("—") : supported));
       ++row;
     }
   }
@@ -248,13 +250,13 @@ void DiagnosisView::show_budget(const analysis::DiagnosisResult& r) {
   budget_table_->setRowCount(static_cast<int>(levels.size()));
   int row = 0;
   for (const auto& level : levels) {
-    budget_table_->setItem(row, 0, cell(QString::fromStdString(level.value("well", ""))));
-    budget_table_->setItem(row, 1, cell(number(level.value("f0_n", 0.0))));
+    budget_table_->setItem(row, 0, read_only_cell(QString::fromStdString(level.value("well", ""))));
+    budget_table_->setItem(row, 1, read_only_cell(number_text(level.value("f0_n", 0.0))));
     const char* keys[] = {"edc_mes_j",     "sigma_cycles_j", "sigma_bias_j",
                           "sigma_model_j", "sigma_j",        "correction_j"};
     for (int column = 2; column < 8; ++column) {
-      budget_table_->setItem(row, column,
-                             cell(number(1e3 * level.value(keys[column - 2], 0.0), 3)));
+      budget_table_->setItem(
+          row, column, read_only_cell(number_text(1e3 * level.value(keys[column - 2], 0.0), 3)));
     }
     ++row;
   }

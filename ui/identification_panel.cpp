@@ -42,9 +42,6 @@ namespace oscilab::ui {
 
 namespace {
 
-QTableWidgetItem* cell(const QString& text) { return read_only_cell(text); }
-QString number(double value, int digits = 4) { return number_text(value, digits); }
-
 // A parameter of θ as Table 3 names it, with its unit (other forms' names as they are).
 QString table3_label(const std::string& name) {
   if (name == "fd_zminus_n") return QStringLiteral("f_d(z\u208b*) [N]");
@@ -278,17 +275,19 @@ void IdentificationPanel::show_fit(const FitOutcome& outcome) {
   const analysis::FitResult& fit = outcome.fit;
   parameter_table_->setRowCount(static_cast<int>(fit.names.size()));
   for (int i = 0; i < static_cast<int>(fit.names.size()); ++i) {
-    QTableWidgetItem* name = cell(table3_label(fit.names[i]));
+    QTableWidgetItem* name = read_only_cell(table3_label(fit.names[i]));
     name->setToolTip(QString::fromStdString(fit.names[i]));  // its key in the FIT JSON
     name->setData(Qt::UserRole, QString::fromStdString(fit.names[i]));
     parameter_table_->setItem(i, 0, name);
-    parameter_table_->setItem(i, 1, cell(number(fit.theta(i), 5)));
+    parameter_table_->setItem(i, 1, read_only_cell(number_text(fit.theta(i), 5)));
     if (i < static_cast<int>(fit.uncertainty.parameters.size())) {
       const auto& u = fit.uncertainty.parameters[i];
-      parameter_table_->setItem(i, 2, cell(number(u.standard_error, 3)));
+      parameter_table_->setItem(i, 2, read_only_cell(number_text(u.standard_error, 3)));
       parameter_table_->setItem(
-          i, 3, cell(QStringLiteral("[%1, %2]").arg(number(u.lower_95), number(u.upper_95))));
-      parameter_table_->setItem(i, 4, cell(QString::fromStdString(u.note)));
+          i, 3,
+          read_only_cell(
+              QStringLiteral("[%1, %2]").arg(number_text(u.lower_95), number_text(u.upper_95))));
+      parameter_table_->setItem(i, 4, read_only_cell(QString::fromStdString(u.note)));
     }
   }
   parameter_table_->resizeColumnsToContents();

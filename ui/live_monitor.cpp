@@ -28,6 +28,7 @@
 #include "ui/live_source_request.h"
 #include "ui/live_status_strip.h"
 #include "ui/live_trace_view.h"
+#include "ui/qt_text.h"
 
 namespace oscilab::ui {
 namespace {
@@ -39,8 +40,6 @@ enum SlowPart { kStatusPart, kEdcPart, kSlicesPart, kCyclePart, kSlowParts };
 // Period of each: the status strip and the event log, the EDC plot, the slices, the loop and
 // the spectrum.
 constexpr qint64 kPartPeriodMs[kSlowParts] = {100, 250, 250, 250};
-
-QString qs(const std::string& s) { return QString::fromStdString(s); }
 
 }  // namespace
 
@@ -244,7 +243,7 @@ bool LiveMonitor::start() {
   std::fill(std::begin(last_part_ms_), std::end(last_part_ms_), -1000);
 
   show_message(net_ ? tr("Listening on 127.0.0.1:%1 for a sender.").arg(net_->port())
-                    : tr("Started: %1.").arg(qs(acquisition_->source().describe())),
+                    : tr("Started: %1.").arg(qtext(acquisition_->source().describe())),
                false);
   update_source_controls();
   start_prediction(frequency_hz());
@@ -412,7 +411,7 @@ void LiveMonitor::tick() {
     update_source_controls();
     show_message(tr("The source ended at %1 s of stream (%2).")
                      .arg(acquisition_->status().stream_time_s, 0, 'f', 1)
-                     .arg(qs(acquisition_->source().describe())),
+                     .arg(qtext(acquisition_->source().describe())),
                  false);
   }
 }

@@ -1,4 +1,5 @@
 #include "ui/live_source_controls.h"
+#include "ui/qt_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,11 +23,7 @@
 #include <QVBoxLayout>
 
 namespace oscilab::ui {
-namespace {
-
-QString qs(const std::string& s) { return QString::fromStdString(s); }
-
-}  // namespace
+namespace {}  // namespace
 
 LiveSourceControls::LiveSourceControls(QWidget* parent) : QWidget(parent) {
   setObjectName("live_source_controls");
@@ -338,11 +335,11 @@ void LiveSourceControls::set_settings(const LiveSettings& s) {
                                : s.source == LiveSourceKind::Network ? 2
                                : s.source == LiveSourceKind::Jack    ? 3
                                                                      : 0);
-  jack_server_edit_->setText(qs(s.jack_server));
-  jack_port_boxes_[0]->setCurrentText(qs(s.jack_base_port));
-  jack_port_boxes_[1]->setCurrentText(qs(s.jack_mass_port));
-  jack_calibration_edit_->setText(qs(s.jack_calibration));
-  replay_path_edit_->setText(qs(s.replay_path));
+  jack_server_edit_->setText(qtext(s.jack_server));
+  jack_port_boxes_[0]->setCurrentText(qtext(s.jack_base_port));
+  jack_port_boxes_[1]->setCurrentText(qtext(s.jack_mass_port));
+  jack_calibration_edit_->setText(qtext(s.jack_calibration));
+  replay_path_edit_->setText(qtext(s.replay_path));
   loop_box_->setChecked(s.replay_loop);
   port_box_->setValue(s.port);
   f0_box_->setValue(s.rig_f0_n);
@@ -432,7 +429,7 @@ void LiveSourceControls::set_jack_ports(const std::vector<std::string>& ports) {
     const QString chosen = box->currentText();
     const QSignalBlocker block(box);
     box->clear();
-    for (const std::string& port : ports) box->addItem(qs(port));
+    for (const std::string& port : ports) box->addItem(qtext(port));
     box->setCurrentText(chosen);
   }
 }

@@ -15,6 +15,7 @@
 #include "ui/live_edc_plot_data.h"
 #include "ui/live_event_row.h"
 #include "ui/live_status_fields.h"
+#include "ui/qt_text.h"
 
 namespace oscilab::ui {
 namespace {
@@ -22,8 +23,6 @@ namespace {
 constexpr int kMaxLogRows = 2000;  // the event log keeps the newest rows
 const QColor kAmber(255, 196, 70);
 const QColor kRed(214, 60, 50);
-
-QString qs(const std::string& s) { return QString::fromStdString(s); }
 
 QString severity_style(Severity severity) {
   switch (severity) {
@@ -77,7 +76,7 @@ LiveStatusStrip::LiveStatusStrip(QWidget* parent)
       status_fields({}, {}, fault_tracker_, 0.0, 0.0);  // the keys, in order
   for (const StatusField& field : fields) {
     auto* label = new QLabel;
-    label->setObjectName(qs("status_" + field.key));
+    label->setObjectName(qtext("status_" + field.key));
     label->setStyleSheet(severity_style(Severity::Normal));
     label->setProperty("severity", 0);
     const auto text = widest.find(field.key);
@@ -125,13 +124,13 @@ void LiveStatusStrip::reset() {
 
 QLabel* LiveStatusStrip::label(const QString& key) const {
   for (const auto& [k, label] : labels_) {
-    if (qs(k) == key) return label;
+    if (qtext(k) == key) return label;
   }
   return nullptr;
 }
 
 void LiveStatusStrip::show_idle() {
-  for (const auto& [key, label] : labels_) label->setText(qs(key));
+  for (const auto& [key, label] : labels_) label->setText(qtext(key));
   warning_label_->setText(tr("No source running."));
 }
 
@@ -144,7 +143,7 @@ void LiveStatusStrip::add_events(const std::vector<daq::StreamEvent>& events) {
     const EventRow row = event_row(event);
     const int r = event_log_->rowCount();
     event_log_->insertRow(r);
-    const QString cells[3] = {qs(row.time), qs(row.kind), qs(row.text)};
+    const QString cells[3] = {qtext(row.time), qtext(row.kind), qtext(row.text)};
     for (int c = 0; c < 3; ++c) {
       auto* item = new QTableWidgetItem(cells[c]);
       if (c == 2) item->setToolTip(cells[c]);
@@ -173,17 +172,17 @@ void LiveStatusStrip::update(const daq::Acquisition& acquisition,
   throughput_.add(now_s, status.samples);
   for (const StatusField& field :
        status_fields(status, faults, fault_tracker_, now_s, throughput_.samples_per_s())) {
-    QLabel* label = this->label(qs(field.key));
+    QLabel* label = this->label(qtext(field.key));
     if (!label) continue;
     const QString text =
-        field.label.empty() ? qs(field.value) : qs(field.label + " " + field.value);
+        field.label.empty() ? qtext(field.value) : qtext(field.label + " " + field.value);
     if (label->text() != text) label->setText(text);
     const int severity = static_cast<int>(field.severity);
     if (label->property("severity").toInt() != severity) {
       label->setProperty("severity", severity);
       label->setStyleSheet(severity_style(field.severity));
     }
-    if (label->toolTip() != qs(field.tooltip)) label->setToolTip(qs(field.tooltip));
+    if (label->toolTip() != qtext(field.tooltip)) label->setToolTip(qtext(field.tooltip));
   }
 
   // The level being filled, and what is wrong with it.
@@ -193,16 +192,16 @@ void LiveStatusStrip::update(const daq::Acquisition& acquisition,
   if (current && current->cycles > 0) {
     text = tr("Level now: f\u2080 = %1 N, %2 well, %3 steady cycles, EDC %4 \u00b1 %5 mJ (3\u03c3)")
                .arg(current->f0_n, 0, 'f', 3)
-               .arg(qs(to_string(current->well)))
+               .arg(qtext(to_string(current->well)))
                .arg(current->cycles)
                .arg(1e3 * current->edc_mean_j, 0, 'g', 4)
                .arg(3e3 * current->edc_std_j, 0, 'g', 2);
   } else if (!status.edc_message.empty()) {
-    text = qs(status.edc_message);
+    text = qtext(status.edc_message);
   } else {
     text = tr("No level being filled (ramp, rest or transient).");
   }
-  if (!warning.empty()) text += tr("  \u26a0 %1").arg(qs(warning));
+  if (!warning.empty()) text += tr("  \u26a0 %1").arg(qtext(warning));
   warning_label_->setText(text);
   const int severity = warning.empty() ? 0 : 1;
   if (warning_label_->property("severity").toInt() != severity) {

@@ -1,4 +1,5 @@
 #include "ui/live_trace_view.h"
+#include "ui/qt_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,8 +24,6 @@ enum Trace { kBaseTrace, kBTrace, kMassTrace, kZTrace, kForceTrace, kTraceCount 
 const QColor kTraceColours[kTraceCount] = {QColor(0, 114, 178), QColor(0, 158, 115),
                                            QColor(204, 121, 167), QColor(20, 20, 20),
                                            QColor(213, 94, 0)};
-
-QString qs(const std::string& s) { return QString::fromStdString(s); }
 
 // Range of the finite values of `v` (lo > hi when there are none).
 void finite_range(const std::vector<double>& v, double& lo, double& hi) {
@@ -269,7 +268,7 @@ void LiveTraceView::refresh() {
       ranges_[std::size_t(k)].reset();
       rects_[std::size_t(k)]
           ->axis(QCPAxis::atLeft)
-          ->setLabel(trace_symbol(k) + " [" + qs(unit.symbol) + "]");
+          ->setLabel(trace_symbol(k) + " [" + qtext(unit.symbol) + "]");
     }
     data.resize(static_cast<qsizetype>(v.size()));
     for (std::size_t i = 0; i < v.size(); ++i) {

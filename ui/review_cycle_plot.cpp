@@ -8,16 +8,13 @@
 #include <qcustomplot.h>
 
 #include "ui/plot_helpers.h"
+#include "ui/qt_text.h"
 #include "ui/review_plot_style.h"
 #include "ui/time_marks.h"
 #include "ui/well_colours.h"
 
 namespace oscilab::ui {
-namespace {
-
-QString text(const std::string& s) { return QString::fromStdString(s); }
-
-}  // namespace
+namespace {}  // namespace
 
 ReviewCyclePlot::ReviewCyclePlot() {
   plot_ = make_review_plot(tr("time [s]"), tr("EDC per cycle [mJ]"));
@@ -60,7 +57,7 @@ void ReviewCyclePlot::show(const ReviewAnalysis* review, int record_index, bool 
   }
   const analysis::RecordAnalysis& record = review->campaign.records[std::size_t(r)];
   if (record.cycles.empty()) {
-    set_plot_hint(plot_, tr("No stepped-sine cycles in %1").arg(text(record.name)));
+    set_plot_hint(plot_, tr("No stepped-sine cycles in %1").arg(qtext(record.name)));
     plot_->replot(QCustomPlot::rpQueuedReplot);
     return;
   }
@@ -99,7 +96,7 @@ void ReviewCyclePlot::show(const ReviewAnalysis* review, int record_index, bool 
   other->setData(other_t, other_e, true);
   for (const auto& [name, cycles] : by_well) {
     QCPGraph* graph = plot_->addGraph();
-    graph->setName(tr("steady cycles, %1 well").arg(text(name)));
+    graph->setName(tr("steady cycles, %1 well").arg(qtext(name)));
     graph->setLineStyle(QCPGraph::lsNone);
     graph->setScatterStyle(disc_markers(well_colour(cycles.well), 4));
     graph->setData(cycles.t_s, cycles.edc_mj, true);

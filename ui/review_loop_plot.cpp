@@ -9,6 +9,7 @@
 #include "analysis/pipeline/result_units.h"
 #include "ui/display_units.h"
 #include "ui/plot_helpers.h"
+#include "ui/qt_text.h"
 #include "ui/review_plot_style.h"
 #include "ui/well_colours.h"
 
@@ -17,8 +18,6 @@ namespace {
 
 // At most this many loops are drawn at once (Fig. 9 overlays two; more become unreadable).
 constexpr std::size_t kMaxLoops = 8;
-
-QString text(const std::string& s) { return QString::fromStdString(s); }
 
 }  // namespace
 
@@ -75,7 +74,7 @@ std::vector<QCPAxisRect*> ReviewLoopPlot::well_rects(const bool present[3],
       // not run into each other (the first rect's ticks follow the plot's width).
       rect->axis(QCPAxis::atBottom)->ticker()->setTickCount(3);
     }
-    rect->axis(QCPAxis::atBottom)->setLabel(tr("z [%1]").arg(text(z_unit.symbol)));
+    rect->axis(QCPAxis::atBottom)->setLabel(tr("z [%1]").arg(qtext(z_unit.symbol)));
     rect->axis(QCPAxis::atLeft)->setLabel(rects.empty() ? f_label : QString());
     // The well, top left inside the axes.
     auto* label = new QCPItemText(plot_);
@@ -132,8 +131,8 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
   const bool per_unit_mass =
       review->campaign.records[std::size_t(shown.front().record)].per_unit_mass;
   const QString f_label =
-      per_unit_mass ? tr("f / m = \u2212d\u00b2b/dt\u00b2 [%1/kg]").arg(text(f_unit.symbol))
-                    : tr("f = \u2212m d\u00b2b/dt\u00b2 [%1]").arg(text(f_unit.symbol));
+      per_unit_mass ? tr("f / m = \u2212d\u00b2b/dt\u00b2 [%1/kg]").arg(qtext(f_unit.symbol))
+                    : tr("f = \u2212m d\u00b2b/dt\u00b2 [%1]").arg(qtext(f_unit.symbol));
 
   // One axis rect per well, in the order positive, negative, other.
   const auto group_of = [](analysis::Well well) {
@@ -176,12 +175,12 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
     curve->setPen(QPen(colour, 1.2));
     const analysis::RecordAnalysis& record = review->campaign.records[std::size_t(shown[i].record)];
     curve->setName(tr("%1f\u2080 = %2 %5: EDC %3 %6 (%4 steady cycles)")
-                       .arg(name_records ? text(record.name) + QStringLiteral(", ") : QString())
+                       .arg(name_records ? qtext(record.name) + QStringLiteral(", ") : QString())
                        .arg(level.f0_n, 0, 'f', 2)
                        .arg(1e3 * level.edc_mean_j, 0, 'f', 3)
                        .arg(loop.cycles)
-                       .arg(text(analysis::result_unit("N", record.per_unit_mass)))
-                       .arg(text(analysis::result_unit("mJ", record.per_unit_mass))));
+                       .arg(qtext(analysis::result_unit("N", record.per_unit_mass)))
+                       .arg(qtext(analysis::result_unit("mJ", record.per_unit_mass))));
   }
   // Each rect over its loops' z; one force range for all, so that the rects compare. Room at
   // the top for the well's label.

@@ -11,6 +11,7 @@
 
 #include "analysis/pipeline/result_units.h"
 #include "ui/plot_helpers.h"
+#include "ui/qt_text.h"
 #include "ui/review_plot_style.h"
 
 namespace oscilab::ui {
@@ -24,8 +25,6 @@ constexpr int kCurvePoints = 200;
 const QColor kSliceColour[2] = {QColor(0, 158, 115), QColor(230, 159, 0)};
 const QColor kSampleColour(86, 180, 233);  // stiffness-slice samples: light blue (Fig. 7b)
 const QColor kFitColour(200, 0, 0);        // the fitted K(z): red (Fig. 7b)
-
-QString text(const std::string& s) { return QString::fromStdString(s); }
 
 }  // namespace
 
@@ -63,7 +62,7 @@ ReviewSlicePlots::ReviewSlicePlots() {
 QString ReviewSlicePlots::force_unit(const ReviewAnalysis* review, const DisplayUnit& unit) {
   const analysis::MassBasis basis =
       review ? analysis::mass_basis(review->campaign) : analysis::MassBasis::Absolute;
-  return text(analysis::result_unit(unit.symbol, basis));
+  return qtext(analysis::result_unit(unit.symbol, basis));
 }
 
 void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
@@ -73,7 +72,7 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
   const analysis::CampaignAnalysis* campaign = review ? &review->campaign : nullptr;
   if (!campaign || !campaign->stiffness) {
     const QString why = !review ? (running ? tr("Analysing\u2026") : tr("No analysis yet"))
-                                : tr("No restoring force: %1").arg(text(campaign->rfs_message));
+                                : tr("No restoring force: %1").arg(qtext(campaign->rfs_message));
     set_plot_hint(stiffness_plot_, why);
     set_plot_hint(damping_plot_, why);
     stiffness_plot_->replot(QCustomPlot::rpQueuedReplot);
@@ -95,7 +94,7 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
   const DisplayUnit band_unit = choose_display_unit("m/s", slice.velocity_band_m_s);
   const bool about_mean = review && review->campaign.z_about_mean;
   stiffness_plot_->xAxis->setLabel(
-      (about_mean ? tr("z \u2212 z\u0304 [%1]") : tr("z [%1]")).arg(text(z_unit.symbol)));
+      (about_mean ? tr("z \u2212 z\u0304 [%1]") : tr("z [%1]")).arg(qtext(z_unit.symbol)));
   stiffness_plot_->yAxis->setLabel(tr("restoring force R [%1]").arg(force_unit(review, r_unit)));
   const auto to_display = [](const std::vector<double>& v, const DisplayUnit& unit) {
     QVector<double> out(qsizetype(v.size()));
@@ -105,7 +104,7 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
   QCPGraph* cloud = stiffness_plot_->addGraph();
   cloud->setName(tr("samples, |\u017c| < \u03b5_s = %1 %2 (%3)")
                      .arg(band_unit.to_display(slice.velocity_band_m_s), 0, 'g', 3)
-                     .arg(text(band_unit.symbol))
+                     .arg(qtext(band_unit.symbol))
                      .arg(samples.selected));
   cloud->setLineStyle(QCPGraph::lsNone);
   cloud->setScatterStyle(disc_markers(kSampleColour, 2));
@@ -132,7 +131,7 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
   // Room above the data for the legend (three entries).
   stiffness_plot_->yAxis->setRange(r_range.lower - kRangeMargin * r_range.size(),
                                    r_range.upper + 0.35 * r_range.size());
-  stiffness_label_->setText(text(stiffness_fit_text(
+  stiffness_label_->setText(qtext(stiffness_fit_text(
       slice, analysis::mass_basis(review->campaign) == analysis::MassBasis::PerUnitMass)));
   stiffness_plot_->replot(QCustomPlot::rpQueuedReplot);
 
@@ -152,14 +151,14 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
   }
   const DisplayUnit v_unit = choose_display_unit("m/s", v_max);
   const DisplayUnit d_unit = choose_display_unit("N", d_max);
-  damping_plot_->xAxis->setLabel(tr("\u017c [%1]").arg(text(v_unit.symbol)));
+  damping_plot_->xAxis->setLabel(tr("\u017c [%1]").arg(qtext(v_unit.symbol)));
   damping_plot_->yAxis->setLabel(tr("D = R \u2212 K(z) [%1]").arg(force_unit(review, d_unit)));
   for (std::size_t i = 0; i < campaign->damping.size(); ++i) {
     const analysis::DampingSlice& d = campaign->damping[i];
     const QColor colour = kSliceColour[d.z_center_m < 0.0 ? 0 : 1];
     const QString where = tr("z\u0304 = %1 %2")
                               .arg(z_unit.to_display(d.z_center_m), 0, 'f', 2)
-                              .arg(text(z_unit.symbol));
+                              .arg(qtext(z_unit.symbol));
     QCPGraph* points = damping_plot_->addGraph();
     points->setName(tr("%1: samples (%2)").arg(where).arg(clouds[i].selected));
     points->setLineStyle(QCPGraph::lsNone);

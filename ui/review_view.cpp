@@ -17,14 +17,11 @@
 
 #include "analysis/pipeline/result_units.h"
 #include "ui/level_table.h"
+#include "ui/qt_text.h"
 #include "ui/record_view.h"
 
 namespace oscilab::ui {
-namespace {
-
-QString text(const std::string& s) { return QString::fromStdString(s); }
-
-}  // namespace
+namespace {}  // namespace
 
 ReviewView::ReviewView(QWidget* parent) : QWidget(parent) {
   message_label_ = new QLabel;
@@ -135,7 +132,7 @@ void ReviewView::set_recordings(std::vector<Opened> recordings) {
   record_box_->clear();
   int shown = -1;
   for (std::size_t i = 0; i < recordings_.size(); ++i) {
-    const QString path = text(recordings_[i].path);
+    const QString path = qtext(recordings_[i].path);
     record_box_->addItem(QFileInfo(path).fileName());
     record_box_->setItemData(int(i), path, Qt::ToolTipRole);
     if (recordings_[i].recording.get() == record_view_->recording()) shown = int(i);
@@ -167,7 +164,7 @@ void ReviewView::show_recording(std::shared_ptr<const daq::Recording> recording)
   plot_cycle_cursor();
   const TimeWindow window = record_view_->time_window();
   cycles_.follow_time_window(window.start_s, window.end_s);
-  Q_EMIT recording_shown(text(shown_path()));
+  Q_EMIT recording_shown(qtext(shown_path()));
 }
 
 int ReviewView::shown_record() const {
@@ -194,24 +191,25 @@ void ReviewView::set_analysis(std::shared_ptr<const ReviewAnalysis> analysis) {
   // Without a mass the forces and energies are per unit mass: every label says so.
   const analysis::MassBasis basis =
       analysis_ ? analysis::mass_basis(analysis_->campaign) : analysis::MassBasis::Absolute;
-  const QString force_unit = text(analysis::result_unit("N", basis));
-  const QString energy_unit = text(analysis::result_unit("mJ", basis));
+  const QString force_unit = qtext(analysis::result_unit("N", basis));
+  const QString energy_unit = qtext(analysis::result_unit("mJ", basis));
   level_table_->set_rows(analysis_ ? level_rows(analysis_->campaign) : std::vector<LevelRow>{},
                          force_unit, energy_unit);
   cycles_.set_energy_unit(energy_unit);
 
   QStringList lines;
   if (analysis_) {
-    for (const std::string& error : analysis_->errors) lines << tr("Left out: %1").arg(text(error));
+    for (const std::string& error : analysis_->errors)
+      lines << tr("Left out: %1").arg(qtext(error));
     // Each note once, with the records it concerns.
     const analysis::CampaignAnalysis& campaign = analysis_->campaign;
     for (const analysis::SharedNote& note : analysis::shared_notes(campaign)) {
-      lines << text(analysis::note_text(note, campaign.records.size()));
+      lines << qtext(analysis::note_text(note, campaign.records.size()));
     }
     if (campaign.z_about_mean)
-      lines << tr("Restoring force: %1").arg(text(analysis::kZAboutMeanNote));
+      lines << tr("Restoring force: %1").arg(qtext(analysis::kZAboutMeanNote));
     if (!analysis_->campaign.rfs_message.empty()) {
-      lines << tr("Restoring force: %1").arg(text(analysis_->campaign.rfs_message));
+      lines << tr("Restoring force: %1").arg(qtext(analysis_->campaign.rfs_message));
     }
   }
   message_label_->setText(lines.join('\n'));
@@ -314,7 +312,7 @@ void ReviewView::update_marks() {
   std::vector<RecordView::Mark> marks;
   for (const Annotation& annotation : annotations_) {
     if (!path.empty() && annotation.recording == path) {
-      marks.push_back({annotation.t_s, text(annotation.text)});
+      marks.push_back({annotation.t_s, qtext(annotation.text)});
     }
   }
   record_view_->set_marks(marks);
@@ -324,11 +322,11 @@ void ReviewView::update_marks() {
 void ReviewView::update_annotation_list() {
   annotation_list_->clear();
   for (const Annotation& annotation : annotations_) {
-    const QString path = text(annotation.recording);
+    const QString path = qtext(annotation.recording);
     auto* item = new QListWidgetItem(tr("%1   t = %2 s   %3")
                                          .arg(QFileInfo(path).fileName())
                                          .arg(annotation.t_s, 0, 'f', 3)
-                                         .arg(text(annotation.text)));
+                                         .arg(qtext(annotation.text)));
     item->setToolTip(path);
     annotation_list_->addItem(item);
   }

@@ -160,7 +160,7 @@ void run(const AnalyzeOptions& options) {
   if (!options.model_out_path.empty()) start_model = analysis::model_from_spec(options.model);
   InputTimes times;
   const analysis::CampaignAnalysis campaign =
-      analyze_recordings(options.recordings, overrides, options.settings, &times);
+      run_input_stage(options.recordings, overrides, options.settings, &times);
   const auto output_start = std::chrono::steady_clock::now();
   print_report(campaign);
   // A stepped-sine record of which no level measures anything (a dead channel, swapped roles,

@@ -8,10 +8,10 @@
 
 namespace oscilab::cli {
 
-analysis::CampaignAnalysis analyze_recordings(const std::vector<std::string>& paths,
-                                              const daq::MappingOverrides& overrides,
-                                              const analysis::PipelineSettings& settings,
-                                              InputTimes* times) {
+analysis::CampaignAnalysis run_input_stage(const std::vector<std::string>& paths,
+                                           const daq::MappingOverrides& overrides,
+                                           const analysis::PipelineSettings& settings,
+                                           InputTimes* times) {
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   const Clock::time_point start = Clock::now();

@@ -18,9 +18,9 @@ struct InputTimes {
 /// Reads the recordings (each with its sidecar) and runs the offline analysis of all of them
 /// together, with a progress bar on a terminal: the input stage of analyze, fit and diagnose.
 /// Throws InputError naming the file for a recording that cannot be read.
-analysis::CampaignAnalysis analyze_recordings(const std::vector<std::string>& paths,
-                                              const daq::MappingOverrides& overrides,
-                                              const analysis::PipelineSettings& settings,
-                                              InputTimes* times = nullptr);
+analysis::CampaignAnalysis run_input_stage(const std::vector<std::string>& paths,
+                                           const daq::MappingOverrides& overrides,
+                                           const analysis::PipelineSettings& settings,
+                                           InputTimes* times = nullptr);
 
 }  // namespace oscilab::cli

@@ -140,7 +140,7 @@ void run(const DiagnoseOptions& o) {
     throw InputError("--threads: " + std::to_string(o.threads) + " must be 0 (all cores) to " +
                      std::to_string(analysis::kMaxThreads));
   }
-  const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, {}, {});
+  const analysis::CampaignAnalysis campaign = run_input_stage(o.recordings, {}, {});
   // A stepped-sine record none of whose levels measures anything is refused, as by analyze.
   analysis::require_measured_levels(campaign);
   analysis::FitSetup setup;

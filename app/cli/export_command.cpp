@@ -134,7 +134,7 @@ void run(const ExportOptions& o) {
       overrides.well_positive = analysis::well_from_string(o.well) == analysis::Well::Positive;
     }
     const analysis::CampaignAnalysis campaign =
-        analyze_recordings(o.recordings, overrides, analysis::PipelineSettings{});
+        run_input_stage(o.recordings, overrides, analysis::PipelineSettings{});
     // A stepped-sine record none of whose levels measures anything is refused, as by analyze.
     analysis::require_measured_levels(campaign);
     const std::vector<daq::EdcTableRow> rows = daq::edc_table_rows(campaign);

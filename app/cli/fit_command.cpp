@@ -104,7 +104,7 @@ void run(const FitCommandOptions& o) {
 
   daq::MappingOverrides overrides;
   if (o.freq_hz > 0) overrides.excitation_freq_hz = o.freq_hz;
-  const analysis::CampaignAnalysis campaign = analyze_recordings(o.recordings, overrides, {});
+  const analysis::CampaignAnalysis campaign = run_input_stage(o.recordings, overrides, {});
   // A stepped-sine record none of whose levels measures anything is refused, as by analyze.
   analysis::require_measured_levels(campaign);
   analysis::FitSetup setup;

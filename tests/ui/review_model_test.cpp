@@ -16,8 +16,6 @@ namespace {
 
 using analysis::LevelResult;
 
-constexpr double kPi = std::numbers::pi;
-
 LevelResult level(analysis::Well well, double f0_n, double edc_mean_j, double edc_std_j,
                   int cycles) {
   LevelResult result;
@@ -94,7 +92,7 @@ TEST(LevelView, CursorInTheMiddleAndWindowAroundTheSteadyCycles) {
 TEST(LevelLoop, HoldsTheSteadySamplesAndItsAreaIsTheEnergyPerCycle) {
   constexpr double kFreqHz = 9.0, kRateHz = 64 * kFreqHz;
   constexpr double kF = 1.3, kZ = 2e-3, kPhi = 0.4;  // N, m, rad
-  const double omega = 2 * kPi * kFreqHz;
+  const double omega = 2 * std::numbers::pi * kFreqHz;
   const Eigen::Index n = Eigen::Index(20 * kRateHz);  // 20 s
   analysis::MotionSignals motion;
   motion.t_s = Eigen::VectorXd::LinSpaced(n, 0.0, double(n - 1) / kRateHz);
@@ -113,7 +111,7 @@ TEST(LevelLoop, HoldsTheSteadySamplesAndItsAreaIsTheEnergyPerCycle) {
   EXPECT_DOUBLE_EQ(loop.t_s.front(), 5.0);
   EXPECT_NEAR(loop.t_s.back(), l.end_s, 1e-12);
   const double a = omega / kRateHz;
-  const double exact_j = 45 * kPi * kF * kZ * std::sin(kPhi);
+  const double exact_j = 45 * std::numbers::pi * kF * kZ * std::sin(kPhi);
   // Round-off only: 2881 terms of size ~1e-4 J.
   EXPECT_NEAR(loop_area_j(loop.z_m, loop.f_n) / exact_j, std::sin(a) / a, 1e-12);
 
@@ -127,7 +125,7 @@ TEST(LevelLoop, HoldsTheSteadySamplesAndItsAreaIsTheEnergyPerCycle) {
 // periods of 60 Hz).
 TEST(ExcitationForce, IsMinusMassTimesTableAccelerationWhateverTheBaseQuantity) {
   constexpr double kRateHz = 512.0, kFreqHz = 9.0, kMassKg = 0.26, kAcc = 2.5;  // m/s²
-  const double omega = 2 * kPi * kFreqHz;
+  const double omega = 2 * std::numbers::pi * kFreqHz;
   const Eigen::Index n = Eigen::Index(10 * kRateHz);
   const Eigen::ArrayXd t = Eigen::ArrayXd::LinSpaced(n, 0.0, double(n - 1) / kRateHz);
   analysis::MeasurementChannels channels;
@@ -160,7 +158,7 @@ TEST(ExcitationForce, IsMinusMassTimesTableAccelerationWhateverTheBaseQuantity) 
 // A Duffing-like record: R = k1 z + k3 z³ + c ż over a slow amplitude sweep.
 analysis::CampaignAnalysis synthetic_campaign() {
   constexpr double kRateHz = 512.0, kFreqHz = 9.0;
-  const double omega = 2 * kPi * kFreqHz;
+  const double omega = 2 * std::numbers::pi * kFreqHz;
   const Eigen::Index n = Eigen::Index(60 * kRateHz);
   analysis::CampaignAnalysis campaign;
   campaign.records.resize(1);

@@ -8,29 +8,27 @@
 namespace oscilab::analysis {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // A synthetic steady response: table b = B sin ωt, relative z = Z0 + Σ_h A_h sin(hωt − φ_h).
 struct Synthetic {
   double freq_hz = 9.0, mass_kg = 0.26, b_amp_m = 2e-4, z0_m = 0.0237;
   std::vector<double> amp_m = {5e-3, 0.0, 3e-4, 0.0, 8e-5};
   std::vector<double> lag_rad = {1.1, 0.0, 0.4, 0.0, -0.7};
-  double b(double t) const { return b_amp_m * std::sin(2 * kPi * freq_hz * t); }
+  double b(double t) const { return b_amp_m * std::sin(2 * std::numbers::pi * freq_hz * t); }
   double b_ddot(double t) const {
-    const double w = 2 * kPi * freq_hz;
+    const double w = 2 * std::numbers::pi * freq_hz;
     return -w * w * b(t);
   }
   double z(double t) const {
     double v = z0_m;
     for (std::size_t h = 0; h < amp_m.size(); ++h) {
-      v += amp_m[h] * std::sin((h + 1) * 2 * kPi * freq_hz * t - lag_rad[h]);
+      v += amp_m[h] * std::sin((h + 1) * 2 * std::numbers::pi * freq_hz * t - lag_rad[h]);
     }
     return v;
   }
   double z_dot(double t) const {
     double v = 0.0;
     for (std::size_t h = 0; h < amp_m.size(); ++h) {
-      const double hw = (h + 1) * 2 * kPi * freq_hz;
+      const double hw = (h + 1) * 2 * std::numbers::pi * freq_hz;
       v += hw * amp_m[h] * std::cos(hw * t - lag_rad[h]);
     }
     return v;
@@ -38,8 +36,8 @@ struct Synthetic {
   // ∮ f dz with f = −m b̈ = m ω² B sin ωt: only the first harmonic of z contributes,
   // S = π f0 A₁ sin φ₁ (eq. (13) in our sign, docs/conventions.md).
   double edc() const {
-    const double w = 2 * kPi * freq_hz;
-    return kPi * mass_kg * w * w * b_amp_m * amp_m[0] * std::sin(lag_rad[0]);
+    const double w = 2 * std::numbers::pi * freq_hz;
+    return std::numbers::pi * mass_kg * w * w * b_amp_m * amp_m[0] * std::sin(lag_rad[0]);
   }
 };
 
@@ -58,10 +56,10 @@ std::vector<CycleFit> analyse(const Synthetic& s, double rate_hz, MotionQuantity
   for (int i = 0; i < n; ++i) {
     const double t = i / rate_hz;
     const double base = s.b_ddot(t);
-    const double mass =
-        mass_quantity == MotionQuantity::Velocity
-            ? s.z_dot(t) + 2 * kPi * s.freq_hz * s.b_amp_m * std::cos(2 * kPi * s.freq_hz * t)
-            : s.z(t) + s.b(t);
+    const double mass = mass_quantity == MotionQuantity::Velocity
+                            ? s.z_dot(t) + 2 * std::numbers::pi * s.freq_hz * s.b_amp_m *
+                                               std::cos(2 * std::numbers::pi * s.freq_hz * t)
+                            : s.z(t) + s.b(t);
     analyzer.push(&t, &base, &mass, 1, cycles);
   }
   return cycles;
@@ -75,7 +73,8 @@ TEST(CycleFit, RecoversTheExactEnergyOfAMultiHarmonicResponse) {
     // Noise-free band-limited data: least squares is exact up to rounding (~1e-12 relative).
     EXPECT_NEAR(c.edc_j / s.edc(), 1.0, 1e-9);
     EXPECT_NEAR(c.edc_eq13_j / s.edc(), 1.0, 1e-9);
-    EXPECT_NEAR(c.f0_n, s.mass_kg * std::pow(2 * kPi * s.freq_hz, 2) * s.b_amp_m, 1e-12);
+    EXPECT_NEAR(c.f0_n, s.mass_kg * std::pow(2 * std::numbers::pi * s.freq_hz, 2) * s.b_amp_m,
+                1e-12);
     EXPECT_NEAR(c.z_mean_m, s.z0_m, 1e-12);
     EXPECT_NEAR(c.lag_rad, s.lag_rad[0], 1e-9);
     // The trapezoid on 57 samples per cycle is biased by O((ωΔt)²) ≈ 1e-3.

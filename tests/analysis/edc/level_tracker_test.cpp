@@ -16,7 +16,6 @@
 namespace oscilab::analysis {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kFreqHz = 9.0;
 constexpr double kPeriodS = 1.0 / kFreqHz;
 
@@ -32,7 +31,7 @@ CycleFit make_cycle(long index, double f0_n, double edc_j, double z_mean_m = 0.0
   const double z1_m = 1e-3 * f0_n;
   c.z_h = {std::polar(z1_m, -1.0)};
   c.lag_rad = 1.0;
-  const double omega = 2.0 * kPi * kFreqHz;
+  const double omega = 2.0 * std::numbers::pi * kFreqHz;
   c.y1_abs_m = std::abs(c.z_h[0] + std::polar(f0_n / (0.26 * omega * omega), -1.0 + c.lag_rad));
   c.z_mean_m = z_mean_m;
   c.z_min_m = z_mean_m - z1_m;
@@ -446,7 +445,7 @@ TEST(LevelTracker, WindowsWithoutCyclesAreReportedAndFlaggedWhy) {
 // level at 512 Hz, all taken as steady.
 LevelResult fitted_level(double b_amp_m, double y_amp_m, double base_noise_m_s2,
                          double mass_noise_m) {
-  const double rate_hz = 512.0, mass_kg = 0.26, w = 2 * kPi * kFreqHz;
+  const double rate_hz = 512.0, mass_kg = 0.26, w = 2 * std::numbers::pi * kFreqHz;
   CycleAnalyzer::Options options;
   options.fit.freq_hz = kFreqHz;
   options.fit.mass_kg = mass_kg;
@@ -472,7 +471,7 @@ LevelResult fitted_level(double b_amp_m, double y_amp_m, double base_noise_m_s2,
 // 5 of those. A dead channel (exactly constant: no noise either), one that holds only noise, and
 // one whose tone is 2 such σ are flagged and not usable; a tone of 12 σ is measured.
 TEST(LevelTracker, ABaseOrMassChannelWithoutItsToneAboveItsNoiseIsFlaggedConstant) {
-  const double w = 2 * kPi * kFreqHz;
+  const double w = 2 * std::numbers::pi * kFreqHz;
   const double base_noise_m_s2 = 2e-3, mass_noise_m = 1.5e-6;     // the virtual rig's sensors
   const double coefficient = std::sqrt(2.0 / (512.0 / kFreqHz));  // σ·√(2/N) per σ
   // Table displacement whose acceleration tone is k coefficient σ of the accelerometer.
@@ -521,7 +520,7 @@ struct NoisyLevel {
 };
 
 NoisyLevel noisy_level(double mass_noise_m, double base_noise_m_s2, double phase_rad) {
-  const double rate_hz = 512.0, mass_kg = 0.26, w = 2 * kPi * kFreqHz;
+  const double rate_hz = 512.0, mass_kg = 0.26, w = 2 * std::numbers::pi * kFreqHz;
   const double b_amp_m = 2e-4, z_amp_m = 4e-3, lag_rad = 0.9, z0_m = 0.02;
   CycleAnalyzer::Options options;
   options.fit.freq_hz = kFreqHz;
@@ -546,7 +545,7 @@ NoisyLevel noisy_level(double mass_noise_m, double base_noise_m_s2, double phase
   NoisyLevel out;
   out.level = summarise_level(cycles, level_options);
   EXPECT_EQ(out.level.cycles, static_cast<int>(cycles.size()));
-  out.truth_j = kPi * mass_kg * w * w * b_amp_m * z_amp_m * std::sin(lag_rad);
+  out.truth_j = std::numbers::pi * mass_kg * w * w * b_amp_m * z_amp_m * std::sin(lag_rad);
   return out;
 }
 
@@ -583,8 +582,8 @@ TEST(LevelTracker, NoiseFloorPredictsTheScatterOfMassNoise) {
 // samples into a local minimum (χ² 482 against 6.2): the fit's robustness comes first.
 TEST(LevelTracker, DISABLED_NoiseFloorPredictsTheScatterAtAnyPhaseAndForBaseNoise) {
   for (const auto& [mass_noise, base_noise, phase] :
-       {std::tuple{2e-6, 0.0, kPi / 4}, std::tuple{2e-6, 0.0, kPi / 2}, std::tuple{0.0, 0.05, 0.0},
-        std::tuple{0.0, 0.05, kPi / 2}}) {
+       {std::tuple{2e-6, 0.0, std::numbers::pi / 4}, std::tuple{2e-6, 0.0, std::numbers::pi / 2},
+        std::tuple{0.0, 0.05, 0.0}, std::tuple{0.0, 0.05, std::numbers::pi / 2}}) {
     const NoisyLevel r = noisy_level(mass_noise, base_noise, phase);
     const double predicted_cycle_sigma = r.level.edc_noise_floor_j * std::sqrt(r.level.cycles);
     EXPECT_NEAR(r.level.edc_std_j / predicted_cycle_sigma, 1.0, 0.15)

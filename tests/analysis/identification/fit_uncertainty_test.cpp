@@ -16,8 +16,6 @@
 namespace oscilab::analysis {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // A linear oscillator m z̈ + c ż + k z = f has the EDC in closed form: Z1 = F/(k − mω² + icω), so
 //
 //   S(c, k) = π c ω |Z1|² = π c ω F² / D,   D = (k − mω²)² + c²ω²,
@@ -44,16 +42,16 @@ std::vector<Level> levels() {
 }
 
 double edc(const Level& l, double c, double k) {
-  const double w = 2 * kPi * l.freq_hz;
+  const double w = 2 * std::numbers::pi * l.freq_hz;
   const double d = std::pow(k - kMassKg * w * w, 2) + c * c * w * w;
-  return kPi * c * w * l.f0_n * l.f0_n / d;
+  return std::numbers::pi * c * w * l.f0_n * l.f0_n / d;
 }
 
 Eigen::Vector2d edc_gradient(const Level& l, double c, double k) {
-  const double w = 2 * kPi * l.freq_hz;
+  const double w = 2 * std::numbers::pi * l.freq_hz;
   const double detune = k - kMassKg * w * w;
   const double d = detune * detune + c * c * w * w;
-  const double a = kPi * w * l.f0_n * l.f0_n;
+  const double a = std::numbers::pi * w * l.f0_n * l.f0_n;
   return {a * (d - 2 * c * c * w * w) / (d * d), -2 * a * c * detune / (d * d)};
 }
 

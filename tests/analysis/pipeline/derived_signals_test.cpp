@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include "analysis/common/input_error.h"
 
@@ -11,13 +12,12 @@ namespace oscilab::analysis {
 namespace {
 
 constexpr double kRateHz = 512.0;
-constexpr double kPi = 3.14159265358979323846;
 
 // A table moving as b = A sin ωt and a mass whose relative motion is z = Z sin(ωt + φ): the
 // channels an accelerometer (b̈) and a vibrometer (y = b + z) give, in closed form.
 struct Motion {
   double a_m = 2e-3, z_m = 5e-3, phase = 0.7, freq_hz = 9.0, mass_kg = 0.3;
-  double w() const { return 2 * kPi * freq_hz; }
+  double w() const { return 2 * std::numbers::pi * freq_hz; }
   double b(double t) const { return a_m * std::sin(w() * t); }
   double b_ddot(double t) const { return -w() * w() * b(t); }
   double z(double t) const { return z_m * std::sin(w() * t + phase); }

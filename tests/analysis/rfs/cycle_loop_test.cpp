@@ -5,15 +5,15 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <numbers>
 
 namespace oscilab::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 TEST(NewestCycleLoop, EnclosesTheEnergyOfEq13) {
   // f = f0 sin ωt, z = z̄ + Z sin(ωt − θ): ∮ f dz = π f0 Z sin θ (docs/conventions.md, eq. (13)).
-  const double rate = 512, nu = 8.0, f0 = 1.3, zz = 0.002, theta = 0.4, w = 2 * kPi * nu;
+  const double rate = 512, nu = 8.0, f0 = 1.3, zz = 0.002, theta = 0.4,
+               w = 2 * std::numbers::pi * nu;
   std::vector<double> t_s, z_m, f_n;
   for (int i = 0; i < 512; ++i) {
     const double t = i / rate;
@@ -30,7 +30,7 @@ TEST(NewestCycleLoop, EnclosesTheEnergyOfEq13) {
     area += 0.5 * (loop.f_n[i] + loop.f_n[i + 1]) * (loop.z_m[i + 1] - loop.z_m[i]);
   }
   // The trapezoid on 64 samples per period: relative error (ωΔt)²/12 ≈ 8e-4.
-  EXPECT_NEAR(area / (kPi * f0 * zz * std::sin(theta)), 1.0, 2e-3);
+  EXPECT_NEAR(area / (std::numbers::pi * f0 * zz * std::sin(theta)), 1.0, 2e-3);
   // A 10 s cycle: not in 1 s of samples.
   EXPECT_TRUE(newest_cycle_loop(t_s, z_m, f_n, 0.1).z_m.empty());
 }

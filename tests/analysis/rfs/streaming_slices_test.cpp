@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include "analysis/model/reference_models.h"
 #include "analysis/pipeline/offline_analysis.h"
@@ -18,8 +19,6 @@
 namespace oscilab::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Samples of a known motion: z = z0 + A sin ωt, R = K(z) + c ż, one per sample.
 struct Motion {
   std::vector<double> t_s, z_m, z_dot_m_s, restoring_force_n;
@@ -29,7 +28,7 @@ double stiffness(double z) { return 7.35e5 * z * z * z + 1.56e3 * z * z - 550 * 
 
 Motion motion(double t0, double t1, double rate, double z0, double a, double nu, double c) {
   Motion m;
-  const double w = 2 * kPi * nu;
+  const double w = 2 * std::numbers::pi * nu;
   for (double t = t0; t < t1; t += 1.0 / rate) {
     const double z = z0 + a * std::sin(w * t), z_dot = a * w * std::cos(w * t);
     m.t_s.push_back(t);
@@ -56,7 +55,7 @@ TEST(StreamingSlices, KeepsTheStiffnessAndDampingSlicesOfAKnownSurface) {
   ASSERT_GT(rfs.damping().size(), 20u);
   // |ż| < ε_s = 0.02 × p99(|ż|) ≤ 0.02 A ω: R − K(z) = c ż is within c ε_s.
   const double band = rfs.velocity_band_m_s();
-  EXPECT_LE(band, 0.02 * a * 2 * kPi * nu * (1 + 1e-12));
+  EXPECT_LE(band, 0.02 * a * 2 * std::numbers::pi * nu * (1 + 1e-12));
   for (const WellPoint& p : rfs.stiffness()) {
     EXPECT_LE(std::abs(p.y - stiffness(p.x)), c * band * (1 + 1e-9));
     EXPECT_TRUE(p.positive);
@@ -66,7 +65,7 @@ TEST(StreamingSlices, KeepsTheStiffnessAndDampingSlicesOfAKnownSurface) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   const double n = static_cast<double>(rfs.damping().size());
   for (const WellPoint& p : rfs.damping()) {
-    EXPECT_LT(std::abs(p.x), a * 2 * kPi * nu * (1 + 1e-12));
+    EXPECT_LT(std::abs(p.x), a * 2 * std::numbers::pi * nu * (1 + 1e-12));
     sx += p.x, sy += p.y, sxx += p.x * p.x, sxy += p.x * p.y;
   }
   const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);

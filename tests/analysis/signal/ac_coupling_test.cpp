@@ -12,13 +12,12 @@ namespace oscilab::analysis {
 namespace {
 
 using oscilab::testing::input_error_of;
-constexpr double kPi = std::numbers::pi;
 
 TEST(FirstOrderHighpass, IsTheClosedForm) {
   // H(jω) = jω / (jω + ωc): −3 dB and π/4 at the corner, a lead of atan(fc / f) elsewhere.
   const std::complex<double> at_corner = first_order_highpass(2.0, 2.0);
   EXPECT_NEAR(std::abs(at_corner), 1.0 / std::sqrt(2.0), 1e-15);
-  EXPECT_NEAR(std::arg(at_corner), kPi / 4, 1e-15);
+  EXPECT_NEAR(std::arg(at_corner), std::numbers::pi / 4, 1e-15);
   const std::complex<double> at_9 = first_order_highpass(9.0, 2.0);
   EXPECT_NEAR(std::arg(at_9), std::atan(2.0 / 9.0), 1e-15);
   EXPECT_NEAR(std::abs(at_9), 9.0 / std::sqrt(81.0 + 4.0), 1e-15);
@@ -32,7 +31,7 @@ std::complex<double> tone(const std::vector<double>& x, std::size_t from, double
   const std::size_t n = (x.size() - from) / period * period;
   std::complex<double> sum = 0.0;
   for (std::size_t i = from; i < from + n; ++i) {
-    sum += x[i] * std::polar(1.0, -2 * kPi * f_hz * static_cast<double>(i) / fs_hz);
+    sum += x[i] * std::polar(1.0, -2 * std::numbers::pi * f_hz * static_cast<double>(i) / fs_hz);
   }
   return 2.0 * sum / static_cast<double>(n);
 }
@@ -50,7 +49,7 @@ TEST(AcCouplingInverse, UndoesTheHighpassToTheLeakLeftOnPurpose) {
   const std::size_t n = 80 * 512;  // 80 s: the leak's 8 s time constant settles 10 times
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / fs;
-    out.push_back(inverse.push(std::real(h * std::polar(1.0, 2 * kPi * f * t))));
+    out.push_back(inverse.push(std::real(h * std::polar(1.0, 2 * std::numbers::pi * f * t))));
   }
   const std::complex<double> got = tone(out, n / 2, f, fs);
   const double residual_lead = std::atan(fc / 100.0 / f);
@@ -58,8 +57,9 @@ TEST(AcCouplingInverse, UndoesTheHighpassToTheLeakLeftOnPurpose) {
   EXPECT_NEAR(std::abs(got), 1.0, 1e-3);  // |G H| = 1 − 3e-6: the leak costs no gain
   EXPECT_NEAR(std::arg(h), 0.245, 1e-3);  // what the correction removed
   // The filter's own response is G(jω) = (jω + ωc)/(jω + ωl) up to the warping.
-  const std::complex<double> jw(0.0, 2 * kPi * f);
-  const std::complex<double> g = (jw + 2 * kPi * fc) / (jw + 2 * kPi * fc / 100.0);
+  const std::complex<double> jw(0.0, 2 * std::numbers::pi * f);
+  const std::complex<double> g =
+      (jw + 2 * std::numbers::pi * fc) / (jw + 2 * std::numbers::pi * fc / 100.0);
   EXPECT_NEAR(std::abs(inverse.response(f) / g - 1.0), 0.0, 5e-4);
 }
 

@@ -11,8 +11,6 @@
 namespace oscilab::analysis {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 TEST(ZSpectrum, ReadsTheHarmonicsAmplitudesAndTheSubharmonic) {
   // 4 s at 512 Hz of z̄ + A1 sin(2π 9 t) + A3 sin(2π 27 t + 0.3): an integer number of periods,
   // so the Hann-windowed DFT at h ν is exact (its leakage vanishes at whole bins).
@@ -20,8 +18,8 @@ TEST(ZSpectrum, ReadsTheHarmonicsAmplitudesAndTheSubharmonic) {
   std::vector<double> z;
   for (int i = 0; i < 2048; ++i) {
     const double t = i / rate;
-    z.push_back(0.0028 + a1 * std::sin(2 * kPi * nu * t) +
-                a3 * std::sin(2 * kPi * 3 * nu * t + 0.3));
+    z.push_back(0.0028 + a1 * std::sin(2 * std::numbers::pi * nu * t) +
+                a3 * std::sin(2 * std::numbers::pi * 3 * nu * t + 0.3));
   }
   z.push_back(std::nan(""));  // the derived tail not computed yet
   const ZSpectrum s = z_spectrum(z, rate, nu, 8);
@@ -37,7 +35,8 @@ TEST(ZSpectrum, ReadsTheHarmonicsAmplitudesAndTheSubharmonic) {
   EXPECT_NEAR(s.amplitude_m[36], a1, 1e-9 * a1);
 
   // A period doubling: a component at ν/2 reads its amplitude.
-  for (int i = 0; i < 2048; ++i) z[std::size_t(i)] += 1e-4 * std::sin(kPi * nu * i / rate);
+  for (int i = 0; i < 2048; ++i)
+    z[std::size_t(i)] += 1e-4 * std::sin(std::numbers::pi * nu * i / rate);
   EXPECT_NEAR(z_spectrum(z, rate, nu, 8).subharmonic_amplitude_m, 1e-4, 1e-9);
   EXPECT_TRUE(z_spectrum(std::vector<double>(40, 0.0), rate, nu).freq_hz.empty());
 }

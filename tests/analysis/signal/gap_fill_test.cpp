@@ -10,7 +10,6 @@
 namespace oscilab::analysis {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -69,11 +68,11 @@ TEST(GapFill, StraightLineAcrossGapsIsReproduced) {
 // other filled sample obeys too.
 TEST(GapFill, SineAcrossAGapFollowsTheChordWithinTheInterpolationBound) {
   const double rate_hz = 512.0, freq_hz = 9.0, amplitude = 2e-3;
-  const double w = 2 * kPi * freq_hz;
+  const double w = 2 * std::numbers::pi * freq_hz;
   const Eigen::Index n = 2048, g = 11;
   // Crest at t_c = 1/(4f) + k/f; place it on a sample: choose t_c = 100 dt exactly by phase.
   const Eigen::Index crest = 100;
-  const double phase = kPi / 2 - w * static_cast<double>(crest) / rate_hz;
+  const double phase = std::numbers::pi / 2 - w * static_cast<double>(crest) / rate_hz;
   Eigen::VectorXd truth(n), x(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     truth[i] = amplitude * std::sin(w * static_cast<double>(i) / rate_hz + phase);

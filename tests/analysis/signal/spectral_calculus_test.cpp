@@ -13,11 +13,9 @@
 namespace oscilab::analysis {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 TEST(SpectralCalculus, DoubleIntegrationOfASineIsExactAwayFromTheEnds) {
   // b̈ = −A ω² sin ωt + bias: the zero-phase integral is A sin ωt (bias and constants dropped).
-  const double rate = 512.0, f = 9.0, w = 2 * kPi * f, a = 2e-3;
+  const double rate = 512.0, f = 9.0, w = 2 * std::numbers::pi * f, a = 2e-3;
   const Eigen::Index n = 134401;  // prime, as the default stepped-sine record
   Eigen::VectorXd acc(n), truth(n);
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -45,7 +43,7 @@ TEST(SpectralCalculus, DoubleIntegrationOfASineIsExactAwayFromTheEnds) {
 }
 
 TEST(SpectralCalculus, DifferentiationMatchesTheDerivativeInBand) {
-  const double rate = 512.0, f = 13.0, w = 2 * kPi * f;
+  const double rate = 512.0, f = 13.0, w = 2 * std::numbers::pi * f;
   const Eigen::Index n = 20000;
   Eigen::VectorXd y(n);
   for (Eigen::Index i = 0; i < n; ++i)
@@ -88,7 +86,7 @@ TEST(FrequencyEstimator, FindsASteppedSineCarrierToAFewMicrohertz) {
   for (Eigen::Index i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / rate;
     const double amplitude = 1.0 + std::floor(t / 20.0);  // steps every 20 s
-    x[i] = amplitude * std::sin(2 * kPi * f * t + 0.3);
+    x[i] = amplitude * std::sin(2 * std::numbers::pi * f * t + 0.3);
   }
   const DominantTone tone = dominant_tone(x, rate);
   // Bin width 512/100000 Hz ≈ 5 mHz; Gaussian interpolation of a Hann peak is good to ~1e-3 bin.
@@ -99,7 +97,7 @@ TEST(FrequencyEstimator, FindsASteppedSineCarrierToAFewMicrohertz) {
 TEST(StreamingIntegrator, DoubleIntegratesLiveWithItsLatencyAndNoPhaseError) {
   // A stepped sine's table acceleration with a bias: b̈ = −A(t) ω² sin ωt + bias, A stepping
   // smoothly from 1 to 2 mm. The live output at t is b(t − latency).
-  const double rate = 512.0, w = 2 * kPi * 9.0, bias = 4e-3;
+  const double rate = 512.0, w = 2 * std::numbers::pi * 9.0, bias = 4e-3;
   StreamingIntegrator::Options options;
   options.sample_rate_hz = rate;
   StreamingIntegrator integrator(options);

@@ -8,12 +8,12 @@
 namespace oscilab::daq {
 namespace {
 
-constexpr double kRateHz = 100.0;
+constexpr double kAlarmRateHz = 100.0;
 
 TEST(AlarmMonitor, OneAlarmPerExcursionReArmedAfterASecondBelowNinetyPercent) {
   AlarmLimits limits;
   limits.max_abs_force_n = 2.0;
-  AlarmMonitor monitor(limits, kRateHz);
+  AlarmMonitor monitor(limits, kAlarmRateHz);
   EXPECT_TRUE(monitor.watches(AlarmQuantity::Force));
   EXPECT_FALSE(monitor.watches(AlarmQuantity::RelativeDisplacement));
   std::vector<AlarmMonitor::Alarm> raised;
@@ -21,7 +21,7 @@ TEST(AlarmMonitor, OneAlarmPerExcursionReArmedAfterASecondBelowNinetyPercent) {
   // 1.8 N for a second).
   std::uint64_t s = 0;
   for (; s < 200; ++s) {
-    const double t = static_cast<double>(s) / kRateHz;
+    const double t = static_cast<double>(s) / kAlarmRateHz;
     monitor.check(AlarmQuantity::Force, s, 3.0 * std::sin(2 * 3.14159265358979 * 5 * t), raised);
   }
   ASSERT_EQ(raised.size(), 1u);
@@ -45,7 +45,7 @@ TEST(AlarmMonitor, OneAlarmPerExcursionReArmedAfterASecondBelowNinetyPercent) {
 TEST(AlarmMonitor, UnwatchedOrNonFiniteValuesNeverAlarm) {
   AlarmLimits limits;
   limits.max_abs_z_m = 0.01;
-  AlarmMonitor monitor(limits, kRateHz);
+  AlarmMonitor monitor(limits, kAlarmRateHz);
   std::vector<AlarmMonitor::Alarm> raised;
   monitor.check(AlarmQuantity::Force, 0, 1e9, raised);
   monitor.check(AlarmQuantity::BaseDisplacement, 0, 1e9, raised);

@@ -10,8 +10,8 @@
 namespace oscilab::daq {
 namespace {
 
-constexpr double kRateHz = 512.0;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kHistoryRateHz = 512.0;
+constexpr double kNaNSample = std::numeric_limits<double>::quiet_NaN();
 
 // Writes `n` samples from `first` in blocks of 16: base = value(s), the other traces offsets of
 // it, the derived ones `lag` samples later; records the truth per sample.
@@ -24,8 +24,8 @@ struct Writer {
     while (truth.size() <= s) {
       std::normal_distribution<double> noise;
       // A slow sine with noise, and now and then a NaN (a hole a reader must skip).
-      const double t = static_cast<double>(truth.size()) / kRateHz;
-      truth.push_back(truth.size() % 997 == 5 ? kNaN : std::sin(0.7 * t) + 0.1 * noise(rng));
+      const double t = static_cast<double>(truth.size()) / kHistoryRateHz;
+      truth.push_back(truth.size() % 997 == 5 ? kNaNSample : std::sin(0.7 * t) + 0.1 * noise(rng));
     }
     return truth[s];
   }
@@ -62,7 +62,7 @@ struct Writer {
 // occur (each at its first occurrence), NaN when the bucket holds no number.
 std::pair<double, double> envelope(const std::vector<double>& truth, std::uint64_t start,
                                    std::uint64_t stop, double scale) {
-  double lo = kNaN, hi = kNaN;
+  double lo = kNaNSample, hi = kNaNSample;
   std::uint64_t lo_at = start, hi_at = start;
   for (std::uint64_t s = start; s <= stop; ++s) {
     const double v = scale * truth[s];
@@ -85,7 +85,7 @@ void expect_same(double a, double b, const std::string& where) {
 // envelope of exactly the samples the bucket's times name: checked against a brute-force scan
 // of the truth, after the ring wrapped several times.
 TEST(HistoryRing, ThinsEveryWindowToTheEnvelopeOfItsSamples) {
-  HistoryRing ring(60 * 512, kRateHz);  // a minute, a whole number of chunks
+  HistoryRing ring(60 * 512, kHistoryRateHz);  // a minute, a whole number of chunks
   Writer w{ring, {}, 1024};
   w.write(0, 200 * 512);  // 200 s: the ring wrapped more than three times
   ASSERT_EQ(ring.end(), 200u * 512u);
@@ -101,8 +101,8 @@ TEST(HistoryRing, ThinsEveryWindowToTheEnvelopeOfItsSamples) {
     // The oldest sample shown is still in the ring's last minute.
     EXPECT_GE(out.t_s.front(), 140.0 - 1e-9);
     for (std::size_t k = 0; k + 1 < out.t_s.size(); k += 2) {
-      const auto start = static_cast<std::uint64_t>(std::llround(out.t_s[k] * kRateHz));
-      const auto stop = static_cast<std::uint64_t>(std::llround(out.t_s[k + 1] * kRateHz));
+      const auto start = static_cast<std::uint64_t>(std::llround(out.t_s[k] * kHistoryRateHz));
+      const auto stop = static_cast<std::uint64_t>(std::llround(out.t_s[k + 1] * kHistoryRateHz));
       const std::string where = std::to_string(from_s) + "–" + std::to_string(to_s) +
                                 " bucket at " + std::to_string(start);
       for (const auto& [trace, scale] :
@@ -122,7 +122,7 @@ TEST(HistoryRing, ThinsEveryWindowToTheEnvelopeOfItsSamples) {
 }
 
 TEST(HistoryRing, GivesEverySampleWhenTheWindowHoldsNoMoreThanTheBuckets) {
-  HistoryRing ring(1024, kRateHz);
+  HistoryRing ring(1024, kHistoryRateHz);
   Writer w{ring, {}, 64};
   w.write(0, 4096);
   TraceHistory out;
@@ -130,7 +130,7 @@ TEST(HistoryRing, GivesEverySampleWhenTheWindowHoldsNoMoreThanTheBuckets) {
   ASSERT_EQ(out.t_s.size(), 256u);
   for (std::size_t i = 0; i < out.t_s.size(); ++i) {
     const auto s = static_cast<std::size_t>(7 * 512) + i;
-    EXPECT_DOUBLE_EQ(out.t_s[i], static_cast<double>(s) / kRateHz);
+    EXPECT_DOUBLE_EQ(out.t_s[i], static_cast<double>(s) / kHistoryRateHz);
     expect_same(out.base[i], w.truth[s], "sample " + std::to_string(s));
     expect_same(out.z_m[i], 3 * w.truth[s], "derived sample " + std::to_string(s));
     EXPECT_TRUE(std::isnan(out.b_m[i]));  // never written
@@ -138,7 +138,7 @@ TEST(HistoryRing, GivesEverySampleWhenTheWindowHoldsNoMoreThanTheBuckets) {
 }
 
 TEST(HistoryRing, AGapIsNaNAndDerivedValuesOlderThanTheRingAreDropped) {
-  HistoryRing ring(128, kRateHz);
+  HistoryRing ring(128, kHistoryRateHz);
   Writer w{ring, {}, 0};
   w.write(0, 128);
   ring.write_gap(128, 64);
@@ -146,7 +146,7 @@ TEST(HistoryRing, AGapIsNaNAndDerivedValuesOlderThanTheRingAreDropped) {
   TraceHistory out;
   ring.read(0.0, 1.0, 1000, out);
   ASSERT_EQ(out.t_s.size(), 128u);  // 64 … 191: the ring holds 128 samples
-  EXPECT_DOUBLE_EQ(out.t_s.front(), 64.0 / kRateHz);
+  EXPECT_DOUBLE_EQ(out.t_s.front(), 64.0 / kHistoryRateHz);
   for (std::size_t i = 64; i < 128; ++i) EXPECT_TRUE(std::isnan(out.base[i])) << i;
   // A derived value for sample 10, long overwritten, must not land on sample 138's slot.
   const double late = 42.0;
@@ -160,7 +160,7 @@ TEST(HistoryRing, AGapIsNaNAndDerivedValuesOlderThanTheRingAreDropped) {
 }
 
 TEST(HistoryRing, AnEmptyRingOrWindowGivesNothing) {
-  HistoryRing ring(1024, kRateHz);
+  HistoryRing ring(1024, kHistoryRateHz);
   TraceHistory out;
   out.t_s = {1.0};
   ring.read(0.0, 10.0, 100, out);

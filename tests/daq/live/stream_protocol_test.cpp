@@ -14,11 +14,9 @@ namespace {
 
 using namespace stream_protocol;
 
-Sidecar two_channels() { return testing::two_channel_layout(); }
-
 std::vector<std::uint8_t> sample_stream() {
   std::vector<std::uint8_t> bytes;
-  append_hello({"id-1", two_channels()}, bytes);
+  append_hello({"id-1", testing::two_channel_layout()}, bytes);
   const double values[6] = {1.5, -2.0, 3.25, std::numeric_limits<double>::quiet_NaN(), 1e300, -0.0};
   append_data(7, 1024, 3, 2, values, bytes);
   append_event({12.5, EventKind::Level, "f0", {{"f0_n", 0.5}}}, bytes);
@@ -87,7 +85,7 @@ TEST(StreamProtocol, CarriesEveryEventKindByNameAndKeepsAnUnknownOne) {
   }
   sent.back().other_kind = "tare";
   std::vector<std::uint8_t> bytes;
-  append_hello({"id-1", two_channels()}, bytes);
+  append_hello({"id-1", testing::two_channel_layout()}, bytes);
   for (const StreamEvent& event : sent) append_event(event, bytes);
   FrameDecoder decoder;
   decoder.feed(bytes.data(), bytes.size());
@@ -109,7 +107,7 @@ TEST(StreamProtocol, CarriesEveryEventKindByNameAndKeepsAnUnknownOne) {
 
 TEST(StreamProtocol, RejectsHostileFramesWithAReason) {
   std::vector<std::uint8_t> hello;
-  append_hello({"id", two_channels()}, hello);
+  append_hello({"id", testing::two_channel_layout()}, hello);
 
   std::vector<std::uint8_t> garbage(64, 0x41);
   EXPECT_NE(decode_error(garbage).find("bad magic"), std::string::npos);
@@ -141,7 +139,7 @@ TEST(StreamProtocol, RejectsHostileFramesWithAReason) {
   std::vector<std::uint8_t> bad_json = {'O', 'S', 'C', 'S', 1, 1, 0, 0, 3, 0, 0, 0, '{', 'x', '}'};
   EXPECT_EQ(decode_error(bad_json), "malformed JSON payload");
 
-  Sidecar bad = two_channels();
+  Sidecar bad = testing::two_channel_layout();
   nlohmann::json j = {
       {"protocol", kProtocolName}, {"stream_id", "x"}, {"sidecar", sidecar_to_json(bad)}};
   j["sidecar"]["channels"][0]["unit"] = "furlong";
@@ -166,7 +164,7 @@ TEST(StreamProtocol, RefusesAJsonDepthBombFrameAloneAndGoesOn) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   std::vector<std::uint8_t> bytes =
       json_frame(FrameType::Hello, "{\"protocol\": \"oscilab-stream/1\", \"junk\": " + deep + "}");
-  append_hello({"id", two_channels()}, bytes);
+  append_hello({"id", testing::two_channel_layout()}, bytes);
   const std::vector<std::uint8_t> event =
       json_frame(FrameType::Event, "{\"kind\": \"mark\", \"data\": {\"x\": " + deep + "}}");
   bytes.insert(bytes.end(), event.begin(), event.end());
@@ -225,7 +223,7 @@ TEST(StreamProtocol, RandomBytesNeverCrashAndMemoryStaysBounded) {
   // build) and never buffers more than one frame's limit.
   std::mt19937 rng(7);
   std::vector<std::uint8_t> hello;
-  append_hello({"id", two_channels()}, hello);
+  append_hello({"id", testing::two_channel_layout()}, hello);
   for (int trial = 0; trial < 2000; ++trial) {
     std::vector<std::uint8_t> bytes = trial % 2 ? hello : std::vector<std::uint8_t>{};
     const std::size_t n = rng() % 300;

@@ -36,8 +36,6 @@ constexpr int kChannels = 2;
 // loaded machine or a sanitizer build; the tests take well under a second each.
 constexpr std::chrono::seconds kWatchdog{30};
 
-Sidecar two_channels() { return testing::two_channel_layout(); }
-
 // Rows of block i: 1 … max_rows, varying, so that first_sample is not a multiple of anything.
 int rows_of(std::uint64_t block, int max_rows) {
   return 1 + static_cast<int>((block * 37u) % static_cast<std::uint64_t>(max_rows));
@@ -76,7 +74,7 @@ class TestSource final : public SampleSource {
              std::map<std::size_t, std::vector<StreamEvent>> events = {},
              std::vector<StreamEvent> after = {})
       : count_(count), max_rows_(max_rows), events_(std::move(events)), after_(std::move(after)) {
-    set_layout(two_channels());
+    set_layout(testing::two_channel_layout());
   }
   ~TestSource() override { stop(); }
   int max_block_rows() const override { return max_rows_; }
@@ -376,7 +374,7 @@ TEST(StreamSender, SendsEverySampleInOrderBitForBitWithEachEventBeforeItsBlock) 
   ASSERT_GE(frames.size(), 2u);
   ASSERT_EQ(frames.front().type, FrameType::Hello);
   EXPECT_EQ(frames.front().stream_id, "test-1");
-  EXPECT_EQ(layout_difference(two_channels(), frames.front().sidecar), "");
+  EXPECT_EQ(layout_difference(testing::two_channel_layout(), frames.front().sidecar), "");
   EXPECT_EQ(frames.back().type, FrameType::Bye);
   std::vector<std::size_t> data_index;  // frame index of each block's DATA
   std::vector<std::pair<std::size_t, StreamEvent>> received_events;
@@ -458,7 +456,7 @@ TEST(StreamSender, TheProjectsReceiverGetsEverySampleAndEventAsSent) {
     expect_block_as_generated(blocks[i], first, kMaxRows);
   }
   ASSERT_TRUE(net.layout());
-  EXPECT_EQ(layout_difference(two_channels(), *net.layout()), "");
+  EXPECT_EQ(layout_difference(testing::two_channel_layout(), *net.layout()), "");
   std::vector<std::string> kinds;
   for (const StreamEvent& e : net.take_events()) {
     kinds.push_back(e.kind_name());

@@ -21,6 +21,7 @@ namespace {
 using nlohmann::json;
 using testing::fixture_variable;
 using testing::input_error_of;
+using testing::signal_named;
 using testing::TempDir;
 using testing::varied_values;
 
@@ -28,13 +29,6 @@ const std::string kTerra15 =
     oscilab::testing::instrument_files() + "/hdf5/terra15_v5_test_file.hdf5";
 
 const SignalFileReader& reader() { return dynamic_cast<const SignalFileReader&>(hdf5_format()); }
-
-const FileSignal& signal_named(const FileContents& contents, const std::string& name) {
-  for (const FileSignal& signal : contents.file_signals) {
-    if (signal.name == name) return signal;
-  }
-  throw std::runtime_error("no signal " + name);
-}
 
 Sidecar one_channel(double rate_hz, const std::string& source, int column) {
   Sidecar sidecar;

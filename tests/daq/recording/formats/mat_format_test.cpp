@@ -23,6 +23,7 @@ namespace {
 using nlohmann::json;
 using testing::fixture_variable;
 using testing::input_error_of;
+using testing::signal_named;
 using testing::TempDir;
 using testing::varied_values;
 
@@ -30,13 +31,6 @@ const std::string kSilverbox = oscilab::testing::instrument_files() + "/mat/SNLS
 constexpr double kSilverboxRateHz = 1e7 / 16384.0;  // 10^7 / 2^14, the benchmark's documentation
 
 const SignalFileReader& mat_reader() { return dynamic_cast<const SignalFileReader&>(mat_format()); }
-
-const FileSignal& signal_named(const FileContents& contents, const std::string& name) {
-  for (const FileSignal& signal : contents.file_signals) {
-    if (signal.name == name) return signal;
-  }
-  throw std::runtime_error("no signal " + name);
-}
 
 double rms(const std::vector<double>& values) {
   double sum = 0.0;

@@ -4,12 +4,14 @@
 // write_mat_hdf5.py: the test gives the values, the script writes the file.
 
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "daq/recording/format_reader.h"
 #include "tests/daq/recording/recording_test_util.h"
 
 namespace oscilab::daq::testing {
@@ -44,6 +46,14 @@ inline std::vector<double> varied_values(std::size_t count, unsigned seed, doubl
     values[i] = amplitude * std::sin(0.05 * static_cast<double>(i) + seed) + noise(rng);
   }
   return values;
+}
+
+/// The signal of that name in a file's contents; throws when the file has none.
+inline const FileSignal& signal_named(const FileContents& contents, const std::string& name) {
+  for (const FileSignal& signal : contents.file_signals) {
+    if (signal.name == name) return signal;
+  }
+  throw std::runtime_error("no signal " + name);
 }
 
 }  // namespace oscilab::daq::testing
