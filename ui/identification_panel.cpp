@@ -399,7 +399,9 @@ void IdentificationPanel::plot_edc(const std::vector<analysis::EdcGroup>& groups
                                : tr("No stepped-sine level to show in the opened recordings."));
   edc_plot_->rescaleAxes();
   edc_plot_->xAxis->scaleRange(1.08);
-  edc_plot_->yAxis->setRangeLower(0.0);
+  // From 0, with room above the top level's point and error bar so neither sits on the frame.
+  const double top_mj = edc_plot_->yAxis->range().upper;
+  edc_plot_->yAxis->setRange(0.0, top_mj > 0.0 ? 1.06 * top_mj : 1.0);
   edc_plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 

@@ -18,6 +18,8 @@ namespace {
 constexpr const char* kBaseProperty = "oscilab_palette_base";
 constexpr const char* kTextProperty = "oscilab_palette_text";
 constexpr const char* kFollowsProperty = "oscilab_palette_follows";
+// An item drawn in the palette's colours (draw_in_palette_colours).
+constexpr const char* kPaletteItemProperty = "oscilab_palette_item";
 
 // The grid: about a fifth of the way from the background to the text (light grey on white).
 QColor grid_colour(const QColor& base, const QColor& text) {
@@ -73,6 +75,28 @@ void recolour(QCPLayoutElement& element, const Recolouring& r) {
   }
 }
 
+// A cursor item's pen in the text colour and its brush in the base colour, alphas kept.
+void recolour(QCPAbstractItem& item, const Recolouring& r) {
+  const auto with_alpha = [](QColor c, int alpha) {
+    c.setAlpha(alpha);
+    return c;
+  };
+  if (auto* line = qobject_cast<QCPItemStraightLine*>(&item)) {
+    QPen pen = line->pen();
+    pen.setColor(with_alpha(r.text, pen.color().alpha()));
+    line->setPen(pen);
+  } else if (auto* tracer = qobject_cast<QCPItemTracer*>(&item)) {
+    QPen pen = tracer->pen();
+    pen.setColor(with_alpha(r.text, pen.color().alpha()));
+    tracer->setPen(pen);
+    QBrush brush = tracer->brush();
+    if (brush.style() != Qt::NoBrush) {
+      brush.setColor(with_alpha(r.base, brush.color().alpha()));
+      tracer->setBrush(brush);
+    }
+  }
+}
+
 // Draws `plot` in `palette`'s colours (no replot).
 void recolour(QCustomPlot& plot, const QPalette& palette) {
   Recolouring r;
@@ -87,6 +111,11 @@ void recolour(QCustomPlot& plot, const QPalette& palette) {
   plot.setBackground(QBrush(r.base));
   for (QCPLayoutElement* element : plot.plotLayout()->elements(true)) {
     if (element) recolour(*element, r);
+  }
+  for (int i = 0; i < plot.itemCount(); ++i) {
+    if (QCPAbstractItem* item = plot.item(i); item->property(kPaletteItemProperty).toBool()) {
+      recolour(*item, r);
+    }
   }
   plot.setProperty(kBaseProperty, r.base);
   plot.setProperty(kTextProperty, r.text);
@@ -103,6 +132,16 @@ void apply_palette(QCustomPlot& plot, const QPalette& palette) {
                      [p = &plot] { recolour(*p, p->palette()); });
   }
   plot.replot(QCustomPlot::rpQueuedReplot);
+}
+
+void draw_in_palette_colours(QCPAbstractItem& item) {
+  item.setProperty(kPaletteItemProperty, true);
+  if (QCustomPlot* plot = item.parentPlot()) {
+    Recolouring r;
+    r.base = plot->palette().color(QPalette::Base);
+    r.text = plot->palette().color(QPalette::Text);
+    recolour(item, r);
+  }
 }
 
 PlotPalettes::PlotPalettes(QObject* parent) : QObject(parent) {

@@ -3,6 +3,7 @@
 #include <QObject>
 #include <QPalette>
 
+class QCPAbstractItem;
 class QCustomPlot;
 class QMenu;
 
@@ -15,6 +16,12 @@ namespace oscilab::ui {
 /// replaced, again before each replot (so that axes and legends the plot builds later follow
 /// too; a plot that draws something in black on purpose gets it in the text colour). Replots.
 void apply_palette(QCustomPlot& plot, const QPalette& palette);
+
+/// Draws `item` (a cursor line, a tracer) in the palette's colours from now on: its pen in the
+/// text colour, its brush (if any) in the base colour, each with the alpha it had; apply_palette
+/// keeps it so through theme changes. Without it a cursor drawn dark grey vanishes on a dark
+/// theme.
+void draw_in_palette_colours(QCPAbstractItem& item);
 
 /// Every QCustomPlot of the application follows its palette: an event filter on the application
 /// object applies it when a plot is first shown and whenever its palette changes (the system's

@@ -11,6 +11,7 @@
 
 #include "ui/cursor_readout.h"
 #include "ui/plot_hover_readout.h"
+#include "ui/plot_theme.h"
 #include "ui/time_marks.h"
 
 namespace oscilab::ui {
@@ -177,6 +178,7 @@ void RecordView::rebuild_plots() {
     line->setLayer(cursor_layer_);
     line->setClipAxisRect(rect);
     line->setPen(QPen(QColor(60, 60, 60), 1.0, Qt::DashLine));
+    draw_in_palette_colours(*line);
     for (QCPItemPosition* point : {line->point1, line->point2})
       point->setAxes(time_axis, value_axis);
     line->setVisible(false);
@@ -190,6 +192,7 @@ void RecordView::rebuild_plots() {
     tracer->setSize(9);
     tracer->setPen(QPen(QColor(30, 30, 30), 1.5));
     tracer->setBrush(QColor(255, 255, 255, 200));
+    draw_in_palette_colours(*tracer);
     tracer->setVisible(false);
 
     connect(time_axis, qOverload<const QCPRange&>(&QCPAxis::rangeChanged), this,

@@ -8,6 +8,7 @@
 #include <qcustomplot.h>
 
 #include "ui/plot_helpers.h"
+#include "ui/plot_theme.h"
 #include "ui/qt_text.h"
 #include "ui/review_plot_style.h"
 #include "ui/time_marks.h"
@@ -29,6 +30,7 @@ ReviewCyclePlot::ReviewCyclePlot() {
   cursor_ = new QCPItemStraightLine(plot_);
   cursor_->setLayer("cursor");
   cursor_->setPen(QPen(QColor(60, 60, 60), 1.0, Qt::DashLine));
+  draw_in_palette_colours(*cursor_);
   cursor_->setVisible(false);
 }
 

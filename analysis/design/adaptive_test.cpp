@@ -76,11 +76,14 @@ void AdaptiveTestOptions::validate() const {
     throw InputError("stop.budget_s: must be a positive number of s");
   }
   if (max_levels < 1) throw InputError("max_levels: must be at least 1");
-  if (hypotheses.global_evaluations < 0 || hypotheses.global_evaluations > kMaxFitEvaluations ||
-      hypotheses.initial_evaluations < 10 || hypotheses.refit_evaluations < 10) {
-    throw InputError(
-        "hypotheses: global_evaluations 0 to 10^7, initial_evaluations and refit_evaluations >= "
-        "10");
+  if (hypotheses.global_evaluations < 0 || hypotheses.global_evaluations > kMaxFitEvaluations) {
+    throw InputError("hypotheses.global_evaluations: must be 0 to 10^7");
+  }
+  if (hypotheses.initial_evaluations < 10) {
+    throw InputError("hypotheses.initial_evaluations: must be at least 10");
+  }
+  if (hypotheses.refit_evaluations < 10) {
+    throw InputError("hypotheses.refit_evaluations: must be at least 10");
   }
   if (hypotheses.threads < 0 || hypotheses.threads > kMaxThreads) {
     throw InputError("hypotheses.threads: " + std::to_string(hypotheses.threads) +
@@ -89,8 +92,24 @@ void AdaptiveTestOptions::validate() const {
   const std::vector<std::string>& vocabulary = effect_vocabulary();
   for (const std::string& e : hypotheses.effects) {
     if (e == "none" || std::find(vocabulary.begin(), vocabulary.end(), e) == vocabulary.end()) {
-      throw InputError("effects: unknown effect \"" + e + "\"");
+      throw InputError("hypotheses.effects: unknown effect \"" + e + "\"");
     }
+  }
+}
+
+void validate_as_named(const AdaptiveTestOptions& options,
+                       const std::vector<std::pair<std::string, std::string>>& names) {
+  try {
+    options.validate();
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    const std::size_t colon = message.find(": ");
+    for (const auto& [field, name] : names) {
+      if (colon != std::string::npos && message.compare(0, colon, field) == 0) {
+        throw InputError(name + message.substr(colon));
+      }
+    }
+    throw;
   }
 }
 

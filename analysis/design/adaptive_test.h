@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/common/job.h"
@@ -52,11 +53,19 @@ struct AdaptiveTestOptions {
   bool final_diagnosis = true;
   DiagnosisOptions diagnosis;
 
-  /// Throws InputError naming the field: an empty or non-positive pilot, a leader weight outside
-  /// (0.5, 1), a negative minimum discrimination, a non-positive budget, no adaptive level, fewer
-  /// than 10 evaluations per fit, a negative global search. Also settings.validate().
+  /// Throws InputError naming the field ("stop.budget_s: …"): an empty or non-positive pilot, a
+  /// leader weight outside (0.5, 1), a negative minimum discrimination, a non-positive budget, no
+  /// adaptive level, fewer than 10 evaluations per fit, a negative global search, an unknown
+  /// effect. Also settings.validate() ("settings.freq_hz: …").
   void validate() const;
 };
+
+/// options.validate(), its refusal naming the field as the caller's interface calls it: `names`
+/// maps the fields of validate()'s messages to the caller's names (a CLI's options, Python's
+/// keywords), so that "stop.budget_s: must be …" reaches a user as "--budget: must be …". A
+/// field without a name keeps its own.
+void validate_as_named(const AdaptiveTestOptions& options,
+                       const std::vector<std::pair<std::string, std::string>>& names);
 
 /// One decision of the loop, after the pilot and after every adaptive level: the hypotheses as
 /// weighed then, the stop rule's answer and, when the test goes on, the proposal.

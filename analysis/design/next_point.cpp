@@ -30,23 +30,24 @@ std::vector<double> AdmissibleSettings::freq_grid() const {
 }
 
 void AdmissibleSettings::validate() const {
-  const auto finite = [](double x) { return std::isfinite(x); };
-  if (!finite(f0_min_n) || !finite(f0_max_n) || !(f0_min_n > 0.0) || !(f0_max_n >= f0_min_n)) {
-    throw InputError("admissible settings: f0 range must be 0 < f0_min <= f0_max");
+  const auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
+  const auto non_negative = [](double x) { return x >= 0.0 && std::isfinite(x); };
+  if (!positive(f0_min_n) || !std::isfinite(f0_max_n) || !(f0_max_n >= f0_min_n)) {
+    throw InputError("settings.f0_range_n: need 0 < f0_min <= f0_max, got " +
+                     std::to_string(f0_min_n) + " to " + std::to_string(f0_max_n) + " N");
   }
-  if (!(f0_step_n > 0.0) || !finite(f0_step_n)) {
-    throw InputError("admissible settings: f0 step must be positive");
+  if (!positive(f0_step_n)) throw InputError("settings.f0_step_n: must be a positive force in N");
+  if (!positive(freq_hz)) throw InputError("settings.freq_hz: must be a positive number of Hz");
+  if (!non_negative(freq_span_hz) || !(freq_hz - freq_span_hz > 0.0)) {
+    throw InputError("settings.freq_span_hz: must be >= 0 Hz and leave the range above 0 Hz");
   }
-  if (!(freq_hz > 0.0) || !finite(freq_hz) || !(freq_span_hz >= 0.0) || !finite(freq_span_hz) ||
-      !(freq_step_hz > 0.0) || !finite(freq_step_hz) || !(freq_hz - freq_span_hz > 0.0)) {
-    throw InputError(
-        "admissible settings: frequency range must stay positive with a positive step");
+  if (!positive(freq_step_hz)) {
+    throw InputError("settings.freq_step_hz: must be a positive number of Hz");
   }
-  if (!positive_well && !negative_well) throw InputError("admissible settings: no well allowed");
-  if (!(dwell_s > 0.0) || !finite(dwell_s) || !(settling_s >= 0.0) || !finite(settling_s) ||
-      !(well_change_s >= 0.0) || !finite(well_change_s)) {
-    throw InputError("admissible settings: dwell must be positive, settling and well change >= 0");
-  }
+  if (!positive_well && !negative_well) throw InputError("settings.wells: no well allowed");
+  if (!positive(dwell_s)) throw InputError("settings.dwell_s: must be a positive number of s");
+  if (!non_negative(settling_s)) throw InputError("settings.settling_s: must be >= 0 s");
+  if (!non_negative(well_change_s)) throw InputError("settings.well_change_s: must be >= 0 s");
 }
 
 namespace {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include <Eigen/SVD>
 
 #include "analysis/common/input_error.h"
+#include "analysis/hbm/regula_falsi.h"
 
 namespace oscilab::analysis {
 
@@ -119,25 +121,13 @@ bool locate_pitchfork(DoubledAnsatz& ansatz, HarmonicBalance& source_hbm, const 
       if (!source_hbm.solve(x_b, b, newton).converged()) break;
       const double g_b = ansatz.singularity_test(embed_in_doubled_ansatz(x_b), b);
       if ((g_b > 0.0) != (g_a > 0.0)) {
-        // Illinois regula falsi on [a, b].
-        double fa = g_a, fb = g_b, lo = a, hi = b;
-        Eigen::VectorXd x_c = x_b;
-        for (int iteration = 0; iteration < 60 && std::abs(hi - lo) > 1e-12; ++iteration) {
-          const double c = (lo * fb - hi * fa) / (fb - fa);
-          if (!source_hbm.solve(x_c, c, newton).converged()) break;
-          const double fc = ansatz.singularity_test(embed_in_doubled_ansatz(x_c), c);
+        Eigen::VectorXd x_c = x_b;  // each solve starts from the last one's orbit
+        illinois_regula_falsi(a, g_a, b, g_b, 1e-12, [&](double c) -> std::optional<double> {
+          if (!source_hbm.solve(x_c, c, newton).converged()) return std::nullopt;
           out.f0_pitchfork_n = c;
           x_source = x_c;
-          if (fc == 0.0) break;
-          if ((fc > 0.0) != (fb > 0.0)) {
-            lo = hi;
-            fa = fb;
-          } else {
-            fa *= 0.5;
-          }
-          hi = c;
-          fb = fc;
-        }
+          return ansatz.singularity_test(embed_in_doubled_ansatz(x_c), c);
+        });
         bracketed = true;
       }
       a = b;

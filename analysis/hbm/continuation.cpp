@@ -4,11 +4,13 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include <Eigen/LU>
 
 #include "analysis/common/input_error.h"
+#include "analysis/hbm/regula_falsi.h"
 
 namespace oscilab::analysis {
 
@@ -240,26 +242,15 @@ class Continuer {
                  double g1,
                  const std::function<double(const Eigen::VectorXd&, const Solved&)>& test) {
     Located out;
-    double a = 0.0, fa = g0, b = ds, fb = g1;
-    for (int iteration = 0; iteration < 60; ++iteration) {
-      const double c = (a * fb - b * fa) / (fb - fa);
-      Solved s = correct(y + c * t, t);
-      if (!s.ok) break;  // keep the last corrected iterate, if any
-      const double fc = test(s.y, s);
-      out.ok = true;
-      out.sigma = c;
-      out.solved = s;
-      if (fc == 0.0 || std::abs(b - a) <= 1e-12 * ds) break;
-      if ((fc > 0.0) != (fb > 0.0)) {
-        a = b;
-        fa = fb;
-      } else {
-        fa *= 0.5;
-      }
-      b = c;
-      fb = fc;
-      if (std::abs(b - a) <= 1e-10 * std::max(ds, 1e-3)) break;
-    }
+    illinois_regula_falsi(0.0, g0, ds, g1, 1e-10 * std::max(ds, 1e-3),
+                          [&](double c) -> std::optional<double> {
+                            Solved s = correct(y + c * t, t);
+                            if (!s.ok) return std::nullopt;  // keep the last corrected iterate
+                            out.ok = true;
+                            out.sigma = c;
+                            out.solved = s;
+                            return test(s.y, s);
+                          });
     if (out.ok) out.t = tangent(out.solved.g_y, t);
     return out;
   }

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -61,45 +62,41 @@ struct AdaptiveOptions {
   double max_seconds = 120.0;
 };
 
+// What only this command knows (the source, the rig's level timing, the diagnosis's time
+// bound); the rest is AdaptiveTestOptions::validate()'s, under these options' names.
 void validate(const AdaptiveOptions& o) {
   if (o.source != "rig") {
     throw InputError("--source " + o.source +
                      ": only rig (the virtual rig) drives an adaptive test in this version");
   }
   if (o.rig_model.empty()) throw InputError("--rig-model: required with --source rig");
-  const auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
-  const auto non_negative = [](double x) { return x >= 0.0 && std::isfinite(x); };
-  if (!positive(o.freq_hz)) throw InputError("--freq: must be a positive number of Hz");
-  if (!non_negative(o.freq_span_hz) || !positive(o.freq_step_hz) ||
-      !(o.freq_hz - o.freq_span_hz > 0.0)) {
-    throw InputError("--freq-span, --freq-step: the range must stay above 0 Hz, step > 0");
-  }
-  if (!positive(o.f0_step_n)) throw InputError("--f0-step: must be a positive number of N");
-  if (!positive(o.hold_s) || !non_negative(o.ramp_s) || !(o.ramp_s < o.hold_s)) {
+  if (!(o.ramp_s >= 0.0) || !std::isfinite(o.ramp_s) || !(o.ramp_s < o.hold_s)) {
     throw InputError("--hold, --ramp: hold must be positive and longer than the ramp");
-  }
-  if (!non_negative(o.lead_in_s) || !non_negative(o.well_change_s)) {
-    throw InputError("--lead-in, --well-change: must be >= 0 s");
-  }
-  if (!positive(o.budget_s)) throw InputError("--budget: must be a positive number of s");
-  if (!(o.leader_weight > 0.5 && o.leader_weight < 1.0)) {
-    throw InputError("--leader-weight: must be between 0.5 and 1");
-  }
-  if (!(o.min_discrimination >= 0.0) || !std::isfinite(o.min_discrimination)) {
-    throw InputError("--min-discrimination: must be >= 0");
-  }
-  if (o.max_levels < 1) throw InputError("--max-levels: must be at least 1");
-  if (o.global_evaluations < 0 || o.global_evaluations > analysis::kMaxFitEvaluations ||
-      o.refit_evaluations < 10 || o.initial_evaluations < 10) {
-    throw InputError(
-        "--global-evaluations: 0 to 10^7; --initial-evaluations, --refit-evaluations: >= 10");
-  }
-  if (o.threads < 0 || o.threads > analysis::kMaxThreads) {
-    throw InputError("--threads: " + std::to_string(o.threads) + " must be 0 (all cores) to " +
-                     std::to_string(analysis::kMaxThreads));
   }
   if (!(o.max_seconds >= 0.0)) throw InputError("--max-seconds: must be >= 0");
 }
+
+// The core's option fields as this command's options, for its refusals.
+const std::vector<std::pair<std::string, std::string>> kOptionOfField = {
+    {"settings.f0_range_n", "--f0"},
+    {"settings.f0_step_n", "--f0-step"},
+    {"settings.freq_hz", "--freq"},
+    {"settings.freq_span_hz", "--freq-span"},
+    {"settings.freq_step_hz", "--freq-step"},
+    {"settings.wells", "--wells"},
+    {"settings.dwell_s", "--hold"},
+    {"settings.settling_s", "--lead-in"},
+    {"settings.well_change_s", "--well-change"},
+    {"pilot_levels_n", "--pilot"},
+    {"stop.leader_weight", "--leader-weight"},
+    {"stop.min_discrimination", "--min-discrimination"},
+    {"stop.budget_s", "--budget"},
+    {"max_levels", "--max-levels"},
+    {"hypotheses.global_evaluations", "--global-evaluations"},
+    {"hypotheses.initial_evaluations", "--initial-evaluations"},
+    {"hypotheses.refit_evaluations", "--refit-evaluations"},
+    {"hypotheses.threads", "--threads"},
+    {"hypotheses.effects", "--effects"}};
 
 // The admissible f0 range "A:B".
 std::pair<double, double> parse_range(const std::string& text, const std::string& option) {
@@ -142,7 +139,7 @@ analysis::AdaptiveTestOptions adaptive_test_options(const AdaptiveOptions& o) {
   options.diagnosis.max_seconds = o.max_seconds;
   options.diagnosis.seed = o.seed;
   options.diagnosis.threads = o.threads;
-  options.validate();  // of what validate() above does not check, the effects' names
+  analysis::validate_as_named(options, kOptionOfField);
   return options;
 }
 

@@ -4,6 +4,7 @@
 #include <mutex>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "analysis/common/input_error.h"
@@ -48,6 +49,26 @@ Returns the CLI's report.json as a dict (verdict, steps, shaker_time_s, adaptive
 leader, stop_reason, weights, agrees_with_diagnosis ...}) with status, decisions (every line of
 decisions.jsonl) and recordings (the paths written); and final_model_object when there is one.
 Ctrl-C stops it (KeyboardInterrupt); the GIL is released.)doc";
+
+// The core's option fields as adaptive_test's keywords, for its refusals.
+const std::vector<std::pair<std::string, std::string>> kKeywordOfField = {
+    {"settings.f0_range_n", "f0_range_n"},
+    {"settings.f0_step_n", "f0_step_n"},
+    {"settings.freq_hz", "freq_hz"},
+    {"settings.freq_span_hz", "freq_span_hz"},
+    {"settings.freq_step_hz", "freq_step_hz"},
+    {"settings.wells", "wells"},
+    {"settings.dwell_s", "hold_s"},
+    {"settings.settling_s", "lead_in_s"},
+    {"settings.well_change_s", "well_change_s"},
+    {"stop.leader_weight", "leader_weight"},
+    {"stop.min_discrimination", "min_discrimination"},
+    {"stop.budget_s", "budget_s"},
+    {"hypotheses.global_evaluations", "global_evaluations"},
+    {"hypotheses.initial_evaluations", "initial_evaluations"},
+    {"hypotheses.refit_evaluations", "refit_evaluations"},
+    {"hypotheses.threads", "threads"},
+    {"hypotheses.effects", "effects"}};
 
 }  // namespace
 
@@ -100,7 +121,7 @@ void bind_design(py::module_& m) {
         options.diagnosis.max_seconds = max_seconds;
         options.diagnosis.seed = seed;
         options.diagnosis.threads = threads;
-        options.validate();
+        analysis::validate_as_named(options, kKeywordOfField);
         const analysis::Model truth = model_argument(rig_model);
         const std::string folder = path_string(out);
         std::error_code error;

@@ -33,11 +33,13 @@ if [ "$mode" = errors ]; then
   expect_error "an unknown effect" 'unknown effect "drag"' \
     "$cli" adaptive-test --rig-model "$work/quad.json" --effects quadratic-damping,drag \
     --out "$work/e5"
-  expect_error "a negative budget" "--budget" \
+  expect_error "a negative budget" "oscilab-cli: --budget: must be a positive number of s" \
     "$cli" adaptive-test --rig-model "$work/quad.json" --budget -5 --out "$work/e6"
+  expect_error "a frequency step of 0" "oscilab-cli: --freq-step: must be a positive number of Hz" \
+    "$cli" adaptive-test --rig-model "$work/quad.json" --freq-step 0 --out "$work/e8"
   expect_error "a missing rig model file" "nothing.json" \
     "$cli" adaptive-test --rig-model "$work/nothing.json" --out "$work/e7"
-  [ ! -e "$work/e3" ] && [ ! -e "$work/e5" ] && pass "nothing written for refused options" ||
+  [ ! -e "$work/e3" ] && [ ! -e "$work/e5" ] && [ ! -e "$work/e8" ] && pass "nothing written for refused options" ||
     fail "a refused run left a folder"
 else
   out=$work/adaptive

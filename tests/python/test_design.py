@@ -90,9 +90,11 @@ def test_adaptive_test_cancels_from_its_progress_callback(rig_model, tmp_path):
     (dict(wells="left"), 'wells: "left"'),
     (dict(effects=["quadratic-damping", "drag"]), 'unknown effect "drag"'),
     (dict(f0_range_n=[1.0]), "f0_range_n"),
-    (dict(leader_weight=2.0), "stop.leader_weight"),
+    (dict(leader_weight=2.0), "^leader_weight: must be between 0.5 and 1"),
     (dict(pilot_levels_n=[]), "pilot_levels_n"),
-    (dict(budget_s=-5.0), "stop.budget_s"),
+    (dict(budget_s=-5.0), "^budget_s: must be a positive"),
+    (dict(freq_step_hz=0.0), "^freq_step_hz: must be a positive"),
+    (dict(lead_in_s=-1.0), "lead_in_s"),
 ])
 def test_adaptive_test_refuses_bad_arguments_before_any_run(rig_model, tmp_path, arguments, words):
     with pytest.raises(oscilab.InputError, match=words.replace("(", r"\(")):

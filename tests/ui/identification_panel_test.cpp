@@ -5,6 +5,7 @@
 // and draws its residual and missing-energy figures, a bad recording is reported, and File ▸ Open
 // feeds the panel. How fast a cancel comes back and how smooth the event loop stays during a fit
 // are measured by tests/bench/fit_panel_benchmark.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -82,6 +83,17 @@ class IdentificationPanelTest : public QObject {
     QCOMPARE(panel.edc_plot()->graphCount(), 4);
     QCOMPARE(panel.edc_plot()->graph(0)->data()->size(), 26);
     QCOMPARE(panel.edc_plot()->graph(1)->data()->size(), 26);
+    // The axis starts at 0 and leaves room above every point and its ±3σ bar (none on the frame).
+    const QCPRange edc_axis = panel.edc_plot()->yAxis->range();
+    QCOMPARE(edc_axis.lower, 0.0);
+    double top_mj = 0.0;
+    for (int g = 0; g < panel.edc_plot()->plottableCount(); ++g) {
+      bool found = false;
+      const QCPRange values = panel.edc_plot()->plottable(g)->getValueRange(found);
+      if (found) top_mj = std::max(top_mj, values.upper);
+    }
+    QVERIFY(top_mj > 0.0);
+    QVERIFY2(edc_axis.upper >= 1.05 * top_mj, qPrintable(QString::number(edc_axis.upper)));
     // The convergence curve: the GA's best after generation 0 and after generation 1.
     QCOMPARE(panel.convergence_plot()->graph(0)->data()->size(), 2);
     QVERIFY(panel.convergence_plot()->graph(0)->data()->at(1)->value <=

@@ -330,6 +330,17 @@ class MainWindowInputTest : public QObject {
     }
     QCOMPARE(qobject_cast<QCPTextElement*>(record->plotLayout()->elementAt(0))->textColor(),
              channel_title);  // the channel's own colour
+    // The cursor lines (no marks yet) are drawn in the text colour, not a grey lost on the dark.
+    for (QCustomPlot* plot : {cycles, record}) {
+      int lines = 0;
+      for (int i = 0; i < plot->itemCount(); ++i) {
+        if (auto* line = qobject_cast<QCPItemStraightLine*>(plot->item(i))) {
+          QCOMPARE(line->pen().color(), dark.color(QPalette::Text));
+          ++lines;
+        }
+      }
+      QVERIFY(lines > 0);
+    }
     // A plot rebuilt under the dark palette (another recording shown: new axis rects) is dark.
     QVERIFY(window->open_recording(kSamples + "stepped_negative.flac"));
     record->replot();

@@ -110,7 +110,36 @@ TEST(AdaptiveTest, RefusesBadOptionsNamingTheFieldBeforeAnyRun) {
   o = small_options();
   o.max_levels = 0;
   refused(o, "max_levels");
+  o = small_options();
+  o.settings.freq_step_hz = 0.0;
+  refused(o, "settings.freq_step_hz: must be a positive number of Hz");
+  o = small_options();
+  o.settings.f0_min_n = 3.0;  // above f0_max_n
+  refused(o, "settings.f0_range_n: need 0 < f0_min <= f0_max");
   EXPECT_TRUE(runner.calls.empty());
+}
+
+TEST(AdaptiveTest, ARefusalNamesTheFieldAsTheCallerCallsIt) {
+  const std::vector<std::pair<std::string, std::string>> names = {{"stop.budget_s", "--budget"},
+                                                                  {"settings.freq_hz", "--freq"}};
+  const auto message = [&](const AdaptiveTestOptions& o) {
+    try {
+      validate_as_named(o, names);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  AdaptiveTestOptions o = small_options();
+  EXPECT_EQ(message(o), "accepted");
+  o.stop.budget_s = -1.0;
+  EXPECT_EQ(message(o), "--budget: must be a positive number of s");
+  o = small_options();
+  o.settings.freq_hz = 0.0;
+  EXPECT_EQ(message(o), "--freq: must be a positive number of Hz");
+  o = small_options();
+  o.max_levels = 0;  // a field without a name keeps its own
+  EXPECT_EQ(message(o), "max_levels: must be at least 1");
 }
 
 TEST(AdaptiveTest, BooksTheShakerTimeOfEveryRunAndWellChangeAndReportsEachDecision) {
