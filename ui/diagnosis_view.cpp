@@ -187,8 +187,9 @@ void DiagnosisView::show_steps(const analysis::DiagnosisResult& r, double bic_th
       step_table_->setItem(
           row, 4, read_only_cell(t.solved ? number_text(t.delta_bic) : QStringLiteral("—")));
       QString supported;
-      for (int column = 5; column < 9; ++column)
+      for (int column = 5; column < 9; ++column) {
         step_table_->setItem(row, column, read_only_cell("—"));
+      }
       for (const auto& e : t.evidence) {
         const int column = e.name == "edc"          ? 5
                            : e.name == "amplitude"  ? 6
