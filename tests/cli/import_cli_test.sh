@@ -73,18 +73,7 @@ else
   fail "fit of level files: $(tail -3 "$work/fit.log")"
 fi
 
-# Errors: one line, exit 2, nothing written.
-expect_error() {  # name, expected text, command...
-  local name=$1 text=$2
-  shift 2
-  "$@" > "$work/err.out" 2> "$work/err.log"
-  local rc=$?
-  if [ $rc -eq 2 ] && [ "$(wc -l < "$work/err.log")" -eq 1 ] && grep -qF -- "$text" "$work/err.log"; then
-    pass "$name"
-  else
-    fail "$name: exit $rc, stderr: $(cat "$work/err.log")"
-  fi
-}
+# Errors: one line, exit 2, nothing written (expect_error of cli_checks.sh).
 expect_error "the draft is not written over a file" "raw.json: exists; the draft is not written over a file" \
   "$cli" info "$work/elsewhere/raw.flac" --draft-sidecar "$work/elsewhere/raw.json"
 printf 'just some words\n' > "$work/notes.xyz"
