@@ -111,6 +111,10 @@ struct DiagnosisResult {
   /// space-filling points (1 when it was); whether a restart found a lower joint χ².
   int baseline_restarts = 0;
   bool baseline_restart_improved = false;
+  /// How often a step's winning candidate had only found a deeper basin of the current model's
+  /// own parameters: the current model refitted from the winner's θ without its term took the
+  /// term's evidence below the threshold, so the step was run again from there.
+  int rebases = 0;
   double seconds = 0.0;
   long evaluations = 0;
 };

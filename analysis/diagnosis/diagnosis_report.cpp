@@ -297,6 +297,7 @@ nlohmann::json diagnosis_report_json(const DiagnosisResult& result,
                     {"parameters", parameters_json(result.final_form->named(result.final_theta))},
                     {"maps", maps_json(result.final_maps)}};
   }
+  out["rebases"] = result.rebases;
   out["excluded_levels"] = result.excluded_levels;
   out["seconds"] = result.seconds;
   out["evaluations"] = result.evaluations;

@@ -90,6 +90,12 @@ void print_result(const analysis::DiagnosisResult& r, const analysis::EdcDataset
     std::printf("  fingerprint %-11s chi2 %.4g over %d levels (chi2/level %.3g)\n", f.name.c_str(),
                 f.chi2, f.levels, f.chi2 / f.levels);
   }
+  if (r.rebases > 0) {
+    std::printf(
+        "  a candidate's refit found a deeper basin of the model's own parameters %d time(s): the "
+        "model was refitted from it and the step's candidates measured again\n",
+        r.rebases);
+  }
   for (const auto& step : r.steps) {
     if (step.effect == "none") {
       std::printf("step: nothing accepted (joint dBIC must be < -%.0f with the EDC improved)\n",

@@ -19,6 +19,9 @@
 //   diagnosis_study branches SEED FREQ NOISE [LEVELS]
 //                                         a control's measured levels beside the truth's level
 //                                         response (which branch each level was measured on)
+//   diagnosis_study defect SEED FREQ NOISE [LEVELS [H]]
+//                                         a control's truncation defect at the fit's H (7) against
+//                                         its σ budget's reference, at the start θ and the truth's
 //   diagnosis_study header                the result rows' CSV header
 //
 // LEVELS: stepped-sine levels per well, 0.2 → 2.7 N evenly (26 by default). Every diagnosis is
@@ -274,6 +277,46 @@ int branches_study(int seed, double freq, double noise, int levels) {
   return 0;
 }
 
+// A control's σ budget at the diagnosis's start (the identified stiffness, the paper's friction)
+// and at the truth's θ: how far the fit's H misses its harmonic-balance reference, per level in
+// units of the measurement's σ (cycles and bias). One row per θ.
+int defect_study(int seed, double freq, double noise, int levels, int harmonics) {
+  testing::CampaignSpec spec;
+  spec.freq_hz = freq;
+  spec.noise_scale = noise;
+  const Model truth = moved_friction(seed);
+  const CampaignAnalysis campaign =
+      testing::record_campaign(truth, static_cast<std::uint64_t>(seed), level_grid(levels), spec);
+  FitSetup setup;
+  setup.stiffness = StiffnessSource::Identified;
+  std::vector<std::string> notes;
+  const ModelForm form = fit_form(campaign, setup, notes);
+  const EdcDataset data = edc_dataset(campaign);
+  EdcCostSettings cost;
+  cost.hbm.harmonics = harmonics;
+  std::printf(
+      "seed,freq_hz,noise_scale,levels,theta,harmonics,reference_harmonics,max_defect_sigma,"
+      "levels_over_3,levels_over_10,levels_over_30,n\n");
+  for (const auto& [label, theta] :
+       {std::pair<const char*, Eigen::VectorXd>{"start", form.initial()},
+        std::pair<const char*, Eigen::VectorXd>{"truth", form.theta_of(truth)}}) {
+    const SigmaBudget b = EdcObjective::calibrate_budget(form, data, cost, theta);
+    double largest = 0.0;
+    int over3 = 0, over10 = 0, over30 = 0;
+    for (std::size_t k = 0; k < b.correction_j.size(); ++k) {
+      const double r = std::abs(b.correction_j[k]) / std::hypot(b.cycles_j[k], b.bias_j[k]);
+      largest = std::max(largest, r);
+      over3 += r > 3.0;
+      over10 += r > 10.0;
+      over30 += r > 30.0;
+    }
+    std::printf("%d,%.2f,%.2f,%d,%s,%d,%d,%.3g,%d,%d,%d,%zu\n", seed, freq, noise, levels, label,
+                b.harmonics, b.reference_harmonics, largest, over3, over10, over30,
+                b.correction_j.size());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -305,9 +348,17 @@ int main(int argc, char** argv) {
     if (levels < 5) return 2;
     return branches_study(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]), levels);
   }
-  std::fprintf(stderr,
-               "usage: diagnosis_study header | bias SEEDS | power EFFECT SCALE FREQ NOISE SEED "
-               "[LEVELS] | moved EFFECT SCALE FREQ NOISE SEED [LEVELS] | control SEED FREQ NOISE "
-               "[LEVELS] | branches SEED FREQ NOISE [LEVELS]\n");
+  if (mode == "defect" && (argc == 5 || argc == 6 || argc == 7)) {
+    const int levels = argc >= 6 ? std::atoi(argv[5]) : 26;
+    const int harmonics = argc == 7 ? std::atoi(argv[6]) : 7;
+    if (levels < 5 || harmonics < 1 || harmonics > 63) return 2;
+    return defect_study(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]), levels,
+                        harmonics);
+  }
+  std::fprintf(
+      stderr,
+      "usage: diagnosis_study header | bias SEEDS | power EFFECT SCALE FREQ NOISE SEED "
+      "[LEVELS] | moved EFFECT SCALE FREQ NOISE SEED [LEVELS] | control SEED FREQ NOISE "
+      "[LEVELS] | branches SEED FREQ NOISE [LEVELS] | defect SEED FREQ NOISE [LEVELS [H]]\n");
   return 2;
 }
