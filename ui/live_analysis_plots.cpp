@@ -68,13 +68,6 @@ void finite_range(const std::vector<double>& v, double& lo, double& hi) {
   }
 }
 
-// Axis range over the finite values of x, with a margin; unchanged without any.
-void fit_axis(QCPAxis* axis, double lo, double hi, double margin = 0.06) {
-  if (!(lo <= hi)) return;
-  const double pad = hi > lo ? margin * (hi - lo) : std::max(std::abs(hi), 1e-12) * 0.1;
-  axis->setRange(lo - pad, hi + pad);
-}
-
 }  // namespace
 
 LiveAnalysisPlots::LiveAnalysisPlots(QWidget* parent) : QWidget(parent) {
@@ -269,8 +262,8 @@ void LiveAnalysisPlots::refresh_slices(const daq::Acquisition& acquisition, doub
         y_lo = std::min(y_lo, d.value), y_hi = std::max(y_hi, d.value);
       }
     }
-    fit_axis(plot->xAxis, x_lo, x_hi);
-    fit_axis(plot->yAxis, y_lo, y_hi);
+    fit_axis(plot->xAxis, x_lo, x_hi, WhenEmpty::Keep);
+    fit_axis(plot->yAxis, y_lo, y_hi, WhenEmpty::Keep);
     set_plot_hint(plot, points->empty() ? tr("No samples in the band yet.") : QString());
     plot->replot(QCustomPlot::rpQueuedReplot);
   }
@@ -305,9 +298,9 @@ void LiveAnalysisPlots::refresh_cycle(const daq::Acquisition& acquisition, doubl
           tr("t = %1 \u2013 %2 s").arg(cycle.start_s, 0, 'f', 2).arg(cycle.end_s, 0, 'f', 2));
       double lo = 0, hi = 0;
       finite_range(cycle.z_m, lo, hi);
-      fit_axis(loop_plot_->xAxis, 1e3 * lo, 1e3 * hi);
+      fit_axis(loop_plot_->xAxis, 1e3 * lo, 1e3 * hi, WhenEmpty::Keep);
       finite_range(cycle.f_n, lo, hi);
-      fit_axis(loop_plot_->yAxis, lo, hi);
+      fit_axis(loop_plot_->yAxis, lo, hi, WhenEmpty::Keep);
       set_plot_hint(loop_plot_, QString());
       loop_plot_->replot(QCustomPlot::rpQueuedReplot);
     }

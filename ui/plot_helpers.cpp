@@ -1,6 +1,7 @@
 #include "ui/plot_helpers.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <QEvent>
 #include <QFontMetrics>
@@ -132,6 +133,15 @@ void frame_axes(QCustomPlot* plot, const QString& x_label, const QString& y_labe
     axis->setTicks(false);
     axis->setTickLabels(false);
   }
+}
+
+void fit_axis(QCPAxis* axis, double lo, double hi, WhenEmpty when_empty, double margin) {
+  if (!(lo <= hi)) {
+    if (when_empty == WhenEmpty::Unit) axis->setRange(-1.0, 1.0);
+    return;
+  }
+  const double pad = hi > lo ? margin * (hi - lo) : (hi != 0.0 ? 0.1 * std::abs(hi) : 1.0);
+  axis->setRange(lo - pad, hi + pad);
 }
 
 }  // namespace oscilab::ui

@@ -23,4 +23,15 @@ QCPTextElement* add_plot_title(QCustomPlot* plot, const QString& title);
 /// run into each other on a small plot.
 void frame_axes(QCustomPlot* plot, const QString& x_label, const QString& y_label);
 
+/// Space around fitted data ranges, as a fraction of their span.
+constexpr double kRangeMargin = 0.05;
+
+/// What an axis shows when there are no values to fit it to (lo > hi).
+enum class WhenEmpty { Keep, Unit };  // its range unchanged, or [−1, 1]
+
+/// An axis over [lo, hi] with `margin` × the span on either side; a single value gets ±10 % of
+/// itself (±1 at 0).
+void fit_axis(QCPAxis* axis, double lo, double hi, WhenEmpty when_empty = WhenEmpty::Unit,
+              double margin = kRangeMargin);
+
 }  // namespace oscilab::ui

@@ -1,5 +1,7 @@
 #include "ui/plot_theme.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include <QActionGroup>
@@ -97,6 +99,88 @@ void recolour(QCPAbstractItem& item, const Recolouring& r) {
   }
 }
 
+// WCAG 2.x relative luminance of an sRGB colour and the contrast ratio of two colours (1 to 21).
+double relative_luminance(const QColor& c) {
+  const auto linear = [](double v) {
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  };
+  return 0.2126 * linear(c.redF()) + 0.7152 * linear(c.greenF()) + 0.0722 * linear(c.blueF());
+}
+double contrast_ratio(const QColor& a, const QColor& b) {
+  const double la = relative_luminance(a), lb = relative_luminance(b);
+  return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
+}
+
+// WCAG's least contrast for graphics (1.4.11): what a data line needs against its background.
+constexpr double kLeastDataContrast = 3.0;
+
+// A data colour that shows on `base`: as it is when its contrast with the base is at least 3:1;
+// otherwise its HSL lightness mirrored (a dark blue on a dark background becomes a light blue of
+// the same hue, and darker shades of one colour become lighter ones, still apart), then moved
+// further from the base until it reaches 3:1. Alpha is kept.
+QColor legible_on(const QColor& colour, const QColor& base) {
+  if (contrast_ratio(colour, base) >= kLeastDataContrast) return colour;
+  const QColor hsl = colour.toHsl();
+  const bool dark_base = relative_luminance(base) < 0.18;
+  double lightness = 1.0 - hsl.lightnessF();
+  QColor out = QColor::fromHslF(hsl.hslHueF(), hsl.hslSaturationF(), lightness, hsl.alphaF());
+  for (int i = 0; i < 20 && contrast_ratio(out, base) < kLeastDataContrast; ++i) {
+    lightness = std::clamp(lightness + (dark_base ? 0.05 : -0.05), 0.0, 1.0);
+    out = QColor::fromHslF(hsl.hslHueF(), hsl.hslSaturationF(), lightness, hsl.alphaF());
+  }
+  return out.toRgb();
+}
+
+// The colour a plottable shows in its colour `slot` on `base`: its own colour (what the plot
+// set, remembered on the plottable so that a theme switched back restores it) made legible.
+QColor shown_colour(QObject& owner, const char* slot, const QColor& current, const QColor& base) {
+  const QByteArray own_key = QByteArray("oscilab_own_") + slot;
+  const QByteArray shown_key = QByteArray("oscilab_shown_") + slot;
+  const QVariant shown = owner.property(shown_key.constData());
+  // A colour the plot set since (not the one shown last) is its own new colour.
+  const QColor own = shown.isValid() && shown.value<QColor>() == current
+                         ? owner.property(own_key.constData()).value<QColor>()
+                         : current;
+  const QColor out = legible_on(own, base);
+  owner.setProperty(own_key.constData(), own);
+  owner.setProperty(shown_key.constData(), out);
+  return out;
+}
+
+// A plottable's lines, solid fills and markers legible on `base` (faint fills, alpha < 50 %,
+// are backgrounds of their own and stay).
+void recolour(QCPAbstractPlottable& plottable, const QColor& base) {
+  QPen pen = plottable.pen();
+  if (pen.style() != Qt::NoPen) {
+    pen.setColor(shown_colour(plottable, "pen", pen.color(), base));
+    plottable.setPen(pen);
+  }
+  QBrush brush = plottable.brush();
+  if (brush.style() == Qt::SolidPattern && brush.color().alpha() >= 128) {
+    brush.setColor(shown_colour(plottable, "brush", brush.color(), base));
+    plottable.setBrush(brush);
+  }
+  const auto markers = [&](QCPScatterStyle style) {
+    if (style.isNone()) return style;
+    QPen marker_pen = style.pen();
+    if (marker_pen.style() != Qt::NoPen) {
+      marker_pen.setColor(shown_colour(plottable, "marker_pen", marker_pen.color(), base));
+      style.setPen(marker_pen);
+    }
+    QBrush marker_brush = style.brush();
+    if (marker_brush.style() == Qt::SolidPattern && marker_brush.color().alpha() >= 128) {
+      marker_brush.setColor(shown_colour(plottable, "marker_brush", marker_brush.color(), base));
+      style.setBrush(marker_brush);
+    }
+    return style;
+  };
+  if (auto* graph = qobject_cast<QCPGraph*>(&plottable)) {
+    graph->setScatterStyle(markers(graph->scatterStyle()));
+  } else if (auto* curve = qobject_cast<QCPCurve*>(&plottable)) {
+    curve->setScatterStyle(markers(curve->scatterStyle()));
+  }
+}
+
 // Draws `plot` in `palette`'s colours (no replot).
 void recolour(QCustomPlot& plot, const QPalette& palette) {
   Recolouring r;
@@ -117,6 +201,7 @@ void recolour(QCustomPlot& plot, const QPalette& palette) {
       recolour(*item, r);
     }
   }
+  for (int i = 0; i < plot.plottableCount(); ++i) recolour(*plot.plottable(i), r.base);
   plot.setProperty(kBaseProperty, r.base);
   plot.setProperty(kTextProperty, r.text);
 }

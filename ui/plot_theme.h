@@ -14,7 +14,10 @@ namespace oscilab::ui {
 /// colour the plot chose itself (a channel's title in its curve's colour) stays: only what is in
 /// the previous palette's colours or QCustomPlot's defaults (black, white, the grid's grey) is
 /// replaced, again before each replot (so that axes and legends the plot builds later follow
-/// too; a plot that draws something in black on purpose gets it in the text colour). Replots.
+/// too; a plot that draws something in black on purpose gets it in the text colour). Data lines,
+/// solid fills and markers with less than WCAG's 3:1 contrast against the background (a dark
+/// blue loop on a dark theme) are drawn in their colour's mirrored lightness instead, and get
+/// their own colour back on a background they show on. Replots.
 void apply_palette(QCustomPlot& plot, const QPalette& palette);
 
 /// Draws `item` (a cursor line, a tracer) in the palette's colours from now on: its pen in the

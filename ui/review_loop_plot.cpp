@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include <QFontMetrics>
+
 #include <qcustomplot.h>
 
 #include "analysis/pipeline/result_units.h"
@@ -18,6 +20,9 @@ namespace {
 
 // At most this many loops are drawn at once (Fig. 9 overlays two; more become unreadable).
 constexpr std::size_t kMaxLoops = 8;
+// A legend entry's room besides its icon and text: its margins (QCustomPlot's 8 px a side) and
+// the grid's spacing.
+constexpr int kLegendEntryPaddingPx = 10;
 
 }  // namespace
 
@@ -119,8 +124,6 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
     return;
   }
   set_plot_hint(plot_, {});
-  // One entry a row for a few loops, two columns for more (before the entries are added).
-  plot_->legend->setWrap(loops.size() <= 3 ? 1 : 2);
   double z_max = 0.0, f_max = 0.0;
   for (const LevelLoop& loop : loops) {
     z_max = std::max(z_max, largest_abs({&loop.z_m}));
@@ -152,14 +155,37 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
                                       shown[i].record != shown[j].record);
     }
   }
-  int same_well[3] = {0, 0, 0};  // loops drawn so far per well: later ones darker
+  // The legend's entries (the level table lists their cycles); one entry a row for a few loops,
+  // two columns for more when two of the widest fit side by side (set before they are added).
+  std::vector<QString> names;
+  int widest_px = 0;
+  const QFontMetrics metrics(plot_->legend->font());
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    const analysis::LevelResult& level = *find_level(review->campaign, shown[i]);
+    const analysis::RecordAnalysis& record = review->campaign.records[std::size_t(shown[i].record)];
+    names.push_back(tr("%1f\u2080 = %2 %4, EDC %3 %5")
+                        .arg(name_records ? qtext(record.name) + QStringLiteral(", ") : QString())
+                        .arg(level.f0_n, 0, 'f', 2)
+                        .arg(1e3 * level.edc_mean_j, 0, 'f', 3)
+                        .arg(qtext(analysis::result_unit("N", record.per_unit_mass)))
+                        .arg(qtext(analysis::result_unit("mJ", record.per_unit_mass))));
+    widest_px = std::max(widest_px, metrics.horizontalAdvance(names.back()));
+  }
+  const int entry_px = widest_px + plot_->legend->iconSize().width() +
+                       plot_->legend->iconTextPadding() + 2 * kLegendEntryPaddingPx;
+  plot_->legend->setWrap(loops.size() > 3 && 2 * entry_px <= plot_->width() ? 2 : 1);
+  // Loops drawn so far per well: later ones in shades further from the background (darker on a
+  // light one, lighter on a dark one).
+  int same_well[3] = {0, 0, 0};
+  const bool dark_background = plot_->palette().color(QPalette::Base).lightness() < 128;
   double z_lo[3] = {INFINITY, INFINITY, INFINITY}, z_hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   double f_lo = INFINITY, f_hi = -INFINITY;
   for (std::size_t i = 0; i < loops.size(); ++i) {
     const LevelLoop& loop = loops[i];
-    const analysis::LevelResult& level = *find_level(review->campaign, shown[i]);
     const int g = group_of(loop.well);
-    const QColor colour = well_colour(loop.well).darker(100 + 35 * same_well[g]++).toRgb();
+    const int shade = 100 + 35 * same_well[g]++;
+    const QColor own = well_colour(loop.well);
+    const QColor colour = (dark_background ? own.lighter(shade) : own.darker(shade)).toRgb();
     QCPAxisRect* rect = rect_of[g];
     auto* curve = new QCPCurve(rect->axis(QCPAxis::atBottom), rect->axis(QCPAxis::atLeft));
     QVector<QCPCurveData> data(qsizetype(loop.z_m.size()));
@@ -173,22 +199,15 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
     }
     curve->data()->set(data, true);
     curve->setPen(QPen(colour, 1.2));
-    const analysis::RecordAnalysis& record = review->campaign.records[std::size_t(shown[i].record)];
-    curve->setName(tr("%1f\u2080 = %2 %5: EDC %3 %6 (%4 steady cycles)")
-                       .arg(name_records ? qtext(record.name) + QStringLiteral(", ") : QString())
-                       .arg(level.f0_n, 0, 'f', 2)
-                       .arg(1e3 * level.edc_mean_j, 0, 'f', 3)
-                       .arg(loop.cycles)
-                       .arg(qtext(analysis::result_unit("N", record.per_unit_mass)))
-                       .arg(qtext(analysis::result_unit("mJ", record.per_unit_mass))));
+    curve->setName(names[i]);
   }
   // Each rect over its loops' z; one force range for all, so that the rects compare. Room at
   // the top for the well's label.
   for (int g = 0; g < 3; ++g) {
-    if (rect_of[g]) fit_axis_with_margin(rect_of[g]->axis(QCPAxis::atBottom), z_lo[g], z_hi[g]);
+    if (rect_of[g]) fit_axis(rect_of[g]->axis(QCPAxis::atBottom), z_lo[g], z_hi[g]);
   }
   for (QCPAxisRect* rect : rects) {
-    fit_axis_with_margin(rect->axis(QCPAxis::atLeft), f_lo, f_hi + 0.1 * (f_hi - f_lo));
+    fit_axis(rect->axis(QCPAxis::atLeft), f_lo, f_hi + 0.1 * (f_hi - f_lo));
   }
   plot_->replot(QCustomPlot::rpQueuedReplot);
 }

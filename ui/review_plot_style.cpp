@@ -25,13 +25,4 @@ double largest_abs(std::initializer_list<const std::vector<double>*> vectors) {
   return m;
 }
 
-void fit_axis_with_margin(QCPAxis* axis, double lo, double hi) {
-  if (!(lo <= hi)) {
-    axis->setRange(-1.0, 1.0);
-    return;
-  }
-  const double pad = hi > lo ? kRangeMargin * (hi - lo) : std::max(1.0, std::abs(hi)) * 0.1;
-  axis->setRange(lo - pad, hi + pad);
-}
-
 }  // namespace oscilab::ui

@@ -126,8 +126,8 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
   fit->setData(fit_z, fit_r, true);
   stiffness_plot_->rescaleAxes();
   const QCPRange r_range = stiffness_plot_->yAxis->range();
-  fit_axis_with_margin(stiffness_plot_->xAxis, stiffness_plot_->xAxis->range().lower,
-                       stiffness_plot_->xAxis->range().upper);
+  fit_axis(stiffness_plot_->xAxis, stiffness_plot_->xAxis->range().lower,
+           stiffness_plot_->xAxis->range().upper);
   // Room above the data for the legend (three entries).
   stiffness_plot_->yAxis->setRange(r_range.lower - kRangeMargin * r_range.size(),
                                    r_range.upper + 0.35 * r_range.size());
@@ -177,8 +177,8 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
   }
   damping_plot_->rescaleAxes();
   const QCPRange d_range = damping_plot_->yAxis->range();
-  fit_axis_with_margin(damping_plot_->xAxis, damping_plot_->xAxis->range().lower,
-                       damping_plot_->xAxis->range().upper);
+  fit_axis(damping_plot_->xAxis, damping_plot_->xAxis->range().lower,
+           damping_plot_->xAxis->range().upper);
   damping_plot_->yAxis->setRange(
       d_range.lower - kRangeMargin * d_range.size(),
       d_range.upper + 0.12 * double(2 * campaign->damping.size() + 1) * d_range.size());

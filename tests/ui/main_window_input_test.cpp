@@ -5,8 +5,11 @@
 // under the mouse in and out, undoes the last zoom and resets it; Alt+Down and Alt+Up step
 // through the level table; Help ▸ Keyboard shortcuts lists the keys; the review's plots read out
 // the value under the mouse; every text in the window spells its symbols and units one way; the
-// plots follow a dark palette.
+// plots follow a dark palette, their data lines kept legible on it.
+#include <cmath>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <QAbstractButton>
 #include <QApplication>
@@ -317,6 +320,17 @@ class MainWindowInputTest : public QObject {
     QCOMPARE(background(record), QColor(Qt::white));
     const QColor channel_title =
         qobject_cast<QCPTextElement*>(record->plotLayout()->elementAt(0))->textColor();
+    // Every data line's own colour, to check on the dark palette and after it: the loops of the
+    // first look among them, a well's later loops in darker shades of its colour.
+    QCustomPlot* loops = window->review_view()->loop_plot();
+    QTRY_VERIFY(loops->plottableCount() >= 2);
+    std::vector<std::pair<QCPAbstractPlottable*, QColor>> own_pens;
+    for (QCustomPlot* plot : {cycles, record, loops}) {
+      for (int i = 0; i < plot->plottableCount(); ++i) {
+        own_pens.emplace_back(plot->plottable(i), plot->plottable(i)->pen().color());
+      }
+    }
+    QVERIFY(!own_pens.empty());
     QMenu* themes = window->findChild<QMenu*>("theme_menu");
     QVERIFY(themes != nullptr && themes->actions().size() == 3);
     themes->actions().at(2)->trigger();  // Dark
@@ -330,6 +344,34 @@ class MainWindowInputTest : public QObject {
     }
     QCOMPARE(qobject_cast<QCPTextElement*>(record->plotLayout()->elementAt(0))->textColor(),
              channel_title);  // the channel's own colour
+    // Every data line shows on the dark background: WCAG 2's contrast ratio (its relative
+    // luminance of sRGB, computed here on its own) at least 3:1, its least for graphics. The
+    // wells' Okabe–Ito blue darkened for a second loop is below it, so some line had to change.
+    const auto luminance = [](const QColor& c) {
+      const auto linear = [](double v) {
+        return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+      };
+      return 0.2126 * linear(c.redF()) + 0.7152 * linear(c.greenF()) + 0.0722 * linear(c.blueF());
+    };
+    const double base_luminance = luminance(dark.color(QPalette::Base));
+    int changed = 0;
+    for (const auto& [plottable, own] : own_pens) {
+      plottable->parentPlot()->replot();
+      const QColor shown = plottable->pen().color();
+      QVERIFY2((luminance(shown) + 0.05) / (base_luminance + 0.05) >= 3.0,
+               qPrintable(shown.name() + " on " + dark.color(QPalette::Base).name()));
+      changed += shown != own;
+    }
+    QVERIFY(changed > 0);
+    // Back on the light palette each line has its own colour again.
+    themes->actions().at(0)->trigger();
+    QApplication::processEvents();
+    for (const auto& [plottable, own] : own_pens) {
+      plottable->parentPlot()->replot();
+      QCOMPARE(plottable->pen().color(), own);
+    }
+    themes->actions().at(2)->trigger();
+    QApplication::processEvents();
     // The cursor lines (no marks yet) are drawn in the text colour, not a grey lost on the dark.
     for (QCustomPlot* plot : {cycles, record}) {
       int lines = 0;
