@@ -147,31 +147,27 @@ QColor shown_colour(QObject& owner, const char* slot, const QColor& current, con
   return out;
 }
 
-// A plottable's lines, solid fills and markers legible on `base` (faint fills, alpha < 50 %,
-// are backgrounds of their own and stay).
-void recolour(QCPAbstractPlottable& plottable, const QColor& base) {
-  QPen pen = plottable.pen();
-  if (pen.style() != Qt::NoPen) {
-    pen.setColor(shown_colour(plottable, "pen", pen.color(), base));
-    plottable.setPen(pen);
-  }
-  QBrush brush = plottable.brush();
+// A pen, and a solid brush of at least 50 % alpha, legible on `base` (a fainter fill is a
+// background of its own and stays), their own colours kept under `slot` on `owner`.
+QPen legible_pen(QObject& owner, const char* slot, QPen pen, const QColor& base) {
+  if (pen.style() != Qt::NoPen) pen.setColor(shown_colour(owner, slot, pen.color(), base));
+  return pen;
+}
+QBrush legible_brush(QObject& owner, const char* slot, QBrush brush, const QColor& base) {
   if (brush.style() == Qt::SolidPattern && brush.color().alpha() >= 128) {
-    brush.setColor(shown_colour(plottable, "brush", brush.color(), base));
-    plottable.setBrush(brush);
+    brush.setColor(shown_colour(owner, slot, brush.color(), base));
   }
+  return brush;
+}
+
+// A plottable's lines, fills and markers legible on `base`.
+void recolour(QCPAbstractPlottable& plottable, const QColor& base) {
+  plottable.setPen(legible_pen(plottable, "pen", plottable.pen(), base));
+  plottable.setBrush(legible_brush(plottable, "brush", plottable.brush(), base));
   const auto markers = [&](QCPScatterStyle style) {
     if (style.isNone()) return style;
-    QPen marker_pen = style.pen();
-    if (marker_pen.style() != Qt::NoPen) {
-      marker_pen.setColor(shown_colour(plottable, "marker_pen", marker_pen.color(), base));
-      style.setPen(marker_pen);
-    }
-    QBrush marker_brush = style.brush();
-    if (marker_brush.style() == Qt::SolidPattern && marker_brush.color().alpha() >= 128) {
-      marker_brush.setColor(shown_colour(plottable, "marker_brush", marker_brush.color(), base));
-      style.setBrush(marker_brush);
-    }
+    style.setPen(legible_pen(plottable, "marker_pen", style.pen(), base));
+    style.setBrush(legible_brush(plottable, "marker_brush", style.brush(), base));
     return style;
   };
   if (auto* graph = qobject_cast<QCPGraph*>(&plottable)) {

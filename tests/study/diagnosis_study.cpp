@@ -154,13 +154,20 @@ struct BlindRun {
   TruthComparison truth;
 };
 
-BlindRun run_blind(const Model& truth, int seed, double freq, double noise, int levels,
-                   bool compare_with_truth) {
+// The virtual rig's campaign of `truth` (stepped sines in both wells on the study's grid and a
+// random record), recorded with the seed's noise at `freq` Hz and `noise` × the sensor noise.
+CampaignAnalysis record_control(const Model& truth, int seed, double freq, double noise,
+                                int levels) {
   testing::CampaignSpec spec;
   spec.freq_hz = freq;
   spec.noise_scale = noise;
-  const CampaignAnalysis campaign =
-      testing::record_campaign(truth, static_cast<std::uint64_t>(seed), level_grid(levels), spec);
+  return testing::record_campaign(truth, static_cast<std::uint64_t>(seed), level_grid(levels),
+                                  spec);
+}
+
+BlindRun run_blind(const Model& truth, int seed, double freq, double noise, int levels,
+                   bool compare_with_truth) {
+  const CampaignAnalysis campaign = record_control(truth, seed, freq, noise, levels);
   // As a lab: the mass known, K(z) identified from the records starting from their stiffness
   // slice; the friction started from the paper's values (the truth of none but the control's
   // centre). With the true stiffness only when asked (labelled `true` in the output).
@@ -244,12 +251,8 @@ int moved_study(const std::string& effect, double scale, double freq, double noi
 // A control's campaign (as `control` records it), each usable level's measurement beside the
 // truth's harmonic balance at that level: which branch the rig's steps reached.
 int branches_study(int seed, double freq, double noise, int levels) {
-  testing::CampaignSpec spec;
-  spec.freq_hz = freq;
-  spec.noise_scale = noise;
   const Model truth = moved_friction(seed);
-  const CampaignAnalysis campaign =
-      testing::record_campaign(truth, static_cast<std::uint64_t>(seed), level_grid(levels), spec);
+  const CampaignAnalysis campaign = record_control(truth, seed, freq, noise, levels);
   const EdcDataset data = edc_dataset(campaign);
   std::printf(
       "well,f0_n,edc_mes_j,sigma_j,edc_truth_j,edc_truth_h31_j,amp_mes_m,amp_truth_m,"
@@ -281,12 +284,8 @@ int branches_study(int seed, double freq, double noise, int levels) {
 // and at the truth's θ: how far the fit's H misses its harmonic-balance reference, per level in
 // units of the measurement's σ (cycles and bias). One row per θ.
 int defect_study(int seed, double freq, double noise, int levels, int harmonics) {
-  testing::CampaignSpec spec;
-  spec.freq_hz = freq;
-  spec.noise_scale = noise;
   const Model truth = moved_friction(seed);
-  const CampaignAnalysis campaign =
-      testing::record_campaign(truth, static_cast<std::uint64_t>(seed), level_grid(levels), spec);
+  const CampaignAnalysis campaign = record_control(truth, seed, freq, noise, levels);
   FitSetup setup;
   setup.stiffness = StiffnessSource::Identified;
   std::vector<std::string> notes;
