@@ -166,7 +166,11 @@ void recolour(QCPAbstractPlottable& plottable, const QColor& base) {
   plottable.setBrush(legible_brush(plottable, "brush", plottable.brush(), base));
   const auto markers = [&](QCPScatterStyle style) {
     if (style.isNone()) return style;
-    style.setPen(legible_pen(plottable, "marker_pen", style.pen(), base));
+    // A marker without a pen of its own draws with the plottable's (made legible above);
+    // setting one would replace it.
+    if (style.isPenDefined()) {
+      style.setPen(legible_pen(plottable, "marker_pen", style.pen(), base));
+    }
     style.setBrush(legible_brush(plottable, "marker_brush", style.brush(), base));
     return style;
   };

@@ -202,12 +202,12 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
     curve->setName(names[i]);
   }
   // Each rect over its loops' z; one force range for all, so that the rects compare. Room at
-  // the top for the well's label.
+  // the top (a sixth of the span) for the well's label, whose corner the loops reach.
   for (int g = 0; g < 3; ++g) {
     if (rect_of[g]) fit_axis(rect_of[g]->axis(QCPAxis::atBottom), z_lo[g], z_hi[g]);
   }
   for (QCPAxisRect* rect : rects) {
-    fit_axis(rect->axis(QCPAxis::atLeft), f_lo, f_hi + 0.1 * (f_hi - f_lo));
+    fit_axis(rect->axis(QCPAxis::atLeft), f_lo, f_hi + 0.2 * (f_hi - f_lo));
   }
   plot_->replot(QCustomPlot::rpQueuedReplot);
 }

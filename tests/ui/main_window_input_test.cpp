@@ -393,11 +393,20 @@ class MainWindowInputTest : public QObject {
     QCOMPARE(background(record), QColor(Qt::white));
     QCOMPARE(record->xAxis->tickLabelColor(), QColor(Qt::black));
     // A plot of its own, given a dark palette directly, follows it too.
+    // Its markers without a pen of their own (open circles drawn with the graph's pen) keep
+    // drawing with the graph's pen, which is made legible: given a pen, they would vanish.
     QCustomPlot alone;
+    QCPGraph* points = alone.addGraph();
+    points->setPen(QPen(QColor(0, 84, 132)));
+    points->setLineStyle(QCPGraph::lsNone);
+    points->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 6));
     alone.show();
     alone.setPalette(dark);
     QApplication::processEvents();
+    alone.replot();
     QCOMPARE(background(&alone), dark.color(QPalette::Base));
+    QVERIFY(!points->scatterStyle().isPenDefined());
+    QVERIFY((luminance(points->pen().color()) + 0.05) / (base_luminance + 0.05) >= 3.0);
   }
 
   void helpListsTheShortcuts() {
