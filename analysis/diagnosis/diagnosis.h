@@ -113,7 +113,8 @@ struct DiagnosisResult {
   bool baseline_restart_improved = false;
   /// How often a step's winning candidate had only found a deeper basin of the current model's
   /// own parameters: the current model refitted from the winner's θ without its term took the
-  /// term's evidence below the threshold, so the step was run again from there.
+  /// term's evidence below the threshold or itself gained more than it, so the refit became the
+  /// current model and the step was run again from there.
   int rebases = 0;
   double seconds = 0.0;
   long evaluations = 0;
