@@ -93,4 +93,61 @@ inline double quantile(std::vector<double> values, double q) {
 /// The median: quantile(values, 0.5), the mean of the middle two for an even count.
 inline double median(std::vector<double> values) { return quantile(std::move(values), 0.5); }
 
+/// A q-quantile of values seen one at a time, equal to quantile() of all of them, in memory for
+/// the share beyond it only: the interpolation needs nothing but the values on its side. For
+/// q ≥ 0.5 the largest values are kept, for q < 0.5 the smallest: at most `max_count` values
+/// will be added, and the (1 − q) or q share of that bound (plus two) is kept in a heap, so the
+/// p99 of a day-long 512 Hz record keeps 3.5 MB, not 350 MB.
+class StreamedQuantile {
+ public:
+  StreamedQuantile(double q, std::size_t max_count)
+      : q_(std::clamp(q, 0.0, 1.0)), upper_(q_ >= 0.5), keep_(kept_for(max_count)) {}
+
+  void add(double value) {
+    ++count_;
+    const auto outranks = [this](double a, double b) { return upper_ ? a > b : a < b; };
+    if (kept_.size() < keep_) {
+      kept_.push_back(value);
+      std::push_heap(kept_.begin(), kept_.end(), outranks);  // the least extreme on top
+    } else if (outranks(value, kept_.front())) {
+      std::pop_heap(kept_.begin(), kept_.end(), outranks);
+      kept_.back() = value;
+      std::push_heap(kept_.begin(), kept_.end(), outranks);
+    }
+  }
+  std::size_t count() const { return count_; }
+
+  /// quantile() of every value added (0 for none); at most max_count may have been added.
+  double value() const {
+    if (count_ == 0) return 0.0;
+    std::vector<double> sorted = kept_;
+    std::sort(sorted.begin(), sorted.end());
+    const double position = q_ * static_cast<double>(count_ - 1);
+    const auto below = static_cast<std::size_t>(std::floor(position));
+    // The ascending ranks ⌊q (n − 1)⌋ and the one above, where the kept values sit among all.
+    const std::size_t first_rank = upper_ ? count_ - sorted.size() : 0;
+    if (below + 1 >= count_) return sorted.back();
+    const double low = sorted[below - first_rank];
+    const double high = sorted[below + 1 - first_rank];
+    return low + (position - static_cast<double>(below)) * (high - low);
+  }
+
+ private:
+  // The ranks needed, ⌊q (n − 1)⌋ and the next, lie within n − ⌊q (n − 1)⌋ of the top and
+  // ⌊q (n − 1)⌋ + 2 of the bottom; both grow with n, so what max_count needs covers every
+  // smaller count.
+  std::size_t kept_for(std::size_t max_count) const {
+    if (max_count == 0) return 1;
+    const auto below =
+        static_cast<std::size_t>(std::floor(q_ * static_cast<double>(max_count - 1)));
+    return std::min(max_count, upper_ ? max_count - below + 1 : below + 2);
+  }
+
+  double q_;
+  bool upper_;
+  std::size_t keep_;
+  std::size_t count_ = 0;
+  std::vector<double> kept_;  // a heap of the most extreme values
+};
+
 }  // namespace oscilab

@@ -44,10 +44,12 @@ const PipelineSettings& checked(const PipelineSettings& settings) {
 
 }  // namespace
 
-MeasurementPipeline::MeasurementPipeline(const PipelineSettings& settings, const StreamSetup& setup)
+MeasurementPipeline::MeasurementPipeline(const PipelineSettings& settings, const StreamSetup& setup,
+                                         bool keep_cycles)
     : setup_(setup),
       analyzer_(analyzer_options(checked(settings), setup)),
-      tracker_(level_options(settings, setup)) {}
+      tracker_(level_options(settings, setup)),
+      keep_cycles_(keep_cycles) {}
 
 void MeasurementPipeline::push(const SampleBlock& block) {
   const Eigen::Index n = block.samples.rows();
@@ -77,7 +79,8 @@ void MeasurementPipeline::push(std::int64_t first_sample, const double* base, co
 void MeasurementPipeline::analyse(const double* base, const double* mass, int count) {
   completed_.clear();
   analyzer_.push(t_scratch_.data(), base, mass, count, completed_);
-  cycles_.insert(cycles_.end(), completed_.begin(), completed_.end());
+  cycle_count_ += completed_.size();
+  if (keep_cycles_) cycles_.insert(cycles_.end(), completed_.begin(), completed_.end());
   tracker_.push(completed_, levels_);
 }
 

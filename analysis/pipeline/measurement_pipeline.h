@@ -34,7 +34,10 @@ struct StreamSetup {
 /// odd block sizes). Not thread-safe: owned by the pipeline thread.
 class MeasurementPipeline {
  public:
-  MeasurementPipeline(const PipelineSettings& settings, const StreamSetup& setup);
+  /// `keep_cycles` false: cycles() stays empty (a day-long record has 800 000 of them) and only
+  /// cycle_count() counts them; the levels are the same.
+  MeasurementPipeline(const PipelineSettings& settings, const StreamSetup& setup,
+                      bool keep_cycles = true);
 
   void push(const SampleBlock& block);
   /// The same for `count` samples from sample index `first_sample` on (t = index / rate, as
@@ -55,6 +58,9 @@ class MeasurementPipeline {
   void finish();
 
   const std::vector<CycleFit>& cycles() const { return cycles_; }
+  std::size_t cycle_count() const { return cycle_count_; }
+  /// The cycles the last push completed (kept or not): what a live reader takes after a push.
+  const std::vector<CycleFit>& last_completed() const { return completed_; }
   const std::vector<LevelResult>& levels() const { return levels_; }
   /// The level being filled, summarised so far (for a live display).
   std::optional<LevelResult> current_level() const { return tracker_.current(); }
@@ -66,7 +72,9 @@ class MeasurementPipeline {
   StreamSetup setup_;
   CycleAnalyzer analyzer_;
   LevelTracker tracker_;
+  bool keep_cycles_ = true;
   std::vector<CycleFit> cycles_;
+  std::size_t cycle_count_ = 0;
   std::vector<CycleFit> completed_;  // scratch, reused between pushes
   std::vector<double> t_scratch_;
   std::vector<LevelResult> levels_;

@@ -9,6 +9,7 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/common/parallel_for.h"
+#include "analysis/rfs/motion_spans.h"
 #include "analysis/signal/gap_fill.h"
 
 namespace oscilab::analysis {
@@ -54,15 +55,17 @@ StreamSetup stream_setup(const MeasurementChannels& channels) {
 }
 
 RecordAnalysis analyze_record(const MeasurementChannels& channels, const PipelineSettings& settings,
-                              const CancelToken& cancel) {
+                              const CancelToken& cancel, const OfflineRetention& retention) {
   settings.validate();
-  if (channels.base.size() != channels.mass.size() || channels.base.size() < 16) {
+  const Eigen::Index n = channels.sample_count();
+  if ((!channels.source && channels.base.size() != channels.mass.size()) || n < 16) {
     throw InputError(channels.name + ": base and mass channels need the same, non-trivial length");
   }
   RecordAnalysis out;
   out.name = channels.name;
+  out.sample_count = n;
   out.per_unit_mass = !channels.mass_kg.has_value();
-  const double mass = channels.mass_kg.value_or(1.0);
+  out.motion.z_absolute = channels.mass_quantity == MotionQuantity::Displacement;
   if (out.per_unit_mass) {
     out.notes.push_back(
         "no mass_kg in the sidecar: forces are per unit mass (N/kg) and energies "
@@ -74,7 +77,16 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels, const Pipelin
   // The tone is looked for only where the sidecar leaves the excitation open.
   const bool known = !channels.excitation_type.empty() &&
                      (channels.excitation_type != "stepped-sine" || channels.excitation_freq_hz);
-  if (!known) out.tone = dominant_tone(channels.base, channels.sample_rate_hz);
+  if (!known) {
+    if (!channels.source && n <= kToneSamples) {
+      out.tone = dominant_tone(channels.base, channels.sample_rate_hz);
+    } else {
+      Eigen::VectorXd base(std::min(n, kToneSamples)), mass(base.size());
+      read_samples(*channels.open(), base.data(), mass.data(), base.size(), channels.name);
+      fill_non_finite(base);
+      out.tone = dominant_tone(base, channels.sample_rate_hz);
+    }
+  }
   if (channels.excitation_freq_hz) {
     setup.excitation_freq_hz = *channels.excitation_freq_hz;
   } else if (!known || channels.excitation_type == "stepped-sine") {
@@ -93,61 +105,78 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels, const Pipelin
   }
   out.setup = setup;
 
-  // Samples of invalid intervals (a live recording's gaps, bad samples) may be non-finite: fill
-  // them for the whole-record processing, and leave out every result that touches them.
-  // The copy is made only for a record that has such samples.
-  const auto all_finite = [](const Eigen::VectorXd& x) { return x.array().isFinite().all(); };
-  std::optional<MeasurementChannels> filled_copy;
-  long filled_samples = 0;
-  if (!all_finite(channels.base) || !all_finite(channels.mass)) {
-    filled_copy = channels;
-    filled_samples = fill_non_finite(filled_copy->base) + fill_non_finite(filled_copy->mass);
+  // Samples of invalid intervals (a live recording's gaps, bad samples) may be non-finite: each
+  // chunk's are filled before it is pushed, and every result that touches them is left out.
+  std::optional<MeasurementPipeline> pipeline;
+  if (out.stepped_sine && setup.excitation_freq_hz > 0) {
+    pipeline.emplace(settings, setup, retention.cycles);
+    for (const TimeInterval& interval : channels.excluded) {
+      pipeline->exclude(interval.start_s, interval.end_s);
+    }
   }
-  const MeasurementChannels& filled = filled_copy ? *filled_copy : channels;
+  long filled_samples = 0;
+  if (pipeline || !channels.excluded.empty()) {
+    // Streamed in chunks, as a live stream arrives (the result does not depend on the chunks).
+    constexpr Eigen::Index kChunk = 8192;
+    Eigen::VectorXd base(kChunk), mass(kChunk);
+    const std::unique_ptr<ChannelReader> reader = channels.open();
+    for (Eigen::Index first = 0; first < n; first += kChunk) {
+      if (cancel.cancelled()) return out;
+      const Eigen::Index count = std::min(kChunk, n - first);
+      read_samples(*reader, base.data(), mass.data(), count, channels.name);
+      if (!base.head(count).array().isFinite().all() ||
+          !mass.head(count).array().isFinite().all()) {
+        Eigen::VectorXd b = base.head(count), m = mass.head(count);
+        filled_samples += fill_non_finite(b) + fill_non_finite(m);
+        base.head(count) = b;
+        mass.head(count) = m;
+      }
+      if (pipeline) pipeline->push(first, base.data(), mass.data(), static_cast<int>(count));
+    }
+  }
   if (!channels.excluded.empty()) {
     out.notes.push_back(std::to_string(channels.excluded.size()) +
                         " invalid interval(s) in the sidecar left out (" +
                         std::to_string(filled_samples) + " non-finite samples)");
   }
-
-  if (out.stepped_sine && setup.excitation_freq_hz > 0) {
-    MeasurementPipeline pipeline(settings, setup);
-    for (const TimeInterval& interval : channels.excluded) {
-      pipeline.exclude(interval.start_s, interval.end_s);
-    }
-    // Streamed in chunks straight from the channels, as a live stream arrives (the result does
-    // not depend on the chunks), so the pipeline holds no copy of the record.
-    constexpr Eigen::Index kChunk = 8192;
-    const Eigen::Index n = filled.base.size();
-    for (Eigen::Index first = 0; first < n; first += kChunk) {
-      if (cancel.cancelled()) return out;
-      pipeline.push(first, filled.base.data() + first, filled.mass.data() + first,
-                    static_cast<int>(std::min(kChunk, n - first)));
-    }
-    pipeline.finish();
-    out.cycles = pipeline.cycles();
-    out.levels = pipeline.levels();
-    if (pipeline.excluded_cycles() > 0) {
-      out.notes.push_back(std::to_string(pipeline.excluded_cycles()) +
+  if (pipeline) {
+    pipeline->finish();
+    out.cycle_count = pipeline->cycle_count();
+    out.cycles = pipeline->cycles();
+    out.levels = pipeline->levels();
+    if (pipeline->excluded_cycles() > 0) {
+      out.notes.push_back(std::to_string(pipeline->excluded_cycles()) +
                           " cycle(s) touching invalid intervals left out of the EDC");
     }
     for (std::string& note : degenerate_level_notes(out.levels)) {
       out.notes.push_back(std::move(note));
     }
   }
-  if (cancel.cancelled()) return out;
-  out.motion = motion_signals(filled, settings, mass);
-  // The zero-phase filters spread a bad stretch over about one period of the integration
-  // high-pass on either side: leave those restoring-force samples out (NaN, skipped by the
-  // slices).
-  const double margin_s = 1.0 / settings.integration_highpass_hz;
-  for (const TimeInterval& interval : channels.excluded) {
-    for (Eigen::Index i = 0; i < out.motion.t_s.size(); ++i) {
-      if (interval.overlaps(out.motion.t_s[i] - margin_s, out.motion.t_s[i] + margin_s)) {
-        out.motion.restoring_force_n[i] = std::numeric_limits<double>::quiet_NaN();
-      }
-    }
-  }
+  if (cancel.cancelled() || !retention.motion) return out;
+  // The spans in place: one span is the whole record's motion, more fill their parts of it.
+  Eigen::Index filled = 0;
+  for_each_motion_span(
+      channels, settings,
+      [&](const MotionSignals& span, double) {
+        if (span.t_s.size() == n) {
+          out.motion = span;
+          return;
+        }
+        MotionSignals& m = out.motion;
+        if (filled == 0) {
+          m.t_s.resize(n);
+          m.z_m.resize(n);
+          m.z_dot_m_s.resize(n);
+          m.restoring_force_n.resize(n);
+        }
+        const Eigen::Index k = span.t_s.size();
+        m.t_s.segment(filled, k) = span.t_s;
+        m.z_m.segment(filled, k) = span.z_m;
+        m.z_dot_m_s.segment(filled, k) = span.z_dot_m_s;
+        m.restoring_force_n.segment(filled, k) = span.restoring_force_n;
+        filled += k;
+      },
+      cancel);
   return out;
 }
 
@@ -177,21 +206,34 @@ void require_measured_levels(const CampaignAnalysis& campaign) {
   }
 }
 
-std::vector<const MotionSignals*> slice_records(const std::vector<RecordAnalysis>& records) {
-  std::vector<const MotionSignals*> absolute, all;
-  for (const RecordAnalysis& r : records) {
-    if (r.motion.t_s.size() == 0) continue;
-    all.push_back(&r.motion);
-    if (r.motion.z_absolute) absolute.push_back(&r.motion);
+namespace {
+
+// The records the slices stack (slice_records' rule, from what every record knows): those that
+// measure z itself; when none does, every record (without a position the integrated velocity's
+// mean is lost to the integration's high-pass: z is z − z̄ already).
+std::vector<std::size_t> slice_record_indices(const std::vector<RecordAnalysis>& records) {
+  std::vector<std::size_t> absolute, all;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (records[i].sample_count == 0 && records[i].motion.t_s.size() == 0) continue;
+    all.push_back(i);
+    if (records[i].motion.z_absolute) absolute.push_back(i);
   }
-  // Without a position the integrated velocity's mean is lost to the integration's high-pass:
-  // z is z − z̄ already.
   return absolute.empty() ? all : absolute;
+}
+
+}  // namespace
+
+std::vector<const MotionSignals*> slice_records(const std::vector<RecordAnalysis>& records) {
+  std::vector<const MotionSignals*> signals;
+  for (const std::size_t i : slice_record_indices(records)) {
+    if (records[i].motion.t_s.size() > 0) signals.push_back(&records[i].motion);
+  }
+  return signals;
 }
 
 CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
                                   const PipelineSettings& settings, const ProgressFn& progress,
-                                  const CancelToken& cancel) {
+                                  const CancelToken& cancel, const OfflineRetention& retention) {
   settings.validate();
   // A cancelled campaign keeps nothing of what was made, only its settings and status.
   const auto cancelled = [&settings] {
@@ -211,7 +253,7 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
   parallel_for(records.size(), 0, [&](std::size_t i) {
     if (cancel.cancelled()) return;
     try {
-      campaign.records[i] = analyze_record(records[i], settings, cancel);
+      campaign.records[i] = analyze_record(records[i], settings, cancel, retention);
     } catch (...) {
       errors[i] = std::current_exception();
     }
@@ -223,22 +265,32 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
     if (error) std::rethrow_exception(error);
   }
   if (cancel.cancelled()) return cancelled();
-  const std::vector<const MotionSignals*> signals = slice_records(campaign.records);
+  const std::vector<std::size_t> sliced = slice_record_indices(campaign.records);
   campaign.z_about_mean =
-      !signals.empty() && std::none_of(campaign.records.begin(), campaign.records.end(),
-                                       [](const RecordAnalysis& r) { return r.motion.z_absolute; });
-  if (signals.empty()) {
+      !sliced.empty() && std::none_of(campaign.records.begin(), campaign.records.end(),
+                                      [](const RecordAnalysis& r) { return r.motion.z_absolute; });
+  // A pass over the sliced records: their kept motion, or their spans made again.
+  Eigen::Index max_samples = 0;
+  for (const std::size_t i : sliced) max_samples += campaign.records[i].sample_count;
+  const MotionPass pass = [&](const MotionSpanVisit& visit) {
+    for (const std::size_t i : sliced) {
+      const MotionSignals& kept = campaign.records[i].motion;
+      if (kept.t_s.size() > 0) {
+        visit(kept, static_cast<double>(campaign.records[i].sample_count - 1) /
+                        records[i].sample_rate_hz);
+      } else {
+        for_each_motion_span(records[i], settings, visit, cancel);
+      }
+    }
+  };
+  if (sliced.empty()) {
     campaign.rfs_message = "no record to slice";
   } else {
     try {
-      campaign.stiffness = stiffness_slice(signals, settings);
-      // One damping slice per stable zero, each over every sample: one per thread.
+      campaign.stiffness = stiffness_slice(pass, max_samples, settings);
       const std::vector<double> zeros = stable_zeros(
           campaign.stiffness->fit, campaign.stiffness->z_min_m, campaign.stiffness->z_max_m);
-      campaign.damping.resize(zeros.size());
-      parallel_for(zeros.size(), 0, [&](std::size_t i) {
-        campaign.damping[i] = damping_slice(signals, *campaign.stiffness, zeros[i], settings);
-      });
+      campaign.damping = damping_slices(pass, max_samples, *campaign.stiffness, zeros, settings);
     } catch (const InputError& error) {
       campaign.rfs_message = error.what();
     }
@@ -272,7 +324,7 @@ nlohmann::json campaign_summary(const CampaignAnalysis& campaign) {
                        {"tone_power_fraction", r.tone.power_fraction},
                        {"stepped_sine", r.stepped_sine},
                        {"per_unit_mass", r.per_unit_mass},
-                       {"cycles", r.cycles.size()},
+                       {"cycles", r.cycle_count},
                        {"levels", levels},
                        {"notes", r.notes}});
   }

@@ -20,12 +20,15 @@ struct RecordAnalysis {
   std::string name;
   StreamSetup setup;  // as the pipeline ran (frequency given or detected)
   bool frequency_detected = false;
-  DominantTone tone;           // of the base channel
-  bool stepped_sine = false;   // EDC levels were computed
-  bool per_unit_mass = false;  // no mass_kg: forces in N/kg and energies in J/kg
-  std::vector<CycleFit> cycles;
+  DominantTone tone;              // of the base channel
+  bool stepped_sine = false;      // EDC levels were computed
+  bool per_unit_mass = false;     // no mass_kg: forces in N/kg and energies in J/kg
+  Eigen::Index sample_count = 0;  // per channel
+  std::size_t cycle_count = 0;    // cycles fitted, whether kept or not
+  std::vector<CycleFit> cycles;   // each fitted cycle, when OfflineRetention::cycles
   std::vector<LevelResult> levels;
-  MotionSignals motion;            // z, ż, z̈ and R of the record (RFS)
+  /// z, ż and R of the record (RFS), when OfflineRetention::motion; z_absolute always.
+  MotionSignals motion;
   std::vector<std::string> notes;  // what a reader should know (detections, exclusions)
 };
 
@@ -42,16 +45,31 @@ struct CampaignAnalysis {
   JobStatus status = JobStatus::Ok;
 };
 
+/// What the offline analysis keeps of each record beyond its levels, notes and the slices. A
+/// record's motion takes 32 bytes a sample (1.4 GB for a day at 512 Hz) and its cycles about
+/// 300 bytes each: a front end that does not show them (the CLI's analyze) keeps neither, and
+/// the analysis then holds a bounded amount of any record (a streamed one never whole).
+struct OfflineRetention {
+  bool cycles = true;
+  bool motion = true;
+};
+
 /// The pipeline's setup for a record: rate, mass (1 when unknown), channel quantities, the
 /// sidecar's levels and frequency (0 when the sidecar does not give it).
 StreamSetup stream_setup(const MeasurementChannels& channels);
 
-/// The offline analysis of one record: detect the excitation when the sidecar does not say it,
-/// run the measurement pipeline over the whole record as one block, and compute the time
-/// signals of the restoring surface. A cancelled token stops it between chunks of samples; what
-/// it returns then is incomplete and only good for discarding.
+/// The offline analysis of one record: detect the excitation when the sidecar does not say it
+/// (from its first kToneSamples), run the measurement pipeline over the record in chunks, as a
+/// live stream arrives, and compute the time signals of the restoring surface (motion_spans.h)
+/// when `retention` keeps them. A cancelled token stops it between chunks of samples; what it
+/// returns then is incomplete and only good for discarding.
 RecordAnalysis analyze_record(const MeasurementChannels& channels, const PipelineSettings& settings,
-                              const CancelToken& cancel = CancelToken());
+                              const CancelToken& cancel = CancelToken(),
+                              const OfflineRetention& retention = OfflineRetention());
+
+/// The excitation tone is looked for in a record's first 2^21 samples (68 min at 512 Hz): the
+/// whole of most records, and a bounded transform for a day-long one.
+inline constexpr Eigen::Index kToneSamples = Eigen::Index{1} << 21;
 
 /// Why a stepped-sine record has no level that measures anything (LevelResult::measured: every
 /// level flagged base-constant, mass-constant, negative-edc or non-finite, or without steady
@@ -63,10 +81,13 @@ std::string no_measured_level_reason(const RecordAnalysis& record);
 /// `analyze` and the EDC exports refuse.
 void require_measured_levels(const CampaignAnalysis& campaign);
 
-/// analyze_record for each, then the stiffness and damping slices over all of them.
+/// analyze_record for each, then the stiffness and damping slices over all of them: from the
+/// records' motion where it is kept, else span by span from their samples again (a pass each
+/// for the band, the stiffness slice and the damping slices).
 CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
                                   const PipelineSettings& settings, const ProgressFn& progress = {},
-                                  const CancelToken& cancel = {});
+                                  const CancelToken& cancel = {},
+                                  const OfflineRetention& retention = OfflineRetention());
 
 /// The records the restoring-force slices stack: those that measure z itself; when none does,
 /// every record, with z about its mean (z_about_mean).

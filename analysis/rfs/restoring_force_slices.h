@@ -1,10 +1,12 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "analysis/pipeline/pipeline_settings.h"
 #include "analysis/rfs/motion_signals.h"
+#include "analysis/rfs/motion_spans.h"
 #include "analysis/rfs/polynomial_fit.h"
 
 namespace oscilab::analysis {
@@ -33,24 +35,48 @@ struct DampingSlice {
   std::vector<SliceBin> bins;
 };
 
-/// Calls visit(i) for every sample i of a record the slices may use: away from the record's ends
-/// (within trim_s the zero-phase filters ring) and with a finite restoring force (the analysis
+/// Calls visit(i) for every sample i of a span of a record's motion that the slices may use: away
+/// from the record's ends (within trim_s of its first sample at t = 0 or of its last at
+/// record_end_s the zero-phase filters ring) and with a finite restoring force (the analysis
 /// marks samples near invalid intervals non-finite).
 template <typename Visit>
-void for_each_slice_sample(const MotionSignals& s, double trim_s, Visit visit) {
+void for_each_slice_sample(const MotionSignals& s, double record_end_s, double trim_s,
+                           Visit visit) {
   const Eigen::Index n = s.t_s.size();
-  if (n == 0) return;
-  const double t_end = s.t_s[n - 1];
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (s.t_s[i] < trim_s || s.t_s[i] > t_end - trim_s) continue;
+    if (s.t_s[i] < trim_s || s.t_s[i] > record_end_s - trim_s) continue;
     if (!std::isfinite(s.restoring_force_n[i])) continue;
     visit(i);
   }
 }
 
+/// The same over a whole record's motion.
+template <typename Visit>
+void for_each_slice_sample(const MotionSignals& s, double trim_s, Visit visit) {
+  if (s.t_s.size() == 0) return;
+  for_each_slice_sample(s, s.t_s[s.t_s.size() - 1], trim_s, visit);
+}
+
+/// One pass over the motion of every record the slices stack: calls visit(span, record_end_s)
+/// for each span of each record (motion_spans.h), in the same order on every call. The slices
+/// make six passes in all, so a record streamed from its file is never held whole.
+using MotionPass = std::function<void(const MotionSpanVisit& visit)>;
+
 /// Stacks several records (the paper stacks both stepped-sine tests, §3.2). Samples within
-/// edge_trim_s of a record's ends are left out (zero-phase filters ring there). Throws
-/// InputError when too few samples fall in the band for the fit.
+/// edge_trim_s of a record's ends are left out (zero-phase filters ring there). `max_samples`
+/// bounds the samples a pass gives (the p99 of |ż| keeps its upper 1 %). Throws InputError when
+/// too few samples fall in the band for the fit.
+StiffnessSlice stiffness_slice(const MotionPass& pass, Eigen::Index max_samples,
+                               const PipelineSettings& settings, int degree = 3);
+
+/// The damping slice at each of `z_centers_m`, in two passes (`max_samples` as for the stiffness
+/// slice).
+std::vector<DampingSlice> damping_slices(const MotionPass& pass, Eigen::Index max_samples,
+                                         const StiffnessSlice& stiffness,
+                                         const std::vector<double>& z_centers_m,
+                                         const PipelineSettings& settings);
+
+/// The same over records in memory.
 StiffnessSlice stiffness_slice(const std::vector<const MotionSignals*>& records,
                                const PipelineSettings& settings, int degree = 3);
 

@@ -115,5 +115,27 @@ TEST(Median, IsTheMiddleValueOrTheMeanOfTheMiddleTwo) {
   EXPECT_EQ(median({2.0, 2.0, 7.0, 1.0, 2.0, 100.0}), 2.0);
 }
 
+// The streamed quantile keeps only the values beyond it and must give quantile() exactly, for
+// every count up to the bound it was made for (a record's valid samples are fewer than its
+// samples), on both sides of the median, on data with ties too.
+TEST(StreamedQuantile, EqualsQuantileForEveryCountUpToItsBound) {
+  std::mt19937_64 rng(29);
+  std::normal_distribution<double> normal;
+  for (const std::size_t bound : {1u, 2u, 7u, 100u, 1001u, 20000u}) {
+    for (const double q : {0.0, 0.01, 0.3, 0.5, 0.9, 0.99, 1.0}) {
+      for (const std::size_t n : {std::size_t{1}, bound / 2 + 1, bound}) {
+        std::vector<double> v(n);
+        for (double& x : v) x = std::round(normal(rng) * 50.0) / 10.0;  // ties
+        StreamedQuantile streamed(q, bound);
+        for (const double x : v) streamed.add(x);
+        ASSERT_EQ(streamed.count(), n);
+        EXPECT_EQ(streamed.value(), quantile(v, q))
+            << "bound " << bound << " n " << n << " q " << q;
+      }
+    }
+  }
+  EXPECT_EQ(StreamedQuantile(0.99, 10).value(), 0.0);  // none added, as quantile({})
+}
+
 }  // namespace
 }  // namespace oscilab
