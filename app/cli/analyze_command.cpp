@@ -159,8 +159,14 @@ void run(const AnalyzeOptions& options) {
   std::optional<analysis::Model> start_model;
   if (!options.model_out_path.empty()) start_model = analysis::model_from_spec(options.model);
   InputTimes times;
+  // The records stay in their files and only the tables' contents are kept, so that a record
+  // of any length is analysed in bounded memory (the cycles only for --cycles).
+  InputStageOptions input;
+  input.streamed = true;
+  input.retention.motion = false;
+  input.retention.cycles = !options.cycles_path.empty();
   const analysis::CampaignAnalysis campaign =
-      run_input_stage(options.recordings, overrides, options.settings, &times);
+      run_input_stage(options.recordings, overrides, options.settings, &times, input);
   const auto output_start = std::chrono::steady_clock::now();
   print_report(campaign);
   // A stepped-sine record of which no level measures anything (a dead channel, swapped roles,

@@ -15,12 +15,20 @@ struct InputTimes {
   double signal_s = 0.0;    // the records' total duration
 };
 
+/// How the input stage holds the records: in memory with everything the fits need (the
+/// default), or streamed from their files keeping only what `retention` says (analyze).
+struct InputStageOptions {
+  bool streamed = false;
+  analysis::OfflineRetention retention;
+};
+
 /// Reads the recordings (each with its sidecar) and runs the offline analysis of all of them
 /// together, with a progress bar on a terminal: the input stage of analyze, fit and diagnose.
 /// Throws InputError naming the file for a recording that cannot be read.
 analysis::CampaignAnalysis run_input_stage(const std::vector<std::string>& paths,
                                            const daq::MappingOverrides& overrides,
                                            const analysis::PipelineSettings& settings,
-                                           InputTimes* times = nullptr);
+                                           InputTimes* times = nullptr,
+                                           const InputStageOptions& options = {});
 
 }  // namespace oscilab::cli

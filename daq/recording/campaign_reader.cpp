@@ -8,14 +8,17 @@
 
 namespace oscilab::daq {
 
-std::vector<analysis::MeasurementChannels> read_campaign(const std::vector<std::string>& paths,
-                                                         const MappingOverrides& overrides) {
-  // One file per thread (decoding dominates); the first error in the order given is rethrown.
+namespace {
+
+// One file per thread (decoding dominates); the first error in the order given is rethrown.
+template <class Open>
+std::vector<analysis::MeasurementChannels> open_each(const std::vector<std::string>& paths,
+                                                     const Open& open) {
   std::vector<analysis::MeasurementChannels> records(paths.size());
   std::vector<std::exception_ptr> errors(paths.size());
   parallel_for(paths.size(), 0, [&](std::size_t i) {
     try {
-      records[i] = measurement_channels(read_recording(paths[i]), overrides);
+      records[i] = open(paths[i]);
     } catch (...) {
       errors[i] = std::current_exception();
     }
@@ -24,6 +27,22 @@ std::vector<analysis::MeasurementChannels> read_campaign(const std::vector<std::
     if (error) std::rethrow_exception(error);
   }
   return records;
+}
+
+}  // namespace
+
+std::vector<analysis::MeasurementChannels> read_campaign(const std::vector<std::string>& paths,
+                                                         const MappingOverrides& overrides) {
+  return open_each(paths, [&](const std::string& path) {
+    return measurement_channels(read_recording(path), overrides);
+  });
+}
+
+std::vector<analysis::MeasurementChannels> open_campaign_streamed(
+    const std::vector<std::string>& paths, const MappingOverrides& overrides) {
+  return open_each(paths, [&](const std::string& path) {
+    return streamed_measurement_channels(path, overrides);
+  });
 }
 
 analysis::CampaignAnalysis analyze_recordings(const std::vector<std::string>& paths,

@@ -14,6 +14,11 @@ namespace oscilab::daq {
 std::vector<analysis::MeasurementChannels> read_campaign(const std::vector<std::string>& paths,
                                                          const MappingOverrides& overrides);
 
+/// The same, each recording's samples left in its file where its format allows it
+/// (streamed_measurement_channels): for an analysis in bounded memory.
+std::vector<analysis::MeasurementChannels> open_campaign_streamed(
+    const std::vector<std::string>& paths, const MappingOverrides& overrides);
+
 /// Reads recordings (read_campaign) and runs the offline analysis of all of them
 /// together: the input stage of analyze, fit and diagnose, in the CLI and the app. Throws
 /// InputError naming the file for a recording that cannot be read.

@@ -22,4 +22,13 @@ struct MappingOverrides {
 analysis::MeasurementChannels measurement_channels(const Recording& recording,
                                                    const MappingOverrides& overrides = {});
 
+/// The analysis's view of the recording at `path` (with its sidecar), its samples left in the
+/// file where the format allows it (sound containers: MeasurementChannels::source, decoded a
+/// pass at a time, so that a record of any length is analysed in bounded memory), read whole
+/// otherwise. Refuses what read_recording refuses, in its words; a problem with a sample that
+/// only decoding shows (a non-finite value, a file shorter than its header) is thrown by the
+/// pass that meets it.
+analysis::MeasurementChannels streamed_measurement_channels(const std::string& path,
+                                                            const MappingOverrides& overrides = {});
+
 }  // namespace oscilab::daq

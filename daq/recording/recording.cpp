@@ -35,7 +35,7 @@ int Recording::channel_index(const std::string& name) const {
   return -1;
 }
 
-Recording read_recording(const std::string& path) {
+RecordingFile open_recording_file(const std::string& path) {
   check_data_file(path);
   if (lower_extension(path) == ".json") {
     throw InputError(path + ": a recording is a data file; .json is its sidecar");
@@ -49,8 +49,12 @@ Recording read_recording(const std::string& path) {
                      "`oscilab-cli info " +
                      path + "` lists what the file holds and drafts one)");
   }
-  const Sidecar sidecar = read_sidecar(sidecar_path);
-  return format.read(path, sidecar, sidecar_path);
+  return {&format, sidecar_path, read_sidecar(sidecar_path)};
+}
+
+Recording read_recording(const std::string& path) {
+  const RecordingFile file = open_recording_file(path);
+  return file.format->read(path, file.sidecar, file.sidecar_path);
 }
 
 Recording read_recording(const std::string& path, const Sidecar& sidecar) {

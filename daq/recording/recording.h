@@ -38,6 +38,16 @@ struct Recording {
 /// t0 + i / sample_rate_hz.
 Recording read_recording(const std::string& path);
 
+class FormatReader;
+/// A recording's file before its samples are read: what read_recording checks first (a regular
+/// file, not a .json, a format Oscilab reads, a sidecar beside it) and the sidecar, parsed.
+struct RecordingFile {
+  const FormatReader* format = nullptr;
+  std::string sidecar_path;
+  Sidecar sidecar;
+};
+RecordingFile open_recording_file(const std::string& path);
+
 /// Reads the samples of `path` with a sidecar given in memory instead of the file beside it (for
 /// a CSV whose channels the command line describes). The sidecar is validated first.
 Recording read_recording(const std::string& path, const Sidecar& sidecar);

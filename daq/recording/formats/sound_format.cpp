@@ -16,15 +16,11 @@
 
 #include "analysis/common/input_error.h"
 #include "daq/recording/formats/formats.h"
+#include "daq/recording/formats/sound_file.h"
 #include "daq/recording/stored_samples.h"
 
 namespace oscilab::daq {
 namespace {
-
-struct SndfileCloser {
-  void operator()(SNDFILE* file) const { sf_close(file); }
-};
-using SndfileHandle = std::unique_ptr<SNDFILE, SndfileCloser>;
 
 std::string sndfile_format_name(int format) {
   SF_FORMAT_INFO info{};
@@ -73,11 +69,14 @@ std::string truncation_in_log(SNDFILE* file) {
   return "";
 }
 
-Recording read_sound(const std::string& path, const Sidecar& sidecar,
-                     const std::string& sidecar_name) {
-  SF_INFO info{};
-  SndfileHandle file(sf_open(path.c_str(), SFM_READ, &info));
-  if (!file) {
+}  // namespace
+
+OpenSoundFile open_sound_file(const std::string& path, const Sidecar& sidecar,
+                              const std::string& sidecar_name) {
+  OpenSoundFile open;
+  open.file.reset(sf_open(path.c_str(), SFM_READ, &open.info));
+  const SF_INFO& info = open.info;
+  if (!open.file) {
     throw InputError(path + ": not a sound file libsndfile can read (" + sf_strerror(nullptr) +
                      ")");
   }
@@ -93,11 +92,29 @@ Recording read_sound(const std::string& path, const Sidecar& sidecar,
                      " Hz, " + sidecar_name + " says " + number_text(sidecar.sample_rate_hz) +
                      " Hz");
   }
-  if (const std::string truncation = truncation_in_log(file.get()); !truncation.empty()) {
+  if (const std::string truncation = truncation_in_log(open.file.get()); !truncation.empty()) {
     throw InputError(path + ": " + truncation);
   }
   // Integer formats read as their integer counts, not normalised to ±1 (see ChannelInfo).
-  sf_command(file.get(), SFC_SET_NORM_DOUBLE, nullptr, SF_FALSE);
+  sf_command(open.file.get(), SFC_SET_NORM_DOUBLE, nullptr, SF_FALSE);
+  return open;
+}
+
+std::string truncated_sound_message(const std::string& path, std::int64_t promised,
+                                    std::int64_t held) {
+  return path + ": truncated: the header promises " + std::to_string(promised) +
+         " samples per channel, the file holds " + std::to_string(held) +
+         " (oscilab-cli recover keeps the whole samples it holds)";
+}
+
+namespace {
+
+Recording read_sound(const std::string& path, const Sidecar& sidecar,
+                     const std::string& sidecar_name) {
+  OpenSoundFile open = open_sound_file(path, sidecar, sidecar_name);
+  SndfileHandle& file = open.file;
+  const SF_INFO& info = open.info;
+  const auto channels = static_cast<int>(sidecar.channels.size());
 
   StoredSamples stored;
   constexpr sf_count_t kBlockFrames = 8192;
@@ -124,9 +141,7 @@ Recording read_sound(const std::string& path, const Sidecar& sidecar,
   }
   if (frames == 0) throw InputError(path + ": no samples (empty recording)");
   if (info.frames != std::numeric_limits<sf_count_t>::max() && frames < info.frames) {
-    throw InputError(path + ": truncated: the header promises " + std::to_string(info.frames) +
-                     " samples per channel, the file holds " + std::to_string(frames) +
-                     " (oscilab-cli recover keeps the whole samples it holds)");
+    throw InputError(truncated_sound_message(path, info.frames, frames));
   }
 
   Recording recording;
