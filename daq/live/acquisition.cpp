@@ -220,11 +220,15 @@ std::optional<analysis::LevelResult> Acquisition::current_level() const {
   return impl_->edc.current_level();
 }
 
-std::vector<analysis::CycleFit> Acquisition::cycles_since(std::size_t first) const {
+std::vector<analysis::CycleFit> Acquisition::cycles_since(std::size_t& next) const {
   const std::lock_guard lock(impl_->mutex);
-  const std::vector<analysis::CycleFit>& cycles = impl_->edc.cycles();
-  if (first >= cycles.size()) return {};
-  return {cycles.begin() + static_cast<std::ptrdiff_t>(first), cycles.end()};
+  const std::deque<analysis::CycleFit>& kept = impl_->edc.cycles();
+  const std::size_t count = impl_->edc.cycle_count();
+  const std::size_t oldest = count - kept.size();  // index of kept.front()
+  const std::size_t from = std::max(next, oldest);
+  next = count;
+  if (from >= count) return {};
+  return {kept.begin() + static_cast<std::ptrdiff_t>(from - oldest), kept.end()};
 }
 
 std::vector<StreamEvent> Acquisition::events_since(std::size_t first) const {

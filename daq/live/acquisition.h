@@ -108,8 +108,10 @@ class Acquisition {
   /// Finished levels so far (all pipelines, in time order) and the one being filled.
   std::vector<analysis::LevelResult> levels() const;
   std::optional<analysis::LevelResult> current_level() const;
-  /// Cycles fitted from index `first` on (the count grows; the UI asks for the new ones).
-  std::vector<analysis::CycleFit> cycles_since(std::size_t first) const;
+  /// The cycles fitted from index `next` on, and `next` moved past them (the count grows; a
+  /// reader asks for the new ones). The newest LiveEdc::kKeptCycles are kept: a reader further
+  /// behind gets those, and `next` still ends at the count.
+  std::vector<analysis::CycleFit> cycles_since(std::size_t& next) const;
   /// Events from index `first` on.
   std::vector<StreamEvent> events_since(std::size_t first) const;
   /// Traces over [from_s, to_s] (stream time) decimated to at most 2 × buckets points each

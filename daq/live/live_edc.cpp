@@ -25,10 +25,10 @@ void LiveEdc::start(double freq_hz, double t0_s) {
         setup.level_windows.push_back({level.start_s, level.end_s, level.f0_n});
     }
   }
-  pipeline_ = std::make_unique<analysis::MeasurementPipeline>(settings_, setup);
+  // The pipeline keeps no cycles of its own: push() takes each push's new ones.
+  pipeline_ = std::make_unique<analysis::MeasurementPipeline>(settings_, setup, false);
   freq_hz_ = freq_hz;
-  // Both count what this pipeline has published (the levels before it are in levels_done_).
-  cycles_seen_ = 0;
+  // What this pipeline has published (the levels before it are in levels_done_).
   levels_seen_ = 0;
 }
 
@@ -40,7 +40,10 @@ void LiveEdc::note_arrival(std::uint64_t first_sample, std::uint64_t end_sample,
 
 void LiveEdc::push(std::uint64_t first_sample, const double* base_si, const double* mass_si,
                    int rows) {
-  if (pipeline_) pipeline_->push(static_cast<std::int64_t>(first_sample), base_si, mass_si, rows);
+  if (!pipeline_) return;
+  pipeline_->push(static_cast<std::int64_t>(first_sample), base_si, mass_si, rows);
+  const std::vector<analysis::CycleFit>& completed = pipeline_->last_completed();
+  fresh_.insert(fresh_.end(), completed.begin(), completed.end());
 }
 
 void LiveEdc::exclude(double from_s, double to_s) {
@@ -53,13 +56,12 @@ void LiveEdc::finish() {
 
 void LiveEdc::publish(std::chrono::steady_clock::time_point now, AcquisitionStatus& status) {
   if (!pipeline_) return;
-  const auto& all = pipeline_->cycles();
   const bool new_levels = pipeline_->levels().size() != levels_seen_;
-  if (all.size() == cycles_seen_ && !new_levels) return;
+  if (fresh_.empty() && !new_levels) return;
   double latency_s = -1.0;
-  for (std::size_t k = cycles_seen_; k < all.size(); ++k) {
+  for (const analysis::CycleFit& cycle : fresh_) {
     const auto start =
-        static_cast<std::uint64_t>(std::ceil(all[k].start_s * stream_.sample_rate_hz - 1e-9));
+        static_cast<std::uint64_t>(std::ceil(cycle.start_s * stream_.sample_rate_hz - 1e-9));
     for (const BlockArrival& a : arrivals_) {
       if (a.end_sample > a.first_sample && start >= a.first_sample && start < a.end_sample) {
         latency_s = std::chrono::duration<double>(now - a.delivered).count();
@@ -69,15 +71,17 @@ void LiveEdc::publish(std::chrono::steady_clock::time_point now, AcquisitionStat
       }
     }
   }
-  cycles_.insert(cycles_.end(), all.begin() + static_cast<std::ptrdiff_t>(cycles_seen_), all.end());
-  cycles_seen_ = all.size();
+  cycles_.insert(cycles_.end(), fresh_.begin(), fresh_.end());
+  cycle_count_ += fresh_.size();
+  fresh_.clear();
+  while (cycles_.size() > kept_cycles_) cycles_.pop_front();
   if (new_levels) {
     levels_ = levels_done_;
     levels_.insert(levels_.end(), pipeline_->levels().begin(), pipeline_->levels().end());
     levels_seen_ = pipeline_->levels().size();
   }
   current_level_ = pipeline_->current_level();
-  status.cycles = static_cast<long>(cycles_.size());
+  status.cycles = static_cast<long>(cycle_count_);
   status.excluded_cycles = pipeline_->excluded_cycles();
   status.levels = levels_.size();
   if (latency_s >= 0) {

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -58,11 +60,18 @@ class LiveEdc {
   // Published: what the controlling thread reads.
   const std::vector<analysis::LevelResult>& levels() const { return levels_; }
   const std::optional<analysis::LevelResult>& current_level() const { return current_level_; }
-  const std::vector<analysis::CycleFit>& cycles() const { return cycles_; }
+  /// The newest kKeptCycles cycles (a day-long stream fits 800 000 of them at 9 Hz, 240 MB: the
+  /// levels hold what is measured, and the cycles are for the live plots and readers).
+  const std::deque<analysis::CycleFit>& cycles() const { return cycles_; }
+  /// Cycles fitted so far; the kept ones are the last cycles().size() of them.
+  std::size_t cycle_count() const { return cycle_count_; }
   /// Per cycle, the last kMaxLatencies.
   const std::vector<double>& latencies_s() const { return latencies_s_; }
 
   static constexpr std::size_t kMaxLatencies = 10000;
+  static constexpr std::size_t kKeptCycles = 65536;  // 2 h at 9 Hz, about 20 MB
+  /// How many of the newest cycles are kept (kKeptCycles unless changed; at least 1).
+  void keep_cycles(std::size_t kept) { kept_cycles_ = std::max<std::size_t>(1, kept); }
 
  private:
   // When a block's samples reached the acquisition: a cycle's EDC latency is measured from the
@@ -80,7 +89,7 @@ class LiveEdc {
   std::optional<Excitation> excitation_;
   std::unique_ptr<analysis::MeasurementPipeline> pipeline_;
   double freq_hz_ = 0.0;
-  std::size_t cycles_seen_ = 0;
+  std::vector<analysis::CycleFit> fresh_;  // completed by pushes since the last publish
   std::size_t levels_seen_ = 0;
   std::vector<BlockArrival> arrivals_ = std::vector<BlockArrival>(kArrivals);
   std::size_t arrivals_next_ = 0;
@@ -89,7 +98,9 @@ class LiveEdc {
   std::vector<analysis::LevelResult> levels_done_;  // of pipelines already finished
   std::vector<analysis::LevelResult> levels_;       // levels_done_ + the current pipeline's
   std::optional<analysis::LevelResult> current_level_;
-  std::vector<analysis::CycleFit> cycles_;
+  std::deque<analysis::CycleFit> cycles_;
+  std::size_t cycle_count_ = 0;
+  std::size_t kept_cycles_ = kKeptCycles;
   std::vector<double> latencies_s_;
 };
 

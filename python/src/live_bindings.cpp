@@ -128,7 +128,6 @@ py::dict collect(LiveSession& session, bool final_update) {
     update["block"] = block;
   }
   const std::vector<analysis::CycleFit> cycles = a.cycles_since(session.cycles_seen);
-  session.cycles_seen += cycles.size();
   update["cycles"] = cycle_table(cycles);
   const std::vector<analysis::LevelResult> levels = a.levels();
   const std::vector<analysis::LevelResult> fresh(

@@ -26,7 +26,7 @@ struct LiveRun {
   AcquisitionStatus status;
 };
 
-void run_live(LiveRun& run, std::uint64_t seed) {
+void run_live(LiveRun& run, std::uint64_t seed, std::size_t kept_cycles = LiveEdc::kKeptCycles) {
   analysis::SteppedSineSchedule schedule;
   schedule.levels_n = {0.5, 1.3};
   RigSpec spec;
@@ -37,6 +37,7 @@ void run_live(LiveRun& run, std::uint64_t seed) {
   analysis::StreamSetup stream = run.offline.setup;
   stream.level_windows.clear();  // the pipelines take them from the sidecar's excitation
   run.edc.configure(analysis::PipelineSettings{}, stream, rig.recording.sidecar.excitation);
+  run.edc.keep_cycles(kept_cycles);
   run.edc.start(run.offline.setup.excitation_freq_hz, 0.0);
   const auto n = static_cast<std::uint64_t>(channels.base.size());
   for (std::uint64_t first = 0; first < n; first += kBlockRows) {
@@ -65,6 +66,28 @@ TEST(LiveEdc, PublishesTheLevelsOfTheOfflineAnalysis) {
   }
   EXPECT_FALSE(run.edc.current_level().has_value());  // finished
   EXPECT_EQ(run.status.cycles, static_cast<long>(run.edc.cycles().size()));
+  EXPECT_EQ(run.edc.cycle_count(), run.offline.cycles.size());
+}
+
+// A day-long stream fits 800 000 cycles: only the newest are kept, the count goes on, and the
+// levels (what is measured) do not depend on how many are kept.
+TEST(LiveEdc, KeepsTheNewestCyclesOnlyAndCountsThemAll) {
+  LiveRun all, newest;
+  run_live(all, 7);
+  run_live(newest, 7, 40);
+  ASSERT_GT(all.edc.cycles().size(), 100u);
+  EXPECT_EQ(newest.edc.cycles().size(), 40u);
+  EXPECT_EQ(newest.edc.cycle_count(), all.edc.cycle_count());
+  EXPECT_EQ(newest.status.cycles, all.status.cycles);
+  const std::size_t skipped = all.edc.cycles().size() - 40;
+  for (std::size_t k = 0; k < 40; ++k) {
+    EXPECT_EQ(newest.edc.cycles()[k].start_s, all.edc.cycles()[skipped + k].start_s) << k;
+    EXPECT_EQ(newest.edc.cycles()[k].edc_j, all.edc.cycles()[skipped + k].edc_j) << k;
+  }
+  ASSERT_EQ(newest.edc.levels().size(), all.edc.levels().size());
+  for (std::size_t k = 0; k < all.edc.levels().size(); ++k) {
+    EXPECT_EQ(newest.edc.levels()[k].edc_mean_j, all.edc.levels()[k].edc_mean_j) << k;
+  }
 }
 
 TEST(LiveEdc, EachCyclesLatencyRunsFromTheArrivalOfItsFirstSample) {
