@@ -309,6 +309,7 @@ void mark_window(LevelResult& level, const LevelWindow& window, const LevelOptio
 }  // namespace
 
 void LevelTracker::close_level(std::vector<LevelResult>& finished, double stream_end_s) {
+  ++levels_closed_;
   // A sidecar level is always reported (flagged when it is short); a detected one needs enough
   // steady cycles to be a level at all, not a ramp between two.
   const bool from_window = level_window_ >= 0;
@@ -377,7 +378,15 @@ void LevelTracker::end_window(double end_s) {
 
 std::optional<LevelResult> LevelTracker::current() const {
   if (level_cycles_.empty()) return std::nullopt;
-  return summarise_level(level_cycles_, options_);
+  const std::size_t n = level_cycles_.size();
+  const bool stale = !current_summary_ || summary_level_ != levels_closed_ || n < summary_cycles_ ||
+                     n >= summary_cycles_ + std::max<std::size_t>(1, summary_cycles_ / 64);
+  if (stale) {
+    current_summary_ = summarise_level(level_cycles_, options_);
+    summary_cycles_ = n;
+    summary_level_ = levels_closed_;
+  }
+  return current_summary_;
 }
 
 }  // namespace oscilab::analysis

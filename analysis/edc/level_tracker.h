@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -90,7 +91,11 @@ class LevelTracker {
   /// beyond-record where that is why), so that each of the sidecar's levels has its row.
   void finish(std::vector<LevelResult>& finished,
               double stream_end_s = std::numeric_limits<double>::infinity());
-  /// The level being filled, summarised so far (live display); empty when there is none.
+  /// The level being filled, summarised so far (live display); empty when there is none. A
+  /// summary reads all of the level's cycles, so it is made again only once they have grown by
+  /// a 64th since the last (every cycle for the first 128): a live display of an hours-long hold
+  /// costs a constant per cycle, not one growing with the hold, and lags its level by at most
+  /// 1.6 % of its cycles.
   std::optional<LevelResult> current() const;
   /// Live: a level's steady window starts (end_s may be +∞ until end_window). Windows come in
   /// time order; the tracker becomes windowed.
@@ -107,6 +112,10 @@ class LevelTracker {
 
   LevelOptions options_;
   std::vector<CycleFit> level_cycles_;
+  std::uint64_t levels_closed_ = 0;  // which level level_cycles_ holds, for the summary's cache
+  mutable std::optional<LevelResult> current_summary_;
+  mutable std::size_t summary_cycles_ = 0;  // of level_cycles_ when current_summary_ was made
+  mutable std::uint64_t summary_level_ = 0;
   int level_window_ = -1;
   std::size_t next_window_ = 0;  // the first window not reported yet
 };

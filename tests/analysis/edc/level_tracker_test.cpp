@@ -290,6 +290,37 @@ TEST(LevelTracker, SidecarWindowsDefineTheLevels) {
   EXPECT_EQ(levels[2].flags(), "few-cycles");
 }
 
+// The live summary of the level being filled reads all its cycles, so it is made again only when
+// they have grown by a 64th: exact for a level's first 128 cycles, then never more than a 64th
+// behind, and always the summary of the cycles it had then (a second method: summarise_level).
+TEST(LevelTracker, CurrentLevelIsSummarisedAgainAsItsCyclesGrowByA64th) {
+  const Sequence s = stepped_sequence({{1.0, 600}}, 0);
+  LevelTracker live(detected_options());
+  std::vector<LevelResult> levels;
+  std::size_t made_of = 0, summaries = 0;  // the documented rule, followed alongside
+  for (std::size_t n = 1; n <= s.cycles.size(); ++n) {
+    live.push({s.cycles[n - 1]}, levels);
+    if (n >= made_of + std::max<std::size_t>(1, made_of / 64)) {
+      made_of = n;
+      ++summaries;
+    }
+    ASSERT_LE(n - made_of, std::max<std::size_t>(1, made_of / 64)) << n;  // the lag's bound
+    const std::vector<CycleFit> first(s.cycles.begin(),
+                                      s.cycles.begin() + static_cast<std::ptrdiff_t>(made_of));
+    const LevelResult expected = summarise_level(first, detected_options());
+    const std::optional<LevelResult> current = live.current();
+    ASSERT_TRUE(current.has_value());
+    EXPECT_EQ(current->cycles, expected.cycles) << n;
+    EXPECT_EQ(current->transient_cycles, expected.transient_cycles) << n;
+    EXPECT_EQ(current->edc_mean_j, expected.edc_mean_j) << n;
+    EXPECT_EQ(current->end_s, expected.end_s) << n;
+  }
+  // One per cycle while a 64th of the cycles is at most one (the first 128), then one per 64th
+  // of growth: 128 + ln(600/128) / ln(1 + 1/64) = 227, a few more for the whole numbers (241).
+  EXPECT_GT(summaries, 220u);
+  EXPECT_LT(summaries, 260u);
+}
+
 // Live: the operated excitation adds each window as it is set (end +∞) and ends it at the next
 // change; cycles come in blocks. The result is the offline one with the same windows given up
 // front, and current() summarises the level being filled.
