@@ -87,11 +87,21 @@ std::string record_of(int minutes) {
   return path;
 }
 
-void report(benchmark::State& state, const ChildRun& run, int minutes) {
-  if (!run.ok) {
-    state.SkipWithError("the analysis failed in its child process");
-    return;
+// Analyses the rig's record of state.range(0) minutes with `analyse` in a child process and
+// reports its peak memory against the signal's size.
+void measure(benchmark::State& state,
+             const std::function<analysis::CampaignAnalysis(const std::string&)>& analyse) {
+  const int minutes = static_cast<int>(state.range(0));
+  const std::string path = record_of(minutes);
+  if (path.empty()) return state.SkipWithError("the virtual rig's record could not be written");
+  ChildRun run;
+  for (auto _ : state) {
+    run = in_child([&] {
+      const analysis::CampaignAnalysis campaign = analyse(path);
+      if (!campaign.stiffness) throw std::runtime_error(campaign.rfs_message);
+    });
   }
+  if (!run.ok) return state.SkipWithError("the analysis failed in its child process");
   const double signal_mb = 60.0 * minutes * 512.0 * 2 * 8 / (1024.0 * 1024.0);  // 2 ch, double
   state.counters["peak_rss_MB"] = run.peak_rss_mb;
   state.counters["signal_MB"] = signal_mb;
@@ -101,37 +111,20 @@ void report(benchmark::State& state, const ChildRun& run, int minutes) {
 
 // `analyze`'s path: the samples streamed from the file, neither motion nor cycles kept.
 void BM_AnalyzeStreamed(benchmark::State& state) {
-  const int minutes = static_cast<int>(state.range(0));
-  const std::string path = record_of(minutes);
-  if (path.empty()) return state.SkipWithError("the virtual rig's record could not be written");
-  ChildRun run;
-  for (auto _ : state) {
-    run = in_child([&] {
-      analysis::OfflineRetention retention;
-      retention.cycles = false;
-      retention.motion = false;
-      const analysis::CampaignAnalysis campaign = analysis::analyze_campaign(
-          daq::open_campaign_streamed({path}, {}), analysis::PipelineSettings{}, {}, {}, retention);
-      if (!campaign.stiffness) throw std::runtime_error(campaign.rfs_message);
-    });
-  }
-  report(state, run, minutes);
+  measure(state, [](const std::string& path) {
+    analysis::OfflineRetention retention;
+    retention.cycles = false;
+    retention.motion = false;
+    return analysis::analyze_campaign(daq::open_campaign_streamed({path}, {}),
+                                      analysis::PipelineSettings{}, {}, {}, retention);
+  });
 }
 
 // The reference: the recording read whole, everything kept.
 void BM_AnalyzeInMemory(benchmark::State& state) {
-  const int minutes = static_cast<int>(state.range(0));
-  const std::string path = record_of(minutes);
-  if (path.empty()) return state.SkipWithError("the virtual rig's record could not be written");
-  ChildRun run;
-  for (auto _ : state) {
-    run = in_child([&] {
-      const analysis::CampaignAnalysis campaign =
-          analysis::analyze_campaign(daq::read_campaign({path}, {}), analysis::PipelineSettings{});
-      if (!campaign.stiffness) throw std::runtime_error(campaign.rfs_message);
-    });
-  }
-  report(state, run, minutes);
+  measure(state, [](const std::string& path) {
+    return analysis::analyze_campaign(daq::read_campaign({path}, {}), analysis::PipelineSettings{});
+  });
 }
 
 // One run each: a run is seconds to a minute, and its peak memory does not vary between runs.
