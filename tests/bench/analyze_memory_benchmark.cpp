@@ -127,23 +127,14 @@ void BM_AnalyzeInMemory(benchmark::State& state) {
   });
 }
 
-// One run each: a run is seconds to a minute, and its peak memory does not vary between runs.
-BENCHMARK(BM_AnalyzeStreamed)
-    ->Arg(10)
-    ->Arg(60)
-    ->Arg(360)
-    ->Arg(1440)
-    ->Iterations(1)
-    ->UseRealTime()
-    ->Unit(benchmark::kSecond);
-BENCHMARK(BM_AnalyzeInMemory)
-    ->Arg(10)
-    ->Arg(60)
-    ->Arg(360)
-    ->Arg(1440)
-    ->Iterations(1)
-    ->UseRealTime()
-    ->Unit(benchmark::kSecond);
+// The record lengths, one run each: a run is seconds to a minute, and its peak memory does not
+// vary between runs.
+void record_lengths(benchmark::internal::Benchmark* lengths) {
+  lengths->Arg(10)->Arg(60)->Arg(360)->Arg(1440)->Iterations(1)->UseRealTime();
+  lengths->Unit(benchmark::kSecond);
+}
+BENCHMARK(BM_AnalyzeStreamed)->Apply(record_lengths);
+BENCHMARK(BM_AnalyzeInMemory)->Apply(record_lengths);
 
 }  // namespace
 
