@@ -131,7 +131,12 @@ RecordAnalysis analyze_record(const MeasurementChannels& channels, const Pipelin
         base.head(count) = b;
         mass.head(count) = m;
       }
-      if (pipeline) pipeline->push(first, base.data(), mass.data(), static_cast<int>(count));
+      if (pipeline) {
+        pipeline->push(first, base.data(), mass.data(), static_cast<int>(count));
+        if (retention.each_cycle) {
+          for (const CycleFit& cycle : pipeline->last_completed()) retention.each_cycle(0, cycle);
+        }
+      }
     }
   }
   if (!channels.excluded.empty()) {
@@ -231,6 +236,21 @@ std::vector<const MotionSignals*> slice_records(const std::vector<RecordAnalysis
   return signals;
 }
 
+MotionPass campaign_motion_pass(const CampaignAnalysis& campaign,
+                                const std::vector<MeasurementChannels>& records,
+                                const CancelToken& cancel) {
+  return [&campaign, &records, cancel](const MotionSpanVisit& visit) {
+    for (const std::size_t i : slice_record_indices(campaign.records)) {
+      const MotionSignals& kept = campaign.records[i].motion;
+      if (kept.t_s.size() > 0) {
+        visit(kept, kept.t_s[kept.t_s.size() - 1]);
+      } else if (i < records.size()) {
+        for_each_motion_span(records[i], campaign.settings, visit, cancel);
+      }
+    }
+  };
+}
+
 CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& records,
                                   const PipelineSettings& settings, const ProgressFn& progress,
                                   const CancelToken& cancel, const OfflineRetention& retention) {
@@ -253,7 +273,13 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
   parallel_for(records.size(), 0, [&](std::size_t i) {
     if (cancel.cancelled()) return;
     try {
-      campaign.records[i] = analyze_record(records[i], settings, cancel, retention);
+      OfflineRetention of_record = retention;
+      if (retention.each_cycle) {
+        of_record.each_cycle = [&retention, i](std::size_t, const CycleFit& cycle) {
+          retention.each_cycle(i, cycle);
+        };
+      }
+      campaign.records[i] = analyze_record(records[i], settings, cancel, of_record);
     } catch (...) {
       errors[i] = std::current_exception();
     }
@@ -269,20 +295,9 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
   campaign.z_about_mean =
       !sliced.empty() && std::none_of(campaign.records.begin(), campaign.records.end(),
                                       [](const RecordAnalysis& r) { return r.motion.z_absolute; });
-  // A pass over the sliced records: their kept motion, or their spans made again.
   Eigen::Index max_samples = 0;
   for (const std::size_t i : sliced) max_samples += campaign.records[i].sample_count;
-  const MotionPass pass = [&](const MotionSpanVisit& visit) {
-    for (const std::size_t i : sliced) {
-      const MotionSignals& kept = campaign.records[i].motion;
-      if (kept.t_s.size() > 0) {
-        visit(kept, static_cast<double>(campaign.records[i].sample_count - 1) /
-                        records[i].sample_rate_hz);
-      } else {
-        for_each_motion_span(records[i], settings, visit, cancel);
-      }
-    }
-  };
+  const MotionPass pass = campaign_motion_pass(campaign, records, cancel);
   if (sliced.empty()) {
     campaign.rfs_message = "no record to slice";
   } else {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +53,11 @@ struct CampaignAnalysis {
 struct OfflineRetention {
   bool cycles = true;
   bool motion = true;
+  /// When set, called with every cycle the pipeline fits, in time order, kept or not, and the
+  /// record's index (analyze_campaign's order; 0 from analyze_record): so that a caller keeps
+  /// what it needs of the cycles of a record of any length. Records are analysed in parallel:
+  /// the calls for different records come from different threads.
+  std::function<void(std::size_t record, const CycleFit& cycle)> each_cycle;
 };
 
 /// The pipeline's setup for a record: rate, mass (1 when unknown), channel quantities, the
@@ -92,6 +98,15 @@ CampaignAnalysis analyze_campaign(const std::vector<MeasurementChannels>& record
 /// The records the restoring-force slices stack: those that measure z itself; when none does,
 /// every record, with z about its mean (z_about_mean).
 std::vector<const MotionSignals*> slice_records(const std::vector<RecordAnalysis>& records);
+
+/// A pass over the motion of the records the slices stack (slice_records' rule), span by span:
+/// each record's kept motion, or its spans made again from `records`, the channels the campaign
+/// was analysed from, in its order (motion_spans.h). What analyze_campaign's slices pass over,
+/// for whatever else is drawn from the same samples (the review's slice clouds). `campaign` and
+/// `records` must outlive the pass.
+MotionPass campaign_motion_pass(const CampaignAnalysis& campaign,
+                                const std::vector<MeasurementChannels>& records,
+                                const CancelToken& cancel = CancelToken());
 
 /// What a reader must know about slices against z − z̄ (the CLI's report, the app's review).
 inline constexpr const char* kZAboutMeanNote =

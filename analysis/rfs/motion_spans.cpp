@@ -38,10 +38,16 @@ void leave_out_near_excluded(MotionSignals& s, const MeasurementChannels& channe
 
 // The motion of the samples `window` holds (with the record's metadata), its non-finite samples
 // filled first.
-MotionSignals window_motion(MeasurementChannels& window, const PipelineSettings& settings) {
+MotionSignals filled_motion(MeasurementChannels& window, const PipelineSettings& settings) {
   fill_non_finite(window.base);
   fill_non_finite(window.mass);
   return motion_signals(window, settings, window.mass_kg.value_or(1.0));
+}
+
+Eigen::Index margin_samples(double sample_rate_hz, const PipelineSettings& settings,
+                            const MotionSpanning& spanning) {
+  return static_cast<Eigen::Index>(std::ceil(spanning.margin_highpass_periods /
+                                             settings.integration_highpass_hz * sample_rate_hz));
 }
 
 }  // namespace
@@ -71,7 +77,7 @@ void for_each_motion_span(const MeasurementChannels& channels, const PipelineSet
       window.base.resize(n);
       window.mass.resize(n);
       read_samples(*channels.open(), window.base.data(), window.mass.data(), n, channels.name);
-      motion = window_motion(window, settings);
+      motion = filled_motion(window, settings);
     }
     leave_out_near_excluded(motion, channels, settings);
     visit(motion, record_end_s);
@@ -81,8 +87,7 @@ void for_each_motion_span(const MeasurementChannels& channels, const PipelineSet
   if (!(spanning.span_samples > 0) || !(spanning.margin_highpass_periods >= 0.0)) {
     throw InputError("motion spans: the span and its margin must be positive");
   }
-  const auto margin = static_cast<Eigen::Index>(
-      std::ceil(spanning.margin_highpass_periods / settings.integration_highpass_hz * rate_hz));
+  const Eigen::Index margin = margin_samples(rate_hz, settings, spanning);
   // The samples [held_first, held_first + held) of the record, read forward as spans need them.
   std::unique_ptr<ChannelReader> reader = channels.open();
   std::vector<double> base, mass;
@@ -108,7 +113,7 @@ void for_each_motion_span(const MeasurementChannels& channels, const PipelineSet
     const auto length = static_cast<Eigen::Index>(wanted);
     window.base = Eigen::Map<const Eigen::VectorXd>(base.data(), length);
     window.mass = Eigen::Map<const Eigen::VectorXd>(mass.data(), length);
-    const MotionSignals motion = window_motion(window, settings);
+    const MotionSignals motion = filled_motion(window, settings);
     MotionSignals span = sub_span(motion, first - window_first, end - first);
     for (Eigen::Index i = 0; i < span.t_s.size(); ++i) {
       span.t_s[i] = static_cast<double>(first + i) / rate_hz;
@@ -116,6 +121,36 @@ void for_each_motion_span(const MeasurementChannels& channels, const PipelineSet
     leave_out_near_excluded(span, channels, settings);
     visit(span, record_end_s);
   }
+}
+
+SampleRange motion_window_range(Eigen::Index first, Eigen::Index end, Eigen::Index record_samples,
+                                double sample_rate_hz, const PipelineSettings& settings,
+                                const MotionSpanning& spanning) {
+  const Eigen::Index margin = margin_samples(sample_rate_hz, settings, spanning);
+  return {std::clamp<Eigen::Index>(first - margin, 0, record_samples),
+          std::clamp<Eigen::Index>(end + margin, 0, record_samples)};
+}
+
+WindowMotion window_motion(const MeasurementChannels& window, Eigen::Index window_first,
+                           Eigen::Index first, Eigen::Index end, const PipelineSettings& settings) {
+  const Eigen::Index held = window.base.size();
+  if (first < window_first || end > window_first + held || end < first ||
+      window.mass.size() != held) {
+    throw InputError(window.name + ": samples " + std::to_string(first) + " to " +
+                     std::to_string(end) + " are not in the window read");
+  }
+  WindowMotion out;
+  if (end == first) return out;
+  MeasurementChannels filled = window;
+  filled.source.reset();
+  const MotionSignals motion = filled_motion(filled, settings);  // fills `filled`
+  out.motion = sub_span(motion, first - window_first, end - first);
+  for (Eigen::Index i = 0; i < out.motion.t_s.size(); ++i) {
+    out.motion.t_s[i] = static_cast<double>(first + i) / window.sample_rate_hz;
+  }
+  leave_out_near_excluded(out.motion, window, settings);
+  out.force_n = excitation_force(filled, settings).segment(first - window_first, end - first);
+  return out;
 }
 
 }  // namespace oscilab::analysis

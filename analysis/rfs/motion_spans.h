@@ -43,4 +43,27 @@ void for_each_motion_span(const MeasurementChannels& channels, const PipelineSet
                           const MotionSpanVisit& visit, const CancelToken& cancel = CancelToken(),
                           const MotionSpanning& spanning = MotionSpanning());
 
+/// The samples a window of a record is transformed from: [first, end) with the spans' margin on
+/// either side, as far as the record reaches.
+struct SampleRange {
+  Eigen::Index first = 0, end = 0;
+};
+SampleRange motion_window_range(Eigen::Index first, Eigen::Index end, Eigen::Index record_samples,
+                                double sample_rate_hz, const PipelineSettings& settings,
+                                const MotionSpanning& spanning = MotionSpanning());
+
+/// z, ż, R and the excitation force f = −m b̈ (eq. 1) of a window of a record, for what is looked
+/// at a stretch at a time (a level's loop in a record of any length).
+struct WindowMotion {
+  MotionSignals motion;
+  Eigen::VectorXd force_n;
+};
+/// Of samples [first, end) of a record, from `window`: the record's channels (its metadata and
+/// invalid intervals) over the samples from `window_first` on, which should be
+/// motion_window_range(first, end, ...). The same as what for_each_motion_span gives there, to
+/// the spans' accuracy (the margin is the spans'); t_s on the record's clock; R left out near
+/// the record's invalid intervals. Throws InputError when [first, end) is not inside the window.
+WindowMotion window_motion(const MeasurementChannels& window, Eigen::Index window_first,
+                           Eigen::Index first, Eigen::Index end, const PipelineSettings& settings);
+
 }  // namespace oscilab::analysis

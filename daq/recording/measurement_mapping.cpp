@@ -133,6 +133,14 @@ analysis::MeasurementChannels measurement_channels(const Recording& recording,
   return std::move(mapping.channels);
 }
 
+analysis::MeasurementChannels measurement_rows(const Sidecar& sidecar, const std::string& file,
+                                               const Eigen::MatrixXd& rows) {
+  ChannelMapping mapping = map_channels(sidecar, file, {});
+  mapping.channels.base = rows.col(mapping.base_column);
+  mapping.channels.mass = rows.col(mapping.mass_column);
+  return std::move(mapping.channels);
+}
+
 analysis::MeasurementChannels streamed_measurement_channels(const std::string& path,
                                                             const MappingOverrides& overrides) {
   const RecordingFile file = open_recording_file(path);

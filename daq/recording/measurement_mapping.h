@@ -22,6 +22,13 @@ struct MappingOverrides {
 analysis::MeasurementChannels measurement_channels(const Recording& recording,
                                                    const MappingOverrides& overrides = {});
 
+/// Rows of a recording (its samples from some first on, in SI, every channel) mapped as
+/// measurement_channels maps the whole: the base and mass columns with the record's metadata, for
+/// a window of a record of any length (analysis::window_motion). Throws InputError as
+/// measurement_channels does for the sidecar; the record's length is not checked here.
+analysis::MeasurementChannels measurement_rows(const Sidecar& sidecar, const std::string& file,
+                                               const Eigen::MatrixXd& rows);
+
 /// The analysis's view of the recording at `path` (with its sidecar), its samples left in the
 /// file where the format allows it (sound containers: MeasurementChannels::source, decoded a
 /// pass at a time, so that a record of any length is analysed in bounded memory), read whole

@@ -1,5 +1,4 @@
 // A sound container's base and mass channels read a pass at a time (sound_file.h).
-#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -7,28 +6,9 @@
 #include "analysis/common/input_error.h"
 #include "analysis/signal/ac_coupling.h"
 #include "daq/recording/formats/sound_file.h"
-#include "daq/recording/stored_samples.h"
 
 namespace oscilab::daq {
 namespace {
-
-// One channel's calibration into SI, as calibrate() applies it.
-struct ChannelCalibration {
-  int column = 0;
-  std::string name;
-  double scale = 1.0, offset = 0.0, unit_factor = 1.0;
-  std::optional<double> ac_coupling_hz;
-};
-
-ChannelCalibration calibration_of(const Sidecar& sidecar, int column, const std::string& path) {
-  const ChannelInfo& channel = sidecar.channels[static_cast<std::size_t>(column)];
-  return {column,
-          channel.name,
-          channel.scale,
-          channel.offset,
-          unit_to_si(channel.unit, channel.quantity, path),
-          channel.ac_coupling_hz};
-}
 
 class SoundChannelReader final : public analysis::ChannelReader {
  public:
@@ -39,14 +19,8 @@ class SoundChannelReader final : public analysis::ChannelReader {
         open_(open_sound_file(path_, sidecar, sidecar_name)),
         base_(std::move(base)),
         mass_(std::move(mass)) {
-    const auto inverse =
-        [&](const ChannelCalibration& c) -> std::optional<analysis::AcCouplingInverse> {
-      if (!c.ac_coupling_hz) return std::nullopt;
-      return analysis::AcCouplingInverse(*c.ac_coupling_hz, sidecar_.sample_rate_hz,
-                                         path_ + ": channel " + in_quotes(c.name));
-    };
-    base_inverse_ = inverse(base_);
-    mass_inverse_ = inverse(mass_);
+    base_inverse_ = coupling_inverse(base_, sidecar_, path_);
+    mass_inverse_ = coupling_inverse(mass_, sidecar_, path_);
   }
 
   Eigen::Index read(double* base, double* mass, Eigen::Index count) override {
@@ -59,8 +33,10 @@ class SoundChannelReader final : public analysis::ChannelReader {
       if (got <= 0) break;
       for (sf_count_t f = 0; f < got; ++f) {
         const double* frame = frames_.data() + f * channels;
-        base[done] = calibrated(base_, base_inverse_, frame[base_.column]);
-        mass[done] = calibrated(mass_, mass_inverse_, frame[mass_.column]);
+        base[done] =
+            calibrated_sample(base_, base_inverse_, frame[base_.column], sidecar_, row_, path_);
+        mass[done] =
+            calibrated_sample(mass_, mass_inverse_, frame[mass_.column], sidecar_, row_, path_);
         ++done;
         ++row_;
       }
@@ -76,26 +52,6 @@ class SoundChannelReader final : public analysis::ChannelReader {
 
  private:
   static constexpr sf_count_t kBlockFrames = 8192;
-
-  // physical = scale × stored + offset in the channel's unit, then × unit factor → SI; a
-  // non-finite value only where the sidecar declares the samples invalid.
-  double calibrated(const ChannelCalibration& c,
-                    std::optional<analysis::AcCouplingInverse>& inverse, double stored) const {
-    double si = (c.scale * stored + c.offset) * c.unit_factor;
-    if (!std::isfinite(si) && !declared_invalid(sidecar_, row_)) {
-      const std::string problem = std::isnan(stored)   ? "is NaN"
-                                  : std::isinf(stored) ? "is infinite"
-                                                       : "(" + number_text(stored) +
-                                                             ") overflows after calibration "
-                                                             "(scale " +
-                                                             number_text(c.scale) + ")";
-      throw InputError(path_ + ": channel " + in_quotes(c.name) + ": " +
-                       sample_place(row_, sidecar_.sample_rate_hz, StoredSamples()) + " " +
-                       problem);
-    }
-    if (inverse) si = inverse->push(si);  // the input's high-pass undone, as the live chain does
-    return si;
-  }
 
   std::string path_;
   Sidecar sidecar_;

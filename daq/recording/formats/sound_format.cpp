@@ -35,12 +35,6 @@ std::string sndfile_format_name(int format) {
   return info.name;
 }
 
-// "WAV (Microsoft), 64 bit float".
-std::string container_name(int format) {
-  return sndfile_format_name(format & SF_FORMAT_TYPEMASK) + ", " +
-         sndfile_format_name(format & SF_FORMAT_SUBMASK);
-}
-
 // libsndfile shortens a truncated WAV/W64/RF64/AIFF/CAF silently to the bytes present and only
 // logs it: "data : 16000 (should be 14997)". Find that line; sizes 0 and 0xFFFFFFFF are the
 // placeholders of streaming writers, not truncation.
@@ -70,6 +64,11 @@ std::string truncation_in_log(SNDFILE* file) {
 }
 
 }  // namespace
+
+std::string sound_container_name(int format) {
+  return sndfile_format_name(format & SF_FORMAT_TYPEMASK) + ", " +
+         sndfile_format_name(format & SF_FORMAT_SUBMASK);
+}
 
 OpenSoundFile open_sound_file(const std::string& path, const Sidecar& sidecar,
                               const std::string& sidecar_name) {
@@ -149,7 +148,7 @@ Recording read_sound(const std::string& path, const Sidecar& sidecar,
   recording.samples_si = calibrate(stored, sidecar, path);
   recording.samples_stored = as_matrix(stored, recording.samples_si.cols());
   recording.source_path = path;
-  recording.container = container_name(info.format);
+  recording.container = sound_container_name(info.format);
   return recording;
 }
 
@@ -182,7 +181,7 @@ class SoundFormat final : public FormatReader {
                        ")");
     }
     FileContents contents;
-    contents.container = container_name(info.format);
+    contents.container = sound_container_name(info.format);
     contents.picked_by_source = false;
     for (int c = 0; c < info.channels; ++c) {
       FileSignal signal;
@@ -235,7 +234,7 @@ void write_sound(const std::vector<double>& stored, const Sidecar& sidecar, int 
   info.channels = channels;
   info.format = format;
   if (sf_format_check(&info) == SF_FALSE) {
-    throw InputError(path + ": " + container_name(format) + " cannot store " +
+    throw InputError(path + ": " + sound_container_name(format) + " cannot store " +
                      std::to_string(channels) + " channels at " + number_text(rate_hz) + " Hz");
   }
   SndfileHandle file(sf_open(file_path.c_str(), SFM_WRITE, &info));

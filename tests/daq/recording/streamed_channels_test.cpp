@@ -78,11 +78,25 @@ TEST(StreamedChannels, AnalyseAsTheRecordingReadWhole) {
       EXPECT_EQ(streamed.back().sample_count(), whole.back().base.size());
     }
     const analysis::PipelineSettings settings;
+    // The cycles, not kept, are seen as they are fitted, each record's apart (the records are
+    // analysed on threads of their own).
+    analysis::OfflineRetention seen = nothing_kept();
+    std::vector<std::vector<analysis::CycleFit>> visited(2);
+    seen.each_cycle = [&](std::size_t record, const analysis::CycleFit& cycle) {
+      visited.at(record).push_back(cycle);
+    };
     const analysis::CampaignAnalysis a =
-        analysis::analyze_campaign(streamed, settings, {}, {}, nothing_kept());
+        analysis::analyze_campaign(streamed, settings, {}, {}, seen);
     const analysis::CampaignAnalysis b = analysis::analyze_campaign(whole, settings);
     ASSERT_EQ(a.records.size(), 2u);
-    for (std::size_t i = 0; i < 2; ++i) expect_same_levels(a.records[i], b.records[i]);
+    for (std::size_t i = 0; i < 2; ++i) {
+      expect_same_levels(a.records[i], b.records[i]);
+      ASSERT_EQ(visited[i].size(), b.records[i].cycles.size()) << i;
+      for (std::size_t k = 0; k < visited[i].size(); ++k) {
+        EXPECT_EQ(visited[i][k].start_s, b.records[i].cycles[k].start_s);
+        EXPECT_EQ(visited[i][k].edc_j, b.records[i].cycles[k].edc_j);
+      }
+    }
     ASSERT_TRUE(a.stiffness && b.stiffness) << a.rfs_message << b.rfs_message;
     // The band and the 1–99 % range are order statistics: equal. The fit's centre is a mean
     // summed in another order (one pass per stage against Eigen's vectorised sum): its

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "analysis/pipeline/measurement_channels.h"
+#include "daq/recording/recording.h"
+#include "daq/recording/sample_overview.h"
+#include "daq/recording/sidecar.h"
+
+namespace oscilab::daq {
+
+/// Where a recording's samples live, read a window at a time: in memory, or in their file (a
+/// sound container read by seeking), so that a record of any length is looked at in memory
+/// bounded by its overview, not its length. Reads may come from any thread.
+class RecordingSamples {
+ public:
+  virtual ~RecordingSamples() = default;
+  virtual Eigen::Index sample_count() const = 0;
+  virtual Eigen::Index channel_count() const = 0;
+  /// Samples [first, first + count) of every channel in SI, calibrated as read_recording
+  /// calibrates them (AC-coupling inverse included): one row per sample. The window is clipped to
+  /// the record. Throws InputError naming the file when it can no longer be read.
+  virtual Eigen::MatrixXd read(Eigen::Index first, Eigen::Index count) const = 0;
+  /// The base and mass channels for the analysis (measurement_mapping.h), streamed from the
+  /// file when the samples live there. Throws InputError as measurement_channels does.
+  virtual analysis::MeasurementChannels measurement_channels() const = 0;
+  /// The whole recording in memory (for the exports, which write every sample): read from its
+  /// file again when the samples live there.
+  virtual Recording whole() const = 0;
+};
+
+/// A recording opened to be looked at: its sidecar and container, where its samples live and
+/// their min/max overview (sample_overview.h).
+struct OpenedRecording {
+  Sidecar sidecar;
+  std::string source_path;  // where it was read from (empty when made in memory)
+  std::string container;    // as Recording::container
+  std::shared_ptr<const RecordingSamples> samples;
+  std::shared_ptr<const SampleOverview> overview;
+
+  Eigen::Index sample_count() const { return samples ? samples->sample_count() : 0; }
+  double duration_s() const;
+  /// Index of the first channel with `role`, or -1.
+  int channel_index(ChannelRole role) const;
+};
+
+/// Opens `path` to be looked at. A sound container's samples stay in the file: one pass decodes
+/// it, checks every sample as read_recording does (the same refusals, in the same words) and
+/// builds the overview. Other formats are read whole (read_recording), their samples in SI only.
+/// Throws InputError as read_recording does.
+OpenedRecording open_recording_for_review(const std::string& path);
+
+/// A recording in memory (made by a program, or read by a caller), held as it is.
+OpenedRecording hold_recording(Recording recording);
+
+/// The overview of samples given as a pass over windows (the one builder both holders use).
+SampleOverview build_overview(const RecordingSamples& samples);
+
+}  // namespace oscilab::daq
