@@ -5,23 +5,32 @@
 #include <cmath>
 #include <cstdio>
 
+#include "analysis/common/input_error.h"
+
 namespace oscilab::ui {
 
-CursorReadout read_cursor(const daq::Recording& recording, double t_s) {
+CursorReadout read_cursor(const daq::OpenedRecording& recording, double t_s) {
   CursorReadout readout;
   const double rate_hz = recording.sidecar.sample_rate_hz;
-  const Eigen::Index count = recording.samples_si.rows();
+  const Eigen::Index count = recording.sample_count();
   if (count == 0 || !(rate_hz > 0.0) || !std::isfinite(t_s)) return readout;
   const double nearest = std::round(t_s * rate_hz);
-  readout.sample = static_cast<Eigen::Index>(std::clamp(nearest, 0.0, double(count - 1)));
-  readout.t_s = double(readout.sample) / rate_hz;
-  const auto row = recording.samples_si.row(readout.sample);
-  readout.values_si.reserve(std::size_t(row.size()));
-  for (Eigen::Index c = 0; c < row.size(); ++c) readout.values_si.push_back(row(c));
+  const auto sample = static_cast<Eigen::Index>(std::clamp(nearest, 0.0, double(count - 1)));
+  Eigen::MatrixXd row;
+  try {
+    row = recording.samples->read(sample, 1);
+  } catch (const InputError&) {  // the file went away or changed since it was opened
+    return readout;
+  }
+  if (row.rows() != 1) return readout;
+  readout.sample = sample;
+  readout.t_s = double(sample) / rate_hz;
+  readout.values_si.reserve(std::size_t(row.cols()));
+  for (Eigen::Index c = 0; c < row.cols(); ++c) readout.values_si.push_back(row(0, c));
   return readout;
 }
 
-std::string format_readout(const CursorReadout& readout, const daq::Recording& recording,
+std::string format_readout(const CursorReadout& readout, const daq::OpenedRecording& recording,
                            const std::vector<DisplayUnit>& units) {
   if (readout.sample < 0) return "";
   // Decimals of t: enough to tell neighbouring samples apart (3 at 512 Hz, 4 at 10 kHz).

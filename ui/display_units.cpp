@@ -81,14 +81,15 @@ DisplayUnit choose_display_unit(const std::string& si_unit, double max_abs) {
   return make_unit(pretty_symbol(si_unit), 1.0, max_abs);
 }
 
-std::vector<DisplayUnit> choose_display_units(const daq::Recording& recording) {
+std::vector<DisplayUnit> choose_display_units(const daq::OpenedRecording& recording) {
   std::vector<DisplayUnit> units;
   const auto& channels = recording.sidecar.channels;
   units.reserve(channels.size());
   for (std::size_t c = 0; c < channels.size(); ++c) {
     const auto column = static_cast<Eigen::Index>(c);
-    const bool has_data = column < recording.samples_si.cols() && recording.samples_si.rows() > 0;
-    const double max_abs = has_data ? recording.samples_si.col(column).cwiseAbs().maxCoeff() : 0.0;
+    const bool has_data = recording.overview && column < recording.overview->channel_count() &&
+                          recording.sample_count() > 0;
+    const double max_abs = has_data ? recording.overview->max_abs(column) : 0.0;
     units.push_back(choose_display_unit(si_unit_of(channels[c].quantity), max_abs));
   }
   return units;

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "daq/recording/recording.h"
+#include "daq/recording/opened_recording.h"
 
 namespace oscilab::ui {
 
@@ -33,7 +33,7 @@ std::string si_unit_of(daq::Quantity quantity);
 DisplayUnit choose_display_unit(const std::string& si_unit, double max_abs);
 
 /// One display unit per channel of `recording`, chosen from each channel's largest |sample|.
-std::vector<DisplayUnit> choose_display_units(const daq::Recording& recording);
+std::vector<DisplayUnit> choose_display_units(const daq::OpenedRecording& recording);
 
 /// `value_si` in `unit` with the unit's decimals and its symbol, e.g. "-3.142 mm".
 std::string format_value(double value_si, const DisplayUnit& unit);

@@ -151,20 +151,15 @@ bool ExportMenu::export_edc_mat(const QString& path) { return write_file(FileKin
 bool ExportMenu::write_file(FileKind kind, const QString& path) {
   if (job_->running()) return fail(tr("%1: another export is being written").arg(path));
   // What the worker writes, shared (never the widgets' own objects).
-  std::shared_ptr<const daq::Recording> recording;
+  std::shared_ptr<const daq::OpenedRecording> recording;
   std::shared_ptr<const ReviewAnalysis> analysis = window_->analysis();
   if (kind == FileKind::EdcMat) {
     if (!analysis) return fail(tr("%1: no analysis yet: open stepped-sine recordings").arg(path));
   } else {
-    const daq::Recording* shown_recording = window_->record_view()->recording();
+    const daq::OpenedRecording* shown_recording = window_->record_view()->recording();
     if (shown_recording == nullptr) return fail(tr("%1: no recording is shown").arg(path));
-    if (analysis) {
-      for (const auto& r : analysis->recordings) {
-        if (r.get() == shown_recording) recording = r;
-      }
-    }
-    // Not analysed (yet): a copy, a few MB.
-    if (!recording) recording = std::make_shared<const daq::Recording>(*shown_recording);
+    // A copy of the handle: the samples are shared, read whole by the worker.
+    recording = std::make_shared<const daq::OpenedRecording>(*shown_recording);
   }
   auto error = std::make_shared<std::string>();
   const std::string file = path.toStdString();
@@ -183,10 +178,10 @@ bool ExportMenu::write_file(FileKind kind, const QString& path) {
     try {
       switch (kind) {
         case FileKind::RecordingMat:
-          daq::write_recording_mat(*recording, file);
+          daq::write_recording_mat(recording->samples->whole(), file);
           break;
         case FileKind::RecordingUff:
-          daq::write_recording_uff58(*recording, file);
+          daq::write_recording_uff58(recording->samples->whole(), file);
           break;
         case FileKind::EdcMat:
           daq::write_edc_mat(daq::edc_table_rows(analysis->campaign), file);

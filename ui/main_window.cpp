@@ -44,9 +44,9 @@
 namespace oscilab::ui {
 
 /// A recording the window has opened, with the absolute path it came from.
-struct MainWindow::OpenedRecording {
+struct MainWindow::OpenedFile {
   QString path;
-  std::shared_ptr<const daq::Recording> recording;
+  std::shared_ptr<const daq::OpenedRecording> recording;
 };
 
 namespace {
@@ -57,7 +57,7 @@ const QString kRecordingFilter = QObject::tr(
 const QString kSessionFilter = QObject::tr("Oscilab sessions (*.json);;All files (*)");
 
 // "2 channels, 512 Hz, 262.00 s (134144 samples), stepped-sine at 9 Hz".
-QString summary(const daq::Recording& recording) {
+QString summary(const daq::OpenedRecording& recording) {
   const auto channels = recording.sidecar.channels.size();
   const double rate_hz = recording.sidecar.sample_rate_hz;
   const double duration_s = rate_hz > 0.0 ? double(recording.sample_count()) / rate_hz : 0.0;
@@ -79,7 +79,7 @@ QString summary(const daq::Recording& recording) {
 
 // A random or other non-stepped record has no levels to fit: it stays out of the fit panel. A
 // record that does not say its excitation joins (the analysis finds its levels, or not).
-bool joins_fit(const daq::Recording& recording) {
+bool joins_fit(const daq::OpenedRecording& recording) {
   const auto& excitation = recording.sidecar.excitation;
   return !excitation || excitation->type.empty() || excitation->type == "stepped-sine";
 }
@@ -88,7 +88,9 @@ bool joins_fit(const daq::Recording& recording) {
 
 MainWindow::MainWindow(QWidget* parent, Loader loader)
     : QMainWindow(parent), loader_(std::move(loader)) {
-  if (!loader_) loader_ = [](const std::string& path) { return daq::read_recording(path); };
+  if (!loader_) {
+    loader_ = [](const std::string& path) { return daq::open_recording_for_review(path); };
+  }
   mapping_asker_ = [this](const QString& path,
                           const daq::FileContents& contents) -> std::optional<daq::Sidecar> {
     ChannelMappingDialog dialog(path, contents, this);
@@ -195,7 +197,7 @@ void MainWindow::open_live_recording(const QString& path) {
   Q_EMIT recording_opened(path);
   const QString absolute = QFileInfo(path).absoluteFilePath();
   bool fits = false;
-  for (const OpenedRecording& opened : opened_) {
+  for (const OpenedFile& opened : opened_) {
     if (opened.path == absolute) fits = joins_fit(*opened.recording);
   }
   if (!fits) {
@@ -237,7 +239,7 @@ bool MainWindow::analysis_running() const {
 
 bool MainWindow::load(const QString& path, QString& error, bool join_fit) {
   const std::string path_utf8 = path.toStdString();
-  std::shared_ptr<daq::Recording> recording;
+  std::shared_ptr<daq::OpenedRecording> recording;
   try {
     // A file another program wrote, without a sidecar: ask what its signals are, and keep the
     // answer as its sidecar.
@@ -252,7 +254,7 @@ bool MainWindow::load(const QString& path, QString& error, bool join_fit) {
       }
       daq::write_sidecar(*sidecar, sidecar_path);
     }
-    recording = std::make_shared<daq::Recording>(loader_(path_utf8));
+    recording = std::make_shared<daq::OpenedRecording>(loader_(path_utf8));
     if (recording->source_path.empty()) recording->source_path = path_utf8;
   } catch (const InputError& input_error) {
     error = QString::fromStdString(input_error.what());
@@ -263,7 +265,7 @@ bool MainWindow::load(const QString& path, QString& error, bool join_fit) {
   }
   const QString absolute = QFileInfo(path).absoluteFilePath();
   bool replaced = false;
-  for (OpenedRecording& opened : opened_) {
+  for (OpenedFile& opened : opened_) {
     if (opened.path == absolute) {
       opened.recording = recording;
       replaced = true;
@@ -289,12 +291,12 @@ bool MainWindow::open_recording(const QString& path) {
 }
 
 int MainWindow::open_recordings(const QStringList& paths) {
-  std::shared_ptr<const daq::Recording> first;
+  std::shared_ptr<const daq::OpenedRecording> first;
   int opened = 0;
   for (const QString& path : paths) {
     if (!open_recording(path)) continue;
     ++opened;
-    for (const OpenedRecording& o : opened_) {
+    for (const OpenedFile& o : opened_) {
       if (!first && o.path == QFileInfo(path).absoluteFilePath()) first = o.recording;
     }
   }
@@ -304,17 +306,17 @@ int MainWindow::open_recordings(const QStringList& paths) {
 
 QStringList MainWindow::opened_paths() const {
   QStringList paths;
-  for (const OpenedRecording& opened : opened_) paths << opened.path;
+  for (const OpenedFile& opened : opened_) paths << opened.path;
   return paths;
 }
 
-void MainWindow::show_recording(std::shared_ptr<const daq::Recording> recording) {
+void MainWindow::show_recording(std::shared_ptr<const daq::OpenedRecording> recording) {
   if (!recording) return;
   review_view_->show_recording(std::move(recording));
 }
 
 void MainWindow::update_title() {
-  const daq::Recording* recording = record_view()->recording();
+  const daq::OpenedRecording* recording = record_view()->recording();
   if (!recording) {
     setWindowTitle(tr("Oscilab"));
     return;
@@ -328,7 +330,7 @@ void MainWindow::update_title() {
 
 void MainWindow::sync_recordings() {
   std::vector<ReviewView::Opened> recordings;
-  for (const OpenedRecording& opened : opened_) {
+  for (const OpenedFile& opened : opened_) {
     recordings.push_back({opened.path.toStdString(), opened.recording});
   }
   review_view_->set_recordings(std::move(recordings));
@@ -347,8 +349,8 @@ void MainWindow::start_analysis() {
     analysis_job_->cancel();
     return;
   }
-  std::vector<std::shared_ptr<const daq::Recording>> recordings;
-  for (const OpenedRecording& opened : opened_) recordings.push_back(opened.recording);
+  std::vector<std::shared_ptr<const daq::OpenedRecording>> recordings;
+  for (const OpenedFile& opened : opened_) recordings.push_back(opened.recording);
   if (recordings.empty()) {
     analysis_.reset();
     review_view_->set_analysis(nullptr);
@@ -414,7 +416,7 @@ void MainWindow::on_analysis_finished(bool cancelled) {
   std::vector<LevelKey> keys;
   for (const Session::LevelRef& ref : pending_levels_) {
     for (std::size_t r = 0; r < analysis_->recordings.size(); ++r) {
-      for (const OpenedRecording& opened : opened_) {
+      for (const OpenedFile& opened : opened_) {
         if (opened.recording == analysis_->recordings[r] &&
             opened.path.toStdString() == ref.recording) {
           keys.push_back({int(r), ref.level});
@@ -429,7 +431,7 @@ void MainWindow::on_analysis_finished(bool cancelled) {
 
 Session MainWindow::current_session() const {
   Session session;
-  for (const OpenedRecording& opened : opened_) {
+  for (const OpenedFile& opened : opened_) {
     session.recordings.push_back(opened.path.toStdString());
   }
   session.settings = settings_;
@@ -445,7 +447,7 @@ Session MainWindow::current_session() const {
   } else if (analysis_) {
     for (const LevelKey& key : review_view_->selected_levels()) {
       if (key.record < 0 || std::size_t(key.record) >= analysis_->recordings.size()) continue;
-      for (const OpenedRecording& opened : opened_) {
+      for (const OpenedFile& opened : opened_) {
         if (opened.recording == analysis_->recordings[std::size_t(key.record)]) {
           session.selected_levels.push_back({opened.path.toStdString(), key.level});
         }
@@ -500,20 +502,21 @@ bool MainWindow::open_session(const QString& path) {
   }
   sync_recordings();
   identification_panel_->set_recordings({});
-  for (const OpenedRecording& opened : opened_) {
+  for (const OpenedFile& opened : opened_) {
     if (joins_fit(*opened.recording)) {
       identification_panel_->add_recording(opened.path.toStdString());
     }
   }
   const auto is_open = [this](const std::string& p) {
-    for (const OpenedRecording& opened : opened_) {
+    for (const OpenedFile& opened : opened_) {
       if (opened.path.toStdString() == p) return true;
     }
     return false;
   };
 
-  std::shared_ptr<const daq::Recording> shown = opened_.empty() ? nullptr : opened_[0].recording;
-  for (const OpenedRecording& opened : opened_) {
+  std::shared_ptr<const daq::OpenedRecording> shown =
+      opened_.empty() ? nullptr : opened_[0].recording;
+  for (const OpenedFile& opened : opened_) {
     if (opened.path.toStdString() == session.shown_recording) shown = opened.recording;
   }
   review_view_->set_analysis(nullptr);

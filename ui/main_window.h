@@ -14,7 +14,7 @@
 
 #include "analysis/pipeline/pipeline_settings.h"
 #include "daq/recording/format_reader.h"
-#include "daq/recording/recording.h"
+#include "daq/recording/opened_recording.h"
 #include "ui/review_session.h"
 
 class QAction;
@@ -56,14 +56,15 @@ class MainWindow : public QMainWindow {
   Q_OBJECT
 
  public:
-  /// Reads a recording from a path; throws oscilab::InputError on bad input.
-  using Loader = std::function<daq::Recording(const std::string& path)>;
+  /// Opens a recording at a path to be looked at; throws oscilab::InputError on bad input.
+  using Loader = std::function<daq::OpenedRecording(const std::string& path)>;
 
   /// Asks a person how a file without a sidecar maps onto channels; nothing: not opened.
   using MappingAsker =
       std::function<std::optional<daq::Sidecar>(const QString& path, const daq::FileContents&)>;
 
-  /// `loader` defaults to daq::read_recording.
+  /// `loader` defaults to daq::open_recording_for_review (a sound container's samples stay in
+  /// its file).
   explicit MainWindow(QWidget* parent = nullptr, Loader loader = {});
 
   /// Replaces the ChannelMappingDialog that File ▸ Open shows for a file without a sidecar (the
@@ -78,7 +79,7 @@ class MainWindow : public QMainWindow {
   /// Opens each of `paths` in order and shows the first that opened; returns how many opened.
   int open_recordings(const QStringList& paths);
   /// Shows a recording in the time plots; the title names its source_path, or "untitled".
-  void show_recording(std::shared_ptr<const daq::Recording> recording);
+  void show_recording(std::shared_ptr<const daq::OpenedRecording> recording);
   /// The opened recordings' absolute paths, in the order they were opened.
   QStringList opened_paths() const;
 
@@ -156,7 +157,7 @@ class MainWindow : public QMainWindow {
   void dropEvent(QDropEvent* event) override;
 
  private:
-  struct OpenedRecording;
+  struct OpenedFile;
   void open_live_recording(const QString& path);
   // The constructor's parts: the Review and Live tabs with the fit panel's dock (returned), the
   // status bar's analysis and fit-set widgets, the menus and the toolbar.
@@ -182,7 +183,7 @@ class MainWindow : public QMainWindow {
   MappingAsker mapping_asker_;
   bool interactive_errors_ = true;
   QString last_directory_;
-  std::vector<OpenedRecording> opened_;
+  std::vector<OpenedFile> opened_;
   analysis::PipelineSettings settings_;
 
   BackgroundJob* analysis_job_ = nullptr;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 
 #include <QLabel>
 #include <QMouseEvent>
@@ -9,6 +11,7 @@
 
 #include <qcustomplot.h>
 
+#include "analysis/common/input_error.h"
 #include "ui/cursor_readout.h"
 #include "ui/plot_hover_readout.h"
 #include "ui/plot_theme.h"
@@ -74,7 +77,7 @@ RecordView::RecordView(QWidget* parent) : QWidget(parent) {
 
 RecordView::~RecordView() = default;
 
-void RecordView::set_recording(std::shared_ptr<const daq::Recording> recording) {
+void RecordView::set_recording(std::shared_ptr<const daq::OpenedRecording> recording) {
   recording_ = std::move(recording);
   units_ = recording_ ? choose_display_units(*recording_) : std::vector<DisplayUnit>{};
   rebuild_plots();
@@ -104,10 +107,11 @@ void RecordView::rebuild_plots() {
   cursor_t_s_.reset();
   readout_->setText(tr("Move the mouse over the plots to read the values."));
 
+  loaded_ = {};
   const bool showable =
-      recording_ && !recording_->sidecar.channels.empty() &&
-      recording_->sidecar.sample_rate_hz > 0.0 &&
-      recording_->samples_si.cols() >= Eigen::Index(recording_->sidecar.channels.size());
+      recording_ && recording_->samples && recording_->overview &&
+      !recording_->sidecar.channels.empty() && recording_->sidecar.sample_rate_hz > 0.0 &&
+      recording_->samples->channel_count() >= Eigen::Index(recording_->sidecar.channels.size());
   readout_->setVisible(showable);
   if (!showable) {
     auto* hint = new QCPTextElement(plot_, tr("No recording. File \u25b8 Open\u2026 (Ctrl+O)"));
@@ -118,11 +122,8 @@ void RecordView::rebuild_plots() {
     return;
   }
 
-  const daq::Recording& recording = *recording_;
-  const auto& channels = recording.sidecar.channels;
+  const auto& channels = recording_->sidecar.channels;
   const int channel_count = int(channels.size());
-  const double rate_hz = recording.sidecar.sample_rate_hz;
-  const Eigen::Index sample_count = recording.samples_si.rows();
   plot_->plotLayout()->setRowSpacing(0);
   QFont title_font = font();
   title_font.setBold(true);
@@ -167,12 +168,6 @@ void RecordView::rebuild_plots() {
     graph->setName(title_text(channel));
     graph->setPen(QPen(colour, 1.0));
     graph->setAdaptiveSampling(true);
-    QVector<QCPGraphData> data(static_cast<qsizetype>(sample_count));
-    const auto column = recording.samples_si.col(c);
-    for (Eigen::Index i = 0; i < sample_count; ++i) {
-      data[qsizetype(i)] = QCPGraphData(double(i) / rate_hz, unit.to_display(column(i)));
-    }
-    graph->data()->set(data, true);
 
     auto* line = new QCPItemStraightLine(plot_);
     line->setLayer(cursor_layer_);
@@ -186,8 +181,7 @@ void RecordView::rebuild_plots() {
     auto* tracer = new QCPItemTracer(plot_);
     tracer->setLayer(cursor_layer_);
     tracer->setClipAxisRect(rect);
-    tracer->setGraph(graph);
-    tracer->setInterpolating(false);
+    tracer->position->setAxes(time_axis, value_axis);  // at the sample read, not a curve point
     tracer->setStyle(QCPItemTracer::tsCircle);
     tracer->setSize(9);
     tracer->setPen(QPen(QColor(30, 30, 30), 1.5));
@@ -225,7 +219,7 @@ void RecordView::draw_marks() {
 TimeWindow RecordView::full_window() const {
   if (!recording_ || !(recording_->sidecar.sample_rate_hz > 0.0)) return {0.0, 1.0};
   const double period_s = 1.0 / recording_->sidecar.sample_rate_hz;
-  const double last_s = double(std::max<Eigen::Index>(recording_->samples_si.rows() - 1, 0));
+  const double last_s = double(std::max<Eigen::Index>(recording_->sample_count() - 1, 0));
   return {0.0, std::max(last_s * period_s, period_s)};
 }
 
@@ -244,11 +238,41 @@ void RecordView::set_auto_value_range(bool on) {
   plot_->replot(QCustomPlot::rpQueuedReplot);
 }
 
+RecordView::SampleSpan RecordView::samples_in(TimeWindow window) const {
+  const double rate_hz = recording_->sidecar.sample_rate_hz;
+  const Eigen::Index n = recording_->sample_count();
+  const Eigen::Index first =
+      std::clamp<Eigen::Index>(Eigen::Index(std::floor(window.start_s * rate_hz)), 0, n);
+  const Eigen::Index end =
+      std::clamp<Eigen::Index>(Eigen::Index(std::ceil(window.end_s * rate_hz)) + 1, first, n);
+  return {first, end};
+}
+
 void RecordView::fit_value_axes(TimeWindow window) {
-  for (QCPGraph* graph : graphs_) {
+  if (!recording_) return;
+  // From the curves when they hold the whole window; else (the whole record's range asked for
+  // while zoomed in) from the overview's buckets over it, which reach at most a bucket beyond.
+  const SampleSpan span = samples_in(window);
+  const bool drawn = loaded_.first <= span.first && span.end <= loaded_.end;
+  const Eigen::Index bucket_samples =
+      drawn ? 0 : recording_->overview->bucket_samples_for(span.first, span.end, 4096);
+  for (std::size_t c = 0; c < graphs_.size(); ++c) {
+    QCPGraph* graph = graphs_[c];
     bool found = false;
-    QCPRange range =
-        graph->data()->valueRange(found, QCP::sdBoth, QCPRange(window.start_s, window.end_s));
+    QCPRange range;
+    if (drawn) {
+      range = graph->data()->valueRange(found, QCP::sdBoth, QCPRange(window.start_s, window.end_s));
+    } else {
+      const daq::SampleOverview::Envelope e =
+          recording_->overview->envelope(Eigen::Index(c), span.first, span.end, bucket_samples);
+      for (std::size_t k = 0; k < e.min.size(); ++k) {
+        if (!std::isfinite(e.min[k]) || !std::isfinite(e.max[k])) continue;
+        const double lo = units_[c].to_display(e.min[k]), hi = units_[c].to_display(e.max[k]);
+        range = found ? QCPRange(std::min(range.lower, lo), std::max(range.upper, hi))
+                      : QCPRange(lo, hi);
+        found = true;
+      }
+    }
     if (!found) continue;
     if (range.size() <= 0.0) {
       const double half = range.upper == 0.0 ? 1.0 : 0.1 * std::abs(range.upper);
@@ -257,6 +281,69 @@ void RecordView::fit_value_axes(TimeWindow window) {
     const double pad = kValueMargin * range.size();
     graph->valueAxis()->setRange(range.lower - pad, range.upper + pad);
   }
+}
+
+void RecordView::load_window(TimeWindow window) {
+  if (!recording_ || graphs_.empty()) return;
+  const double rate_hz = recording_->sidecar.sample_rate_hz;
+  const Eigen::Index n = recording_->sample_count();
+  const auto [first, end] = samples_in(window);
+  const Eigen::Index shown = std::max<Eigen::Index>(end - first, 1);
+  const int width_px = std::max(rects_.front()->width(), 800);
+  const Eigen::Index max_buckets = Eigen::Index(kBucketsPerPixel) * width_px;
+  // The points each sample range wants: the samples, or the overview's level for the window.
+  Eigen::Index bucket_samples = 1;
+  if (shown > kRawSamples) {
+    bucket_samples = recording_->overview->bucket_samples_for(first, end, max_buckets);
+  }
+  if (loaded_.bucket_samples == bucket_samples && loaded_.first <= first && end <= loaded_.end) {
+    return;  // what was read covers the window at the resolution it wants
+  }
+  // Around the window, what a pan of a few widths reaches: up to 4 windows on either side of
+  // the samples (kRawSamples in all at most), one of the overview's buckets.
+  const Eigen::Index around =
+      bucket_samples == 1 ? std::clamp<Eigen::Index>((kRawSamples - shown) / 2, 0, 4 * shown)
+                          : shown;
+  const Eigen::Index read_first = std::max<Eigen::Index>(first - around, 0);
+  const Eigen::Index read_end = std::min(end + around, n);
+  std::vector<QVector<QCPGraphData>> data(graphs_.size());
+  if (bucket_samples == 1) {
+    Eigen::MatrixXd rows;
+    try {
+      rows = recording_->samples->read(read_first, read_end - read_first);
+    } catch (const InputError&) {  // the file went away or changed: keep what is drawn
+      return;
+    }
+    for (std::size_t c = 0; c < graphs_.size(); ++c) {
+      data[c].resize(qsizetype(rows.rows()));
+      for (Eigen::Index i = 0; i < rows.rows(); ++i) {
+        data[c][qsizetype(i)] = QCPGraphData(double(read_first + i) / rate_hz,
+                                             units_[c].to_display(rows(i, Eigen::Index(c))));
+      }
+    }
+  } else {
+    for (std::size_t c = 0; c < graphs_.size(); ++c) {
+      const daq::SampleOverview::Envelope wide =
+          recording_->overview->envelope(Eigen::Index(c), read_first, read_end, bucket_samples);
+      // Each bucket a stroke from its least value at its first sample to its greatest at its
+      // last: a band as wide as the samples' spread, drawn from two points.
+      data[c].resize(qsizetype(2 * wide.min.size()));
+      for (std::size_t k = 0; k < wide.min.size(); ++k) {
+        const Eigen::Index b0 = wide.first_sample + Eigen::Index(k) * wide.bucket_samples;
+        const Eigen::Index b1 = std::min(b0 + wide.bucket_samples, n) - 1;
+        data[c][qsizetype(2 * k)] =
+            QCPGraphData(double(b0) / rate_hz, units_[c].to_display(wide.min[k]));
+        data[c][qsizetype(2 * k + 1)] =
+            QCPGraphData(double(b1) / rate_hz, units_[c].to_display(wide.max[k]));
+      }
+    }
+  }
+  for (std::size_t c = 0; c < graphs_.size(); ++c) {
+    graphs_[c]->data()->set(data[c], true);
+    // The buckets' strokes make a solid band: smoothing its edges costs more than the band.
+    graphs_[c]->setAntialiased(bucket_samples == 1);
+  }
+  loaded_ = {read_first, read_end, bucket_samples};
 }
 
 void RecordView::set_time_window(double start_s, double end_s) {
@@ -279,6 +366,7 @@ void RecordView::on_time_range_changed(const QCPRange& range) {
     rect->axis(QCPAxis::atBottom)->setRange(window.start_s, window.end_s);
   }
   syncing_time_axes_ = false;
+  load_window(window);
   if (auto_value_range_) fit_value_axes(window);
   plot_->replot(QCustomPlot::rpQueuedReplot);
   Q_EMIT time_window_changed(window.start_s, window.end_s);
@@ -315,8 +403,12 @@ void RecordView::set_cursor_time(double t_s) {
     cursor_lines_[c]->point1->setCoords(readout.t_s, 0.0);
     cursor_lines_[c]->point2->setCoords(readout.t_s, 1.0);
     cursor_lines_[c]->setVisible(true);
-    cursor_tracers_[c]->setGraphKey(readout.t_s);
-    cursor_tracers_[c]->setVisible(true);
+    const bool has_value = c < readout.values_si.size() && c < units_.size();
+    if (has_value) {
+      cursor_tracers_[c]->position->setCoords(readout.t_s,
+                                              units_[c].to_display(readout.values_si[c]));
+    }
+    cursor_tracers_[c]->setVisible(has_value);
   }
   cursor_text_ = QString::fromStdString(format_readout(readout, *recording_, units_));
   cursor_t_s_ = readout.t_s;

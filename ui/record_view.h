@@ -8,7 +8,7 @@
 #include <QString>
 #include <QWidget>
 
-#include "daq/recording/recording.h"
+#include "daq/recording/opened_recording.h"
 #include "ui/display_units.h"
 #include "ui/time_window.h"
 
@@ -33,10 +33,17 @@ namespace oscilab::ui {
 /// double-click fits the whole record; value axes follow the data in view (optional); moving the
 /// mouse places a cursor on every plot and shows t and each channel's value in a readout line above
 /// the plots; a click places the cursor and holds it there (the mouse no longer moves it, see
-/// set_cursor_follows_mouse). Annotations show as labelled vertical lines. Large records (10⁵–10⁶
-/// samples per channel) stay responsive: graph data is loaded in one go, drawn with adaptive
-/// sampling, and the cursor lives on its own buffered layer so that moving it does not redraw the
-/// curves.
+/// set_cursor_follows_mouse). Annotations show as labelled vertical lines.
+///
+/// A record of any length is drawn in memory bounded by its overview (sample_overview.h): a time
+/// window of up to kRawSamples samples is drawn from the samples themselves (read where they
+/// live, with up to four windows on either side, kRawSamples in all at most, so that a pan
+/// stays within what was read), a wider one from the min/max buckets of the overview's finest
+/// level that gives at most kBucketsPerPixel buckets per pixel of the plot's width, over the
+/// window and one window on either side, drawn without antialiasing (the strokes make a solid
+/// band). A zoom or pan reads again only when the window leaves what was read or needs
+/// another level. The curves are drawn with adaptive sampling, and the cursor lives on its own
+/// buffered layer so that moving it does not redraw them.
 ///
 /// Used from the UI thread only.
 class RecordView : public QWidget {
@@ -46,10 +53,20 @@ class RecordView : public QWidget {
   explicit RecordView(QWidget* parent = nullptr);
   ~RecordView() override;
 
+  /// A window of up to this many samples per channel is drawn from the samples (512 s at
+  /// 512 Hz); a wider one from the overview.
+  static constexpr Eigen::Index kRawSamples = Eigen::Index{1} << 18;
+  /// Overview buckets drawn per pixel of the plot's width (each bucket is a stroke from its
+  /// least to its greatest value): one, the finest a pixel column shows.
+  static constexpr int kBucketsPerPixel = 1;
+
   /// Shows `recording` (replacing what was shown) and fits the view to it. Null clears.
-  void set_recording(std::shared_ptr<const daq::Recording> recording);
+  void set_recording(std::shared_ptr<const daq::OpenedRecording> recording);
   /// The recording shown, or null.
-  const daq::Recording* recording() const { return recording_.get(); }
+  const daq::OpenedRecording* recording() const { return recording_.get(); }
+  /// Samples per point of the curves drawn: 1 when they are the samples, the overview's bucket
+  /// size otherwise; 0 with nothing shown.
+  Eigen::Index samples_per_point() const { return loaded_.bucket_samples; }
   /// Display unit of each channel of the recording shown.
   const std::vector<DisplayUnit>& display_units() const { return units_; }
 
@@ -110,8 +127,21 @@ class RecordView : public QWidget {
   void draw_marks();
   TimeWindow full_window() const;
   void fit_value_axes(TimeWindow window);
+  void load_window(TimeWindow window);
+  struct SampleSpan {
+    Eigen::Index first = 0, end = 0;
+  };
+  // The samples [first, end) a time window shows, clipped to the record.
+  SampleSpan samples_in(TimeWindow window) const;
 
-  std::shared_ptr<const daq::Recording> recording_;
+  // What the curves hold: samples [first, end) of every channel, one point per sample
+  // (bucket_samples 1) or two per overview bucket.
+  struct Loaded {
+    Eigen::Index first = 0, end = 0, bucket_samples = 0;
+  };
+
+  std::shared_ptr<const daq::OpenedRecording> recording_;
+  Loaded loaded_;
   std::vector<DisplayUnit> units_;
   QLabel* readout_ = nullptr;
   QCustomPlot* plot_ = nullptr;

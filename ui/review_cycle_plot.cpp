@@ -58,14 +58,15 @@ void ReviewCyclePlot::show(const ReviewAnalysis* review, int record_index, bool 
     return;
   }
   const analysis::RecordAnalysis& record = review->campaign.records[std::size_t(r)];
-  if (record.cycles.empty()) {
+  const std::vector<ReviewCycle>& record_cycles = review->cycles[std::size_t(r)];
+  if (record_cycles.empty()) {
     set_plot_hint(plot_, tr("No stepped-sine cycles in %1").arg(qtext(record.name)));
     plot_->replot(QCustomPlot::rpQueuedReplot);
     return;
   }
   set_plot_hint(plot_, {});
   // Which level's steady part holds a cycle (its well), if any.
-  const auto steady_well = [&](const analysis::CycleFit& cycle) -> const analysis::Well* {
+  const auto steady_well = [&](const ReviewCycle& cycle) -> const analysis::Well* {
     for (const analysis::LevelResult& level : record.levels) {
       if (cycle.start_s >= level.start_s - 1e-9 && cycle.end_s <= level.end_s + 1e-9) {
         return &level.well;
@@ -79,7 +80,7 @@ void ReviewCyclePlot::show(const ReviewAnalysis* review, int record_index, bool 
     QVector<double> t_s, edc_mj;
   };
   std::map<std::string, WellCycles> by_well;  // by the well's name: the legend's order
-  for (const analysis::CycleFit& cycle : record.cycles) {
+  for (const ReviewCycle& cycle : record_cycles) {
     const double t_s = 0.5 * (cycle.start_s + cycle.end_s);
     if (const analysis::Well* well = steady_well(cycle)) {
       WellCycles& cycles =

@@ -8,6 +8,7 @@
 
 #include <qcustomplot.h>
 
+#include "analysis/common/input_error.h"
 #include "analysis/pipeline/result_units.h"
 #include "ui/display_units.h"
 #include "ui/plot_helpers.h"
@@ -110,9 +111,13 @@ void ReviewLoopPlot::show(const ReviewAnalysis* review, const std::vector<LevelK
     for (const LevelKey& key : keys) {
       if (loops.size() == kMaxLoops) break;
       const analysis::LevelResult* level = find_level(review->campaign, key);
-      if (!level || std::size_t(key.record) >= review->force_n.size()) continue;
-      loops.push_back(level_loop(review->campaign.records[std::size_t(key.record)].motion,
-                                 review->force_n[std::size_t(key.record)], *level));
+      if (!level || std::size_t(key.record) >= review->recordings.size()) continue;
+      try {
+        loops.push_back(level_loop(*review->recordings[std::size_t(key.record)],
+                                   review->campaign.settings, *level));
+      } catch (const InputError&) {  // the file went away since it was analysed: no loop
+        continue;
+      }
       shown.push_back(key);
     }
   }

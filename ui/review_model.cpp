@@ -6,40 +6,63 @@
 #include <exception>
 
 #include "analysis/common/input_error.h"
+#include "analysis/rfs/motion_spans.h"
 #include "analysis/rfs/restoring_force_slices.h"
 #include "daq/recording/measurement_mapping.h"
 
 namespace oscilab::ui {
 namespace {
 
-// Share of the progress bar the campaign analysis takes; the excitation forces take the rest.
-constexpr double kCampaignShare = 0.9;
+// Share of the progress bar the campaign analysis takes; the pass for the slices' points takes
+// the rest (one pass of the seven).
+constexpr double kCampaignShare = 6.0 / 7.0;
 
-// Keeps every k-th point so that at most `max_points` remain.
-void thin(ScatterPoints& points, std::size_t max_points) {
-  points.selected = points.x.size();
-  if (max_points == 0 || points.x.size() <= max_points) return;
-  const std::size_t stride = (points.x.size() + max_points - 1) / max_points;
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < points.x.size(); i += stride, ++kept) {
-    points.x[kept] = points.x[i];
-    points.y[kept] = points.y[i];
+// Thins a stream of points of unknown length by an even stride: keeps every stride-th, and when
+// twice the count asked for is kept, drops every other one and doubles the stride; finish()
+// ends with at most the count asked for.
+class StreamThinner {
+ public:
+  explicit StreamThinner(std::size_t max_points) : max_(max_points) {}
+  void add(double x, double y) {
+    if (points_.selected++ % stride_ != 0) return;
+    points_.x.push_back(x);
+    points_.y.push_back(y);
+    if (max_ > 0 && points_.x.size() >= 2 * max_) halve();
   }
-  points.x.resize(kept);
-  points.y.resize(kept);
-}
+  ScatterPoints finish() {
+    while (max_ > 0 && points_.x.size() > max_) halve();
+    return std::move(points_);
+  }
+
+ private:
+  void halve() {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < points_.x.size(); i += 2, ++kept) {
+      points_.x[kept] = points_.x[i];
+      points_.y[kept] = points_.y[i];
+    }
+    points_.x.resize(kept);
+    points_.y.resize(kept);
+    stride_ *= 2;  // those kept are the multiples of the stride, as the next ones will be
+  }
+
+  std::size_t max_;
+  std::size_t stride_ = 1;
+  ScatterPoints points_;
+};
 
 }  // namespace
 
-ReviewAnalysis analyze_review(const std::vector<std::shared_ptr<const daq::Recording>>& recordings,
-                              const analysis::PipelineSettings& settings,
-                              const ProgressFn& progress, const CancelToken& cancel) {
+ReviewAnalysis analyze_review(
+    const std::vector<std::shared_ptr<const daq::OpenedRecording>>& recordings,
+    const analysis::PipelineSettings& settings, const ProgressFn& progress,
+    const CancelToken& cancel) {
   ReviewAnalysis out;
   std::vector<analysis::MeasurementChannels> channels;
   for (const auto& recording : recordings) {
-    if (!recording) continue;
+    if (!recording || !recording->samples) continue;
     try {
-      channels.push_back(daq::measurement_channels(*recording));
+      channels.push_back(recording->samples->measurement_channels());
       out.recordings.push_back(recording);
     } catch (const InputError& error) {
       out.errors.emplace_back(error.what());
@@ -48,29 +71,61 @@ ReviewAnalysis analyze_review(const std::vector<std::shared_ptr<const daq::Recor
   const ProgressFn campaign_progress = [&progress](double fraction) {
     if (progress) progress(kCampaignShare * fraction);
   };
+  analysis::OfflineRetention retention;
+  retention.motion = false;  // a loop is made again from its window
+  retention.cycles = false;
+  out.cycles.resize(channels.size());
+  retention.each_cycle = [&out](std::size_t record, const analysis::CycleFit& cycle) {
+    out.cycles[record].push_back({cycle.start_s, cycle.end_s, cycle.edc_j});  // its thread's
+  };
   try {
-    out.campaign = analysis::analyze_campaign(channels, settings, campaign_progress, cancel);
+    out.campaign =
+        analysis::analyze_campaign(channels, settings, campaign_progress, cancel, retention);
+    if (out.campaign.status == JobStatus::Ok && out.campaign.stiffness) {
+      out.slice_points =
+          slice_points(analysis::campaign_motion_pass(out.campaign, channels, cancel), out.campaign,
+                       kSlicePointsShown,
+                       kSlicePointsShown / std::max<std::size_t>(out.campaign.damping.size(), 1));
+      if (cancel.cancelled()) out.campaign.status = JobStatus::Cancelled;
+    }
   } catch (const std::exception& error) {  // InputError: a record the core cannot analyse
     out.errors.emplace_back(error.what());
     out.campaign = analysis::CampaignAnalysis{};
     out.campaign.settings = settings;
     out.campaign.status = JobStatus::InvalidInput;
     out.recordings.clear();
+    out.cycles.clear();
+    out.slice_points = {};
     return out;
   }
-  if (out.campaign.status != JobStatus::Ok) return out;
-  for (std::size_t i = 0; i < channels.size(); ++i) {
-    if (cancel.cancelled()) {
-      out.campaign.status = JobStatus::Cancelled;
-      return out;
-    }
-    out.force_n.push_back(analysis::excitation_force(channels[i], settings));
-    if (progress) {
-      progress(kCampaignShare + (1.0 - kCampaignShare) * double(i + 1) / double(channels.size()));
-    }
-  }
-  if (progress) progress(1.0);
+  if (progress && out.campaign.status == JobStatus::Ok) progress(1.0);
   return out;
+}
+
+SlicePoints slice_points(const analysis::MotionPass& pass,
+                         const analysis::CampaignAnalysis& campaign, std::size_t max_stiffness,
+                         std::size_t max_damping) {
+  SlicePoints points;
+  if (!campaign.stiffness) return points;
+  const double band_m_s = campaign.stiffness->velocity_band_m_s;
+  const analysis::PolynomialFit& fit = campaign.stiffness->fit;
+  StreamThinner stiffness(max_stiffness);
+  std::vector<StreamThinner> damping(campaign.damping.size(), StreamThinner(max_damping));
+  pass([&](const analysis::MotionSignals& s, double record_end_s) {
+    analysis::for_each_slice_sample(
+        s, record_end_s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
+          if (std::abs(s.z_dot_m_s[i]) < band_m_s) stiffness.add(s.z_m[i], s.restoring_force_n[i]);
+          for (std::size_t d = 0; d < damping.size(); ++d) {
+            const analysis::DampingSlice& slice = campaign.damping[d];
+            if (std::abs(s.z_m[i] - slice.z_center_m) < slice.position_band_m) {
+              damping[d].add(s.z_dot_m_s[i], s.restoring_force_n[i] - fit.value(s.z_m[i]));
+            }
+          }
+        });
+  });
+  points.stiffness = stiffness.finish();
+  for (StreamThinner& d : damping) points.damping.push_back(d.finish());
+  return points;
 }
 
 std::vector<LevelRow> level_rows(int record, const std::string& record_name,
@@ -164,45 +219,40 @@ LevelLoop level_loop(const analysis::MotionSignals& motion, const Eigen::VectorX
   return loop;
 }
 
+LevelLoop level_loop(const daq::OpenedRecording& recording,
+                     const analysis::PipelineSettings& settings,
+                     const analysis::LevelResult& level) {
+  const double rate_hz = recording.sidecar.sample_rate_hz;
+  const Eigen::Index n = recording.sample_count();
+  if (!recording.samples || !(rate_hz > 0.0) || n == 0) return {};
+  Eigen::Index first =
+      std::clamp<Eigen::Index>(Eigen::Index(std::ceil(level.start_s * rate_hz)), 0, n);
+  const Eigen::Index end =
+      std::clamp<Eigen::Index>(Eigen::Index(std::floor(level.end_s * rate_hz)) + 1, first, n);
+  if (end == first) return {};
+  analysis::LevelResult shown = level;
+  if (end - first > kLoopSamples) {  // the last kLoopSamples, its cycles in proportion
+    shown.cycles =
+        int(std::lround(double(level.cycles) * double(kLoopSamples) / double(end - first)));
+    first = end - kLoopSamples;
+    shown.start_s = double(first) / rate_hz;
+  }
+  const analysis::SampleRange range =
+      analysis::motion_window_range(first, end, n, rate_hz, settings);
+  const std::string file = recording.source_path.empty() ? "recording" : recording.source_path;
+  const analysis::MeasurementChannels window = daq::measurement_rows(
+      recording.sidecar, file, recording.samples->read(range.first, range.end - range.first));
+  const analysis::WindowMotion motion =
+      analysis::window_motion(window, range.first, first, end, settings);
+  return level_loop(motion.motion, motion.force_n, shown);
+}
+
 double loop_area_j(const std::vector<double>& z_m, const std::vector<double>& f_n) {
   double area_j = 0.0;
   for (std::size_t i = 1; i < std::min(z_m.size(), f_n.size()); ++i) {
     area_j += 0.5 * (f_n[i] + f_n[i - 1]) * (z_m[i] - z_m[i - 1]);
   }
   return area_j;
-}
-
-ScatterPoints stiffness_points(const analysis::CampaignAnalysis& campaign, std::size_t max_points) {
-  ScatterPoints points;
-  if (!campaign.stiffness) return points;
-  const double band_m_s = campaign.stiffness->velocity_band_m_s;
-  for (const analysis::MotionSignals* s : analysis::slice_records(campaign.records)) {
-    analysis::for_each_slice_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
-      if (std::abs(s->z_dot_m_s[i]) < band_m_s) {
-        points.x.push_back(s->z_m[i]);
-        points.y.push_back(s->restoring_force_n[i]);
-      }
-    });
-  }
-  thin(points, max_points);
-  return points;
-}
-
-ScatterPoints damping_points(const analysis::CampaignAnalysis& campaign,
-                             const analysis::DampingSlice& slice, std::size_t max_points) {
-  ScatterPoints points;
-  if (!campaign.stiffness) return points;
-  const analysis::PolynomialFit& fit = campaign.stiffness->fit;
-  for (const analysis::MotionSignals* s : analysis::slice_records(campaign.records)) {
-    analysis::for_each_slice_sample(*s, campaign.settings.edge_trim_s, [&](Eigen::Index i) {
-      if (std::abs(s->z_m[i] - slice.z_center_m) < slice.position_band_m) {
-        points.x.push_back(s->z_dot_m_s[i]);
-        points.y.push_back(s->restoring_force_n[i] - fit.value(s->z_m[i]));
-      }
-    });
-  }
-  thin(points, max_points);
-  return points;
 }
 
 std::string value_with_error(double value, double error) {

@@ -11,29 +11,69 @@
 #include "analysis/common/job.h"
 #include "analysis/edc/well.h"
 #include "analysis/pipeline/offline_analysis.h"
-#include "daq/recording/recording.h"
+#include "daq/recording/opened_recording.h"
 #include "ui/time_window.h"
 
 namespace oscilab::ui {
 
+/// Points of a scatter plot, thinned to at most a given count by an even stride.
+struct ScatterPoints {
+  std::vector<double> x, y;
+  std::size_t selected = 0;  // samples that met the condition, before thinning
+};
+
+/// The samples behind the restoring-force slices, thinned for drawing.
+struct SlicePoints {
+  /// Same selection as analysis::stiffness_slice (away from the records' ends, |ż| < ε_s):
+  /// x = z [m], y = R [N].
+  ScatterPoints stiffness;
+  /// One per campaign damping slice (|z − z̄| < ε_d): x = ż [m/s], y = D = R − K_fit(z) [N].
+  std::vector<ScatterPoints> damping;
+};
+
+/// The points the review draws of the slices: at most this many of the stiffness slice, and as
+/// many of all damping slices together.
+inline constexpr std::size_t kSlicePointsShown = 20000;
+
+/// What the cycle plot shows of a fitted cycle (24 bytes, where the cycle's fit takes about 280:
+/// a day-long record has 800 000 cycles).
+struct ReviewCycle {
+  double start_s = 0.0, end_s = 0.0;
+  double edc_j = 0.0;
+};
+
 /// What the record review shows of the opened recordings: the offline analysis of those that
-/// could be analysed (campaign.records[i] is recordings[i]) and the excitation force of each.
-/// Built on a worker thread by analyze_review, then only read. Qt-free.
+/// could be analysed (campaign.records[i] is recordings[i]), each record's cycles and the
+/// samples behind its slices. Neither the records' motion nor their cycles' fits are kept (a
+/// loop is made again from its window, level_loop), so the review of a record of any length
+/// stays within its overview's memory and 24 bytes a cycle. Built on a worker thread by
+/// analyze_review, then only read. Qt-free.
 struct ReviewAnalysis {
   analysis::CampaignAnalysis campaign;
-  std::vector<std::shared_ptr<const daq::Recording>> recordings;  // one per campaign record
-  std::vector<Eigen::VectorXd> force_n;  // f = −m b̈ per sample, one per campaign record
-  std::vector<std::string> errors;       // recordings left out, each message naming the file
+  std::vector<std::shared_ptr<const daq::OpenedRecording>> recordings;  // one per campaign record
+  std::vector<std::vector<ReviewCycle>> cycles;  // one per campaign record, in time order
+  SlicePoints slice_points;
+  std::vector<std::string> errors;  // recordings left out, each message naming the file
 };
 
 /// Maps each recording to the analysis's channels (a recording that cannot be mapped is left out
 /// and named in `errors`), runs analysis::analyze_campaign on the rest (the same analysis as
-/// daq::analyze_recordings, on recordings already in memory) and computes their excitation
-/// force. Never throws: a record the core rejects is reported in `errors`; a cancelled run
-/// returns campaign.status == Cancelled.
-ReviewAnalysis analyze_review(const std::vector<std::shared_ptr<const daq::Recording>>& recordings,
-                              const analysis::PipelineSettings& settings,
-                              const ProgressFn& progress = {}, const CancelToken& cancel = {});
+/// daq::analyze_recordings; a record whose samples live in its file is streamed from it, its
+/// motion and its cycles' fits not kept) and gathers the slices' points in one more pass. Never
+/// throws: a record the core rejects is reported in `errors`; a cancelled run returns
+/// campaign.status == Cancelled.
+ReviewAnalysis analyze_review(
+    const std::vector<std::shared_ptr<const daq::OpenedRecording>>& recordings,
+    const analysis::PipelineSettings& settings, const ProgressFn& progress = {},
+    const CancelToken& cancel = {});
+
+/// The slices' points of `campaign` in one pass over its records' motion
+/// (analysis::campaign_motion_pass): at most `max_stiffness` of the stiffness slice and
+/// `max_damping` of each damping slice, each thinned by an even stride over its samples in time
+/// order.
+SlicePoints slice_points(const analysis::MotionPass& pass,
+                         const analysis::CampaignAnalysis& campaign, std::size_t max_stiffness,
+                         std::size_t max_damping);
 
 /// A level of the review: record index into ReviewAnalysis::campaign.records and level index
 /// into that record's levels.
@@ -89,21 +129,20 @@ struct LevelLoop {
 LevelLoop level_loop(const analysis::MotionSignals& motion, const Eigen::VectorXd& force_n,
                      const analysis::LevelResult& level);
 
+/// A loop shows at most this many samples (128 s at 512 Hz, over 1 000 cycles at 9 Hz): the
+/// last ones of a longer hold, where it has settled most.
+inline constexpr Eigen::Index kLoopSamples = Eigen::Index{1} << 16;
+
+/// The loop of a level of `recording`, made from a window of the record read where its samples
+/// live and transformed with the analysis's margin (analysis::window_motion, equal to the
+/// record's motion there to its accuracy); the last kLoopSamples of a longer level, its cycles
+/// counted in proportion. Throws InputError when the file can no longer be read.
+LevelLoop level_loop(const daq::OpenedRecording& recording,
+                     const analysis::PipelineSettings& settings,
+                     const analysis::LevelResult& level);
+
 /// ∮ f dz of a sampled loop by the trapezoidal rule, J (positive when z lags f).
 double loop_area_j(const std::vector<double>& z_m, const std::vector<double>& f_n);
-
-/// Points of a scatter plot, thinned to at most a given count by an even stride.
-struct ScatterPoints {
-  std::vector<double> x, y;
-  std::size_t selected = 0;  // samples that met the condition, before thinning
-};
-
-/// The samples behind the stiffness slice (same selection as analysis::stiffness_slice: away
-/// from the records' ends, |ż| < ε_s): x = z [m], y = R [N].
-ScatterPoints stiffness_points(const analysis::CampaignAnalysis& campaign, std::size_t max_points);
-/// The samples behind a damping slice (|z − z̄| < ε_d): x = ż [m/s], y = D = R − K_fit(z) [N].
-ScatterPoints damping_points(const analysis::CampaignAnalysis& campaign,
-                             const analysis::DampingSlice& slice, std::size_t max_points);
 
 /// The fitted K(z) of eq. (2) with standard errors, in the paper's signs (k1 = −c1), e.g.
 /// "K(z) = k₃z³ + k₂z² − k₁z + k₀ (eq. 2): k₃ = 2.041e+05 ± 12 N/m³, ...".

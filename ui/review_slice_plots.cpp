@@ -17,8 +17,6 @@
 namespace oscilab::ui {
 namespace {
 
-// Scatter points per slice plot: enough to show the cloud, few enough to redraw at once.
-constexpr std::size_t kMaxScatterPoints = 20000;
 // Points of the fitted K(z) curve.
 constexpr int kCurvePoints = 200;
 // Damping slices: green around z₋*, yellow-orange around z₊* (Fig. 7c; Okabe–Ito colours).
@@ -83,7 +81,7 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
   const analysis::StiffnessSlice& slice = *campaign->stiffness;
 
   // Stiffness slice: the samples, their bin means and the fitted cubic.
-  const ScatterPoints samples = stiffness_points(*campaign, kMaxScatterPoints);
+  const ScatterPoints& samples = review->slice_points.stiffness;
   std::vector<double> bin_z, bin_r;
   for (const analysis::SliceBin& bin : slice.bins) {
     bin_z.push_back(bin.x);
@@ -142,12 +140,12 @@ void ReviewSlicePlots::show(const ReviewAnalysis* review, bool running) {
     return;
   }
   set_plot_hint(damping_plot_, {});
-  std::vector<ScatterPoints> clouds;
+  std::vector<ScatterPoints> clouds = review->slice_points.damping;
+  clouds.resize(campaign->damping.size());
   double v_max = 0.0, d_max = 0.0;
-  for (const analysis::DampingSlice& d : campaign->damping) {
-    clouds.push_back(damping_points(*campaign, d, kMaxScatterPoints / campaign->damping.size()));
-    v_max = std::max(v_max, largest_abs({&clouds.back().x}));
-    d_max = std::max(d_max, largest_abs({&clouds.back().y}));
+  for (const ScatterPoints& cloud : clouds) {
+    v_max = std::max(v_max, largest_abs({&cloud.x}));
+    d_max = std::max(d_max, largest_abs({&cloud.y}));
   }
   const DisplayUnit v_unit = choose_display_unit("m/s", v_max);
   const DisplayUnit d_unit = choose_display_unit("N", d_max);

@@ -141,7 +141,7 @@ void ReviewView::set_recordings(std::vector<Opened> recordings) {
 }
 
 std::string ReviewView::shown_path() const {
-  const daq::Recording* shown = record_view_->recording();
+  const daq::OpenedRecording* shown = record_view_->recording();
   if (!shown) return {};
   for (const Opened& opened : recordings_) {
     if (opened.recording.get() == shown) return opened.path;
@@ -149,7 +149,7 @@ std::string ReviewView::shown_path() const {
   return shown->source_path;
 }
 
-void ReviewView::show_recording(std::shared_ptr<const daq::Recording> recording) {
+void ReviewView::show_recording(std::shared_ptr<const daq::OpenedRecording> recording) {
   record_view_->set_recording(std::move(recording));
   {
     const QSignalBlocker block(record_box_);

@@ -8,7 +8,7 @@
 #include <QString>
 #include <QWidget>
 
-#include "daq/recording/recording.h"
+#include "daq/recording/opened_recording.h"
 #include "ui/annotation.h"
 #include "ui/review_cycle_plot.h"
 #include "ui/review_loop_plot.h"
@@ -47,7 +47,7 @@ class ReviewView : public QWidget {
   /// A recording the review can show, with the (absolute) path it was opened from.
   struct Opened {
     std::string path;
-    std::shared_ptr<const daq::Recording> recording;
+    std::shared_ptr<const daq::OpenedRecording> recording;
   };
 
   explicit ReviewView(QWidget* parent = nullptr);
@@ -58,7 +58,7 @@ class ReviewView : public QWidget {
   void set_recordings(std::vector<Opened> recordings);
   const std::vector<Opened>& recordings() const { return recordings_; }
   /// Shows `recording` in the time plots (null clears).
-  void show_recording(std::shared_ptr<const daq::Recording> recording);
+  void show_recording(std::shared_ptr<const daq::OpenedRecording> recording);
   /// Path of the recording shown: its Opened path, else its source_path; empty without one.
   std::string shown_path() const;
 

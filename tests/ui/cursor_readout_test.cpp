@@ -14,7 +14,7 @@ daq::ChannelInfo channel(std::string name, daq::Quantity quantity) {
   return info;
 }
 
-daq::Recording ramp_recording() {
+daq::OpenedRecording ramp_recording() {
   daq::Recording recording;
   recording.sidecar.sample_rate_hz = 512.0;
   recording.sidecar.channels = {channel("base_acc", daq::Quantity::Acceleration),
@@ -24,11 +24,11 @@ daq::Recording ramp_recording() {
     recording.samples_si(i, 0) = double(i);          // m/s²: the sample index
     recording.samples_si(i, 1) = -1e-3 * double(i);  // m: −index mm
   }
-  return recording;
+  return daq::hold_recording(std::move(recording));
 }
 
 TEST(CursorReadout, SnapsToTheNearestSample) {
-  const daq::Recording recording = ramp_recording();
+  const daq::OpenedRecording recording = ramp_recording();
   // 1.0 s + 0.4 sample → sample 512; + 0.6 sample → sample 513.
   const CursorReadout below = read_cursor(recording, 1.0 + 0.4 / 512.0);
   EXPECT_EQ(below.sample, 512);
@@ -40,21 +40,23 @@ TEST(CursorReadout, SnapsToTheNearestSample) {
 }
 
 TEST(CursorReadout, ClampsToTheRecording) {
-  const daq::Recording recording = ramp_recording();
+  const daq::OpenedRecording recording = ramp_recording();
   EXPECT_EQ(read_cursor(recording, -5.0).sample, 0);
   EXPECT_EQ(read_cursor(recording, 1e6).sample, 1023);
   EXPECT_DOUBLE_EQ(read_cursor(recording, 1e6).t_s, 1023.0 / 512.0);
 }
 
 TEST(CursorReadout, IsEmptyWithoutSamples) {
-  daq::Recording recording = ramp_recording();
-  recording.samples_si.resize(0, 2);
+  daq::Recording none;
+  none.sidecar = ramp_recording().sidecar;
+  none.samples_si.resize(0, 2);
+  const daq::OpenedRecording recording = daq::hold_recording(none);
   EXPECT_EQ(read_cursor(recording, 0.0).sample, -1);
   EXPECT_EQ(format_readout(read_cursor(recording, 0.0), recording, {}), "");
 }
 
 TEST(CursorReadout, FormatsTimeToTheSamplingResolutionAndValuesInDisplayUnits) {
-  const daq::Recording recording = ramp_recording();
+  const daq::OpenedRecording recording = ramp_recording();
   const std::vector<DisplayUnit> units = {{"m/s²", 1.0, 0}, {"mm", 1e-3, 1}};
   // Widths: 4 digits and a sign for base_acc ("-1023"), 3 + 1 decimal and a sign for y.
   EXPECT_EQ(format_readout(read_cursor(recording, 1.0), recording, units),

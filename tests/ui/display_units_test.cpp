@@ -72,7 +72,7 @@ TEST(DisplayUnit, EachChannelOfARecordingGetsItsOwnUnit) {
   recording.sidecar.channels[1].quantity = daq::Quantity::Displacement;
   recording.samples_si.resize(3, 2);
   recording.samples_si << 1.0, 1e-5, -4.0, -3e-5, 2.0, 2e-5;
-  const std::vector<DisplayUnit> units = choose_display_units(recording);
+  const std::vector<DisplayUnit> units = choose_display_units(daq::hold_recording(recording));
   ASSERT_EQ(units.size(), 2u);
   EXPECT_EQ(units[0].symbol, "m/s²");
   EXPECT_EQ(units[1].symbol, "µm");  // largest |y| is 30 µm

@@ -130,7 +130,7 @@ class ExportMenuTest : public QObject {
 
   void recordingExportsAsMatAndUff() {
     ExportMenu* exports = window_->export_menu();
-    const oscilab::daq::Recording* shown = window_->record_view()->recording();
+    const oscilab::daq::OpenedRecording* shown = window_->record_view()->recording();
     QVERIFY(shown != nullptr);
     QTemporaryDir dir;
     QSignalSpy finished(exports, &ExportMenu::export_finished);

@@ -14,6 +14,7 @@
 #include <qcustomplot.h>
 
 #include "analysis/common/input_error.h"
+#include "daq/recording/opened_recording.h"
 #include "ui/main_window.h"
 #include "ui/record_view.h"
 
@@ -67,6 +68,11 @@ std::shared_ptr<Recording> sine_recording(double duration_s = kDurationS) {
   return recording;
 }
 
+// A recording made in memory, held as the window holds what it opens.
+std::shared_ptr<const oscilab::daq::OpenedRecording> held(const std::shared_ptr<Recording>& r) {
+  return std::make_shared<const oscilab::daq::OpenedRecording>(oscilab::daq::hold_recording(*r));
+}
+
 QCPRange time_range(RecordView& view, int channel) {
   return view.channel_rect(channel)->axis(QCPAxis::atBottom)->range();
 }
@@ -90,7 +96,7 @@ class RecordViewTest : public QObject {
     window_->show();
     QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
     recording_ = sine_recording();
-    window_->show_recording(recording_);
+    window_->show_recording(held(recording_));
     QApplication::processEvents();
   }
   void cleanup() { window_.reset(); }
@@ -198,7 +204,7 @@ class RecordViewTest : public QObject {
     // base_acc at a tenth of its amplitude (0.25 m/s²) in the first half of the record.
     auto quiet_start = sine_recording();
     quiet_start->samples_si.topRows(quiet_start->sample_count() / 2).col(0) *= 0.1;
-    window_->show_recording(quiet_start);
+    window_->show_recording(held(quiet_start));
     RecordView& view = *window_->record_view();
     QCPAxis* acc_axis = view.channel_rect(0)->axis(QCPAxis::atLeft);
     // Whole record: ±2.5 m/s² and a 5 % margin.
@@ -253,7 +259,7 @@ class RecordViewTest : public QObject {
     three->sidecar.channels.push_back(channel("f", ChannelRole::Force, Quantity::Force, "N", ""));
     three->samples_si.conservativeResize(Eigen::NoChange, 3);
     three->samples_si.col(2).setConstant(0.2);  // N: shown in mN
-    window_->show_recording(three);
+    window_->show_recording(held(three));
     RecordView& view = *window_->record_view();
     QCOMPARE(view.plot()->axisRectCount(), 3);
     QCOMPARE(view.plot()->graphCount(), 3);
@@ -264,7 +270,7 @@ class RecordViewTest : public QObject {
 
   void a_recording_without_channels_or_rate_shows_no_plot_and_does_not_crash() {
     auto empty = std::make_shared<Recording>();
-    window_->show_recording(empty);
+    window_->show_recording(held(empty));
     RecordView& view = *window_->record_view();
     QCOMPARE(view.plot()->axisRectCount(), 0);
     view.set_cursor_time(1.0);
@@ -272,18 +278,97 @@ class RecordViewTest : public QObject {
     QVERIFY(view.cursor_text().isEmpty());
     auto no_rate = sine_recording(1.0);
     no_rate->sidecar.sample_rate_hz = 0.0;
-    window_->show_recording(no_rate);
+    window_->show_recording(held(no_rate));
     QCOMPARE(view.plot()->axisRectCount(), 0);
   }
 
-  void loads_a_long_record_in_one_go() {
+  void draws_a_record_of_up_to_kRawSamples_from_its_samples() {
     // 262 s at 512 Hz: the length of the paper's stepped-sine tests, 134 144 samples a channel.
     auto long_recording = sine_recording(262.0);
-    window_->show_recording(long_recording);
+    window_->show_recording(held(long_recording));
     RecordView& view = *window_->record_view();
     QCOMPARE(view.channel_graph(0)->data()->size(), 134144);
     QCOMPARE(view.channel_graph(1)->data()->size(), 134144);
     QCOMPARE(time_range(view, 0).upper, 134143 / kRateHz);
+    QCOMPARE(view.samples_per_point(), Eigen::Index(1));
+  }
+
+  void draws_a_longer_record_from_its_overview_and_its_samples_when_zoomed_in() {
+    // 70 min: 2 150 400 samples a channel, eight times what is drawn from the samples.
+    auto hour = sine_recording(4200.0);
+    const Eigen::Index n = hour->sample_count();
+    // The amplitude of base_acc grows with t, so that each stretch has its own extremes.
+    for (Eigen::Index i = 0; i < n; ++i) hour->samples_si(i, 0) *= 1.0 + double(i) / double(n);
+    window_->show_recording(held(hour));
+    RecordView& view = *window_->record_view();
+    const int width_px = std::max(view.channel_rect(0)->width(), 800);
+    // Whole record: at most kBucketsPerPixel buckets a pixel over the window, the window on
+    // either side clipped to the record; each pair of points the least and the greatest
+    // sample of its bucket, the second method taking them one by one.
+    const auto check_envelope = [&](Eigen::Index max_points) {
+      const Eigen::Index size = view.samples_per_point();
+      QVERIFY(size > 1);
+      const auto* data = view.channel_graph(0)->data().data();
+      QVERIFY(data->size() % 2 == 0);
+      QVERIFY(data->size() <= max_points);
+      for (auto it = data->constBegin(); it != data->constEnd(); it += 2) {
+        const auto b0 = Eigen::Index(std::lround(it->key * kRateHz));
+        QCOMPARE(b0 % size, Eigen::Index(0));
+        const Eigen::Index count = std::min(size, n - b0);
+        QCOMPARE(Eigen::Index(std::lround((it + 1)->key * kRateHz)), b0 + count - 1);
+        const auto bucket = hour->samples_si.col(0).segment(b0, count);
+        QCOMPARE(it->value, bucket.minCoeff());
+        QCOMPARE((it + 1)->value, bucket.maxCoeff());
+      }
+    };
+    check_envelope(2 * (RecordView::kBucketsPerPixel * width_px + 1));
+    // 20 min (614 400 samples): a finer level, over the window and one on either side.
+    view.set_time_window(1800.0, 3000.0);
+    check_envelope(2 * (3 * RecordView::kBucketsPerPixel * width_px + 2));
+    QVERIFY(view.samples_per_point() < 2 * 4096);
+    // 100 s: the samples themselves, kRawSamples around the window.
+    view.set_time_window(2000.0, 2100.0);
+    QCOMPARE(view.samples_per_point(), Eigen::Index(1));
+    const auto* data = view.channel_graph(0)->data().data();
+    QCOMPARE(Eigen::Index(data->size()), RecordView::kRawSamples - 1);
+    for (auto it = data->constBegin(); it != data->constEnd(); ++it) {
+      const auto i = Eigen::Index(std::lround(it->key * kRateHz));
+      QCOMPARE(it->value, hour->samples_si(i, 0));
+    }
+    // Value axes on the whole record's range while zoomed in: from the overview, exact here
+    // (its buckets cover the whole record), with the 5 % margin.
+    view.set_auto_value_range(false);
+    const double lo = hour->samples_si.col(0).minCoeff(), hi = hour->samples_si.col(0).maxCoeff();
+    const QCPRange axis = view.channel_rect(0)->axis(QCPAxis::atLeft)->range();
+    QVERIFY(std::abs(axis.upper - (hi + 0.05 * (hi - lo))) < 1e-12 * hi);
+    QVERIFY(std::abs(axis.lower - (lo - 0.05 * (hi - lo))) < 1e-12 * hi);
+    view.set_auto_value_range(true);
+    // A pan within what was read reads nothing again.
+    const QCPGraphData* before = &*data->constBegin();
+    view.set_time_window(2050.0, 2150.0);
+    QCOMPARE(&*view.channel_graph(0)->data()->constBegin(), before);
+  }
+
+  void opens_a_sound_file_with_its_samples_left_in_it() {
+    // What File ▸ Open does: the samples stay in the file and the curves are the samples
+    // read_recording gives.
+    const QString path = QDir::temp().filePath("oscilab-record-view-open.flac");
+    auto made = sine_recording(20.0);
+    made->sidecar.channels[0].scale = 1e-6;  // 24-bit FLAC: µm/s² steps
+    made->sidecar.channels[1].scale = 1e-9;
+    oscilab::daq::write_recording(*made, path.toStdString());
+    QVERIFY(window_->open_recording(path));
+    const Recording whole = oscilab::daq::read_recording(path.toStdString());
+    RecordView& view = *window_->record_view();
+    QCOMPARE(view.samples_per_point(), Eigen::Index(1));
+    const auto* data = view.channel_graph(1)->data().data();
+    QCOMPARE(Eigen::Index(data->size()), whole.sample_count());
+    Eigen::Index i = 0;
+    for (auto it = data->constBegin(); it != data->constEnd(); ++it, ++i) {
+      QVERIFY(std::abs(it->value - 1e3 * whole.samples_si(i, 1)) < 1e-12);  // shown in mm
+    }
+    QFile::remove(path);
+    QFile::remove(QString::fromStdString(oscilab::daq::sidecar_path_for(path.toStdString())));
   }
 
   void a_missing_file_is_reported_and_the_window_stays_usable() {
@@ -303,7 +388,7 @@ class RecordViewTest : public QObject {
   }
 
   void any_loader_exception_is_reported_not_thrown() {
-    MainWindow window(nullptr, [](const std::string& path) -> Recording {
+    MainWindow window(nullptr, [](const std::string& path) -> oscilab::daq::OpenedRecording {
       if (path == "bad.wav") throw oscilab::InputError("bad.wav.json: channels[1].unit: unknown");
       throw std::runtime_error("disk on fire");
     });
@@ -322,7 +407,7 @@ class RecordViewTest : public QObject {
     MainWindow window(nullptr, [recording](const std::string& path) {
       Recording read = recording;
       read.source_path = path;
-      return read;
+      return oscilab::daq::hold_recording(std::move(read));
     });
     QSignalSpy opened(&window, &MainWindow::recording_opened);
     QVERIFY(window.open_recording("/data/run1.wav"));

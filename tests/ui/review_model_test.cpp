@@ -9,7 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/model/reference_models.h"
 #include "analysis/rfs/restoring_force_slices.h"
+#include "daq/recording/measurement_mapping.h"
+#include "daq/rig/virtual_rig.h"
 
 namespace oscilab::ui {
 namespace {
@@ -120,6 +123,48 @@ TEST(LevelLoop, HoldsTheSteadySamplesAndItsAreaIsTheEnergyPerCycle) {
   EXPECT_EQ(level_loop(motion, f_n, l).z_m.size(), loop.z_m.size() - 10);
 }
 
+// A level's loop made from a window of its record (what the review draws, the motion not kept)
+// against the loop of the whole record's motion and excitation force, the second method: the
+// same samples, z and f equal to the spans' accuracy (motion_spans.h: 6e-6 of z's range).
+TEST(LevelLoop, FromItsWindowIsTheLoopOfTheWholeRecordsMotion) {
+  analysis::SteppedSineSchedule schedule;
+  schedule.levels_n = {0.5, 1.5, 2.5};
+  daq::RigSpec spec;
+  spec.seed = 5;
+  const daq::Recording recording =
+      daq::record_stepped_sine(analysis::paper_model(), schedule, spec).recording;
+  const auto opened = std::make_shared<const daq::OpenedRecording>(daq::hold_recording(recording));
+  const ReviewAnalysis review = analyze_review({opened}, analysis::PipelineSettings());
+  ASSERT_EQ(review.campaign.status, JobStatus::Ok)
+      << (review.errors.empty() ? "" : review.errors[0]);
+  EXPECT_EQ(review.campaign.records[0].motion.t_s.size(), 0);  // not kept
+  const analysis::MeasurementChannels channels = daq::measurement_channels(recording);
+  const analysis::PipelineSettings& settings = review.campaign.settings;
+  const analysis::MotionSignals motion =
+      analysis::motion_signals(channels, settings, channels.mass_kg.value_or(1.0));
+  const Eigen::VectorXd force_n = analysis::excitation_force(channels, settings);
+  const double z_range_m = motion.z_m.maxCoeff() - motion.z_m.minCoeff();
+  const double f_range_n = force_n.maxCoeff() - force_n.minCoeff();
+  ASSERT_EQ(review.campaign.records[0].levels.size(), 3u);
+  for (const LevelResult& l : review.campaign.records[0].levels) {
+    const LevelLoop windowed = level_loop(*opened, settings, l);
+    const LevelLoop whole = level_loop(motion, force_n, l);
+    ASSERT_GT(whole.t_s.size(), 1000u);
+    ASSERT_EQ(windowed.t_s, whole.t_s);
+    EXPECT_EQ(windowed.cycles, whole.cycles);
+    double z_error = 0.0, f_error = 0.0;
+    for (std::size_t i = 0; i < whole.t_s.size(); ++i) {
+      z_error = std::max(z_error, std::abs(windowed.z_m[i] - whole.z_m[i]));
+      f_error = std::max(f_error, std::abs(windowed.f_n[i] - whole.f_n[i]));
+    }
+    EXPECT_LT(z_error, 1e-5 * z_range_m) << "level at " << l.f0_n << " N";
+    EXPECT_LT(f_error, 1e-5 * f_range_n) << "level at " << l.f0_n << " N";
+  }
+  // The slices' points came from one more pass over the same motion.
+  EXPECT_GT(review.slice_points.stiffness.selected, 1000u);
+  EXPECT_EQ(review.slice_points.damping.size(), review.campaign.damping.size());
+}
+
 // f = −m b̈ (eq. (1)) of a 9 Hz table motion, measured as acceleration or as displacement, away
 // from the record's ends (the even extension kinks there and the low-pass rings over a few
 // periods of 60 Hz).
@@ -178,7 +223,8 @@ analysis::CampaignAnalysis synthetic_campaign() {
 
 TEST(SlicePoints, StiffnessPointsAreTheSamplesTheCoreFitted) {
   const analysis::CampaignAnalysis campaign = synthetic_campaign();
-  const ScatterPoints all = stiffness_points(campaign, 0);
+  const analysis::MotionPass pass = analysis::campaign_motion_pass(campaign, {});
+  const ScatterPoints all = slice_points(pass, campaign, 0, 0).stiffness;
   // The same samples: the same count, and a cubic through them gives the core's coefficients.
   ASSERT_EQ(Eigen::Index(all.selected), campaign.stiffness->fit.samples);
   const analysis::PolynomialFit refit = analysis::fit_polynomial(
@@ -189,17 +235,27 @@ TEST(SlicePoints, StiffnessPointsAreTheSamplesTheCoreFitted) {
                 1e-9 * std::abs(campaign.stiffness->fit.coefficients[i]) + 1e-12);
   }
   // Thinning keeps at most the count asked for, evenly, and reports how many were selected.
-  const ScatterPoints thin = stiffness_points(campaign, 100);
+  const ScatterPoints thin = slice_points(pass, campaign, 100, 0).stiffness;
   EXPECT_LE(thin.x.size(), 100u);
-  EXPECT_GE(thin.x.size(), 50u);
+  EXPECT_GT(thin.x.size(), 50u);
   EXPECT_EQ(thin.selected, all.selected);
+  // By an even stride, the least power of two that leaves at most 100 (the stride is doubled
+  // while the points stream in): the k-th kept is the (k·stride)-th selected.
+  std::size_t stride = 1;
+  while ((all.x.size() + stride - 1) / stride > 100) stride *= 2;
+  ASSERT_EQ(thin.x.size(), (all.x.size() + stride - 1) / stride);
+  for (std::size_t k = 0; k < thin.x.size(); ++k) {
+    ASSERT_EQ(thin.x[k], all.x[k * stride]) << k;
+    ASSERT_EQ(thin.y[k], all.y[k * stride]) << k;
+  }
 }
 
 TEST(SlicePoints, DampingPointsAreTheSamplesTheCoreBinned) {
   const analysis::CampaignAnalysis campaign = synthetic_campaign();
   const analysis::DampingSlice& slice = campaign.damping[0];
   ASSERT_EQ(int(slice.bins.size()), campaign.settings.damping_bins);  // all bins filled
-  const ScatterPoints points = damping_points(campaign, slice, 0);
+  const analysis::MotionPass pass = analysis::campaign_motion_pass(campaign, {});
+  const ScatterPoints points = slice_points(pass, campaign, 0, 0).damping.at(0);
   const double width = (slice.bins.back().x - slice.bins.front().x) / double(slice.bins.size() - 1);
   const double lo = slice.bins.front().x - 0.5 * width, hi = slice.bins.back().x + 0.5 * width;
   // Over the binned range the same samples: the same count and the same sum of D.
