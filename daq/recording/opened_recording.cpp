@@ -39,13 +39,6 @@ double OpenedRecording::duration_s() const {
   return sidecar.sample_rate_hz > 0.0 ? double(sample_count()) / sidecar.sample_rate_hz : 0.0;
 }
 
-int OpenedRecording::channel_index(ChannelRole role) const {
-  for (std::size_t i = 0; i < sidecar.channels.size(); ++i) {
-    if (sidecar.channels[i].role == role) return static_cast<int>(i);
-  }
-  return -1;
-}
-
 SampleOverview build_overview(const RecordingSamples& samples) {
   // Windows of 2^16 samples: a multiple of the finest bucket, and a few MB of all channels.
   constexpr Eigen::Index kWindow = Eigen::Index{1} << 16;

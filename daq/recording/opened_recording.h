@@ -43,8 +43,6 @@ struct OpenedRecording {
 
   Eigen::Index sample_count() const { return samples ? samples->sample_count() : 0; }
   double duration_s() const;
-  /// Index of the first channel with `role`, or -1.
-  int channel_index(ChannelRole role) const;
 };
 
 /// Opens `path` to be looked at. A sound container's samples stay in the file: one pass decodes
