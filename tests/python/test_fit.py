@@ -7,6 +7,7 @@ import csv
 import json
 import os
 import signal
+import subprocess
 import threading
 import time
 
@@ -14,7 +15,7 @@ import numpy as np
 import pytest
 
 import oscilab
-from conftest import SAMPLES, STEPPED, cli_error, read_json, run_cli
+from conftest import SAMPLES, STEPPED, cli_error, cli_path, read_json, run_cli
 
 GA = {"method": "ga", "population": 8, "generations": 2, "seed": 3, "threads": 1}
 # A fixed 5 % model-error floor instead of the σ budget's calibration (harmonic balance up to
@@ -166,18 +167,34 @@ def test_fit_errors_raise_value_error_with_the_cli_message(tmp_path):
         oscilab.fit(STEPPED, population=1)
 
 
-# Small budgets, H = 3 and a fixed error floor: seconds, and the same code as the defaults.
-DIAGNOSE = ["--baseline-evaluations", 20, "--candidate-evaluations", 10, "--max-steps", 1,
-            "--threads", 1, "--max-seconds", 0, "--no-png", "--model-error", 0.05,
-            "--harmonics", 3, "--max-harmonics", 3]
+# Small budgets, H = 3 and a fixed error floor: the same code as the defaults. Still about a minute
+# a diagnosis on 2 cores (the hysteresis candidates' harmonic balance), so each of the CLI and
+# Python runs once, side by side, and the tests below share them.
+DIAGNOSE = {"baseline_evaluations": 20, "candidate_evaluations": 10, "max_steps": 1,
+            "threads": 1, "max_seconds": 0, "model_error": 0.05, "harmonics": 3,
+            "max_harmonics": 3}
 
 
-def test_diagnose_report_equals_cli_report(tmp_path, py_analysis):
-    run_cli("diagnose", *STEPPED, "--out", tmp_path, *DIAGNOSE)
-    cli = read_json(tmp_path / "report.json")
-    report = oscilab.diagnose(py_analysis, baseline_evaluations=20, candidate_evaluations=10,
-                              max_steps=1, threads=1, max_seconds=0, model_error=0.05,
-                              harmonics=3, max_harmonics=3)
+@pytest.fixture(scope="module")
+def diagnoses(tmp_path_factory, py_analysis):
+    """The CLI's report.json and Python's report with its progress reports, of one diagnosis."""
+    out = tmp_path_factory.mktemp("diagnose")
+    options = [f"--{key.replace('_', '-')}" for key in DIAGNOSE]
+    args = [str(a) for pair in zip(options, DIAGNOSE.values()) for a in pair]
+    cli = subprocess.Popen([cli_path(), "diagnose", *STEPPED, "--out", str(out), "--no-png",
+                            *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        reports = []
+        report = oscilab.diagnose(py_analysis, **DIAGNOSE, progress=reports.append)
+    finally:
+        _, stderr = cli.communicate()
+    assert cli.returncode == 0, stderr
+    return read_json(out / "report.json"), report, reports
+
+
+def test_diagnose_report_equals_cli_report(diagnoses):
+    cli, report, _ = diagnoses
+    report = dict(report)
     report["records"] = cli["records"]  # the CLI lists paths as given, an Analysis its names
     report.pop("final_model_object", None)
     assert without_timing(report) == without_timing(cli)
@@ -185,11 +202,8 @@ def test_diagnose_report_equals_cli_report(tmp_path, py_analysis):
     assert report["baseline"]["cost_j"] == cli["baseline"]["cost_j"]
 
 
-def test_diagnose_progress_says_its_phases_in_order(py_analysis):
-    reports = []
-    oscilab.diagnose(py_analysis, baseline_evaluations=20, candidate_evaluations=10, max_steps=1,
-                     threads=1, max_seconds=0, model_error=0.05, harmonics=3, max_harmonics=3,
-                     progress=reports.append)
+def test_diagnose_progress_says_its_phases_in_order(diagnoses):
+    _, _, reports = diagnoses
     phases = [r["phase"] for r in reports]
     assert phases[0] == "baseline" and phases[-1] == "done"
     # One step at most (max_steps=1): the phases never go back.
