@@ -38,6 +38,7 @@
 #include "ui/plot_theme.h"
 #include "ui/plot_zoom.h"
 #include "ui/record_view.h"
+#include "ui/recording_opener.h"
 #include "ui/review_model.h"
 #include "ui/review_view.h"
 
@@ -89,7 +90,9 @@ bool joins_fit(const daq::OpenedRecording& recording) {
 MainWindow::MainWindow(QWidget* parent, Loader loader)
     : QMainWindow(parent), loader_(std::move(loader)) {
   if (!loader_) {
-    loader_ = [](const std::string& path) { return daq::open_recording_for_review(path); };
+    loader_ = [](const std::string& path, const daq::OpeningControl& control) {
+      return daq::open_recording_for_review(path, control);
+    };
   }
   mapping_asker_ = [this](const QString& path,
                           const daq::FileContents& contents) -> std::optional<daq::Sidecar> {
@@ -190,10 +193,9 @@ void MainWindow::step_level(int step) {
 
 void MainWindow::open_live_recording(const QString& path) {
   QString error;
-  if (!load(path, error, false)) {
-    report_error(error, tr("Cannot open recording"));
-    return;
-  }
+  const LoadOutcome outcome = load(path, error, false);
+  if (outcome == LoadOutcome::Failed) report_error(error, tr("Cannot open recording"));
+  if (outcome != LoadOutcome::Opened) return;
   Q_EMIT recording_opened(path);
   const QString absolute = QFileInfo(path).absoluteFilePath();
   bool fits = false;
@@ -237,7 +239,7 @@ bool MainWindow::analysis_running() const {
   return analysis_job_->running() || analysis_timer_->isActive();
 }
 
-bool MainWindow::load(const QString& path, QString& error, bool join_fit) {
+MainWindow::LoadOutcome MainWindow::load(const QString& path, QString& error, bool join_fit) {
   const std::string path_utf8 = path.toStdString();
   std::shared_ptr<daq::OpenedRecording> recording;
   try {
@@ -250,18 +252,24 @@ bool MainWindow::load(const QString& path, QString& error, bool join_fit) {
       const std::optional<daq::Sidecar> sidecar = mapping_asker_(path, format.describe(path_utf8));
       if (!sidecar) {
         error = tr("%1: not opened: no sidecar says what its signals are").arg(path);
-        return false;
+        return LoadOutcome::Failed;
       }
       daq::write_sidecar(*sidecar, sidecar_path);
     }
-    recording = std::make_shared<daq::OpenedRecording>(loader_(path_utf8));
+    recording = open_off_the_ui_thread(this, tr("Opening %1\u2026").arg(QFileInfo(path).fileName()),
+                                       [this, &path_utf8](const daq::OpeningControl& control) {
+                                         return loader_(path_utf8, control);
+                                       });
     if (recording->source_path.empty()) recording->source_path = path_utf8;
+  } catch (const daq::OpeningCancelled&) {
+    error = tr("%1: opening cancelled").arg(path);
+    return LoadOutcome::Cancelled;
   } catch (const InputError& input_error) {
     error = QString::fromStdString(input_error.what());
-    return false;
+    return LoadOutcome::Failed;
   } catch (const std::exception& other) {
     error = tr("%1: cannot be read: %2").arg(path, QString::fromStdString(other.what()));
-    return false;
+    return LoadOutcome::Failed;
   }
   const QString absolute = QFileInfo(path).absoluteFilePath();
   bool replaced = false;
@@ -277,15 +285,15 @@ bool MainWindow::load(const QString& path, QString& error, bool join_fit) {
   last_directory_ = QFileInfo(path).absolutePath();
   if (join_fit && joins_fit(*recording)) identification_panel_->add_recording(path_utf8);
   schedule_analysis();
-  return true;
+  return LoadOutcome::Opened;
 }
 
 bool MainWindow::open_recording(const QString& path) {
   QString error;
-  if (!load(path, error)) {
-    report_error(error, tr("Cannot open recording"));
-    return false;
-  }
+  const LoadOutcome outcome = load(path, error);
+  if (outcome == LoadOutcome::Cancelled) statusBar()->showMessage(error);
+  if (outcome == LoadOutcome::Failed) report_error(error, tr("Cannot open recording"));
+  if (outcome != LoadOutcome::Opened) return false;
   Q_EMIT recording_opened(path);
   return true;
 }
@@ -496,7 +504,7 @@ bool MainWindow::open_session(const QString& path) {
     QString error;
     if (!QFileInfo::exists(file)) {
       missing << tr("%1 (not found)").arg(QFileInfo(file).fileName());
-    } else if (!load(file, error)) {
+    } else if (load(file, error) != LoadOutcome::Opened) {
       missing << error;
     }
   }

@@ -56,8 +56,11 @@ class MainWindow : public QMainWindow {
   Q_OBJECT
 
  public:
-  /// Opens a recording at a path to be looked at; throws oscilab::InputError on bad input.
-  using Loader = std::function<daq::OpenedRecording(const std::string& path)>;
+  /// Opens a recording at a path to be looked at, with progress and cancellation; throws
+  /// oscilab::InputError on bad input and daq::OpeningCancelled when cancelled. It runs on a
+  /// worker thread (ui/recording_opener).
+  using Loader = std::function<daq::OpenedRecording(const std::string& path,
+                                                    const daq::OpeningControl& control)>;
 
   /// Asks a person how a file without a sidecar maps onto channels; nothing: not opened.
   using MappingAsker =
@@ -73,8 +76,10 @@ class MainWindow : public QMainWindow {
   ~MainWindow() override;
 
   /// Reads the recording at `path`, adds it to the opened recordings (opening a path again
-  /// re-reads it) and shows it; the analysis restarts. On failure reports the error (see the
-  /// class comment) and returns false.
+  /// re-reads it) and shows it; the analysis restarts. The file is read on a worker thread while
+  /// the window keeps repainting; a long opening shows its progress in a dialog that can cancel
+  /// it (ui/recording_opener). On failure reports the error (see the class comment) and returns
+  /// false; a cancelled opening says so in the status bar and returns false.
   bool open_recording(const QString& path);
   /// Opens each of `paths` in order and shows the first that opened; returns how many opened.
   int open_recordings(const QStringList& paths);
@@ -172,7 +177,8 @@ class MainWindow : public QMainWindow {
   void choose_and_save_session();
   void mark_at_cursor();
   void report_error(const QString& message, const QString& title);
-  bool load(const QString& path, QString& error, bool join_fit = true);
+  enum class LoadOutcome { Opened, Failed, Cancelled };
+  LoadOutcome load(const QString& path, QString& error, bool join_fit = true);
   void sync_recordings();
   void schedule_analysis();
   void start_analysis();

@@ -39,39 +39,46 @@ double OpenedRecording::duration_s() const {
   return sidecar.sample_rate_hz > 0.0 ? double(sample_count()) / sidecar.sample_rate_hz : 0.0;
 }
 
-SampleOverview build_overview(const RecordingSamples& samples) {
+SampleOverview build_overview(const RecordingSamples& samples, const OpeningControl& control) {
   // Windows of 2^16 samples: a multiple of the finest bucket, and a few MB of all channels.
   constexpr Eigen::Index kWindow = Eigen::Index{1} << 16;
   static_assert(kWindow % SampleOverview::kFinestBucket == 0);
   SampleOverview overview(std::max<Eigen::Index>(samples.channel_count(), 1));
+  const Eigen::Index count = samples.sample_count();
   if (samples.channel_count() > 0) {
-    for (Eigen::Index first = 0; first < samples.sample_count(); first += kWindow) {
+    for (Eigen::Index first = 0; first < count; first += kWindow) {
+      if (control.cancel.cancelled()) throw OpeningCancelled();
+      if (control.progress) control.progress(double(first) / double(count));
       overview.add(samples.read(first, kWindow));
     }
   }
+  if (control.cancel.cancelled()) throw OpeningCancelled();
   overview.finish();
+  if (control.progress) control.progress(1.0);
   return overview;
 }
 
-OpenedRecording hold_recording(Recording recording) {
+OpenedRecording hold_recording(Recording recording, const OpeningControl& control) {
   OpenedRecording opened;
   opened.sidecar = recording.sidecar;
   opened.source_path = recording.source_path;
   opened.container = recording.container;
   opened.samples = std::make_shared<MemoryRecordingSamples>(std::move(recording));
-  opened.overview = std::make_shared<const SampleOverview>(build_overview(*opened.samples));
+  opened.overview =
+      std::make_shared<const SampleOverview>(build_overview(*opened.samples, control));
   return opened;
 }
 
-OpenedRecording open_recording_for_review(const std::string& path) {
+OpenedRecording open_recording_for_review(const std::string& path, const OpeningControl& control) {
   const RecordingFile file = open_recording_file(path);
   if (file.format == &sound_format()) {
     if (std::optional<OpenedRecording> opened =
-            open_sound_for_review(path, file.sidecar, file.sidecar_path)) {
+            open_sound_for_review(path, file.sidecar, file.sidecar_path, control)) {
       return std::move(*opened);
     }
   }
-  return hold_recording(file.format->read(path, file.sidecar, file.sidecar_path));
+  if (control.progress) control.progress(0.0);
+  return hold_recording(file.format->read(path, file.sidecar, file.sidecar_path), control);
 }
 
 }  // namespace oscilab::daq

@@ -1,10 +1,12 @@
 #pragma once
 
+#include <exception>
 #include <memory>
 #include <string>
 
 #include <Eigen/Core>
 
+#include "analysis/common/job.h"
 #include "analysis/pipeline/measurement_channels.h"
 #include "daq/recording/recording.h"
 #include "daq/recording/sample_overview.h"
@@ -45,16 +47,35 @@ struct OpenedRecording {
   double duration_s() const;
 };
 
+/// Thrown by open_recording_for_review when its token was cancelled: nothing was opened.
+class OpeningCancelled : public std::exception {
+ public:
+  const char* what() const noexcept override { return "opening cancelled"; }
+};
+
+/// How far an opening has gone and whether to stop it: `progress` gets the fraction of the
+/// samples the overview's pass has gone through (from the opening's thread); `cancel` is polled
+/// between its windows of 2^16 samples, so a cancelled opening stops within one window's read.
+/// A format read whole (not a sound container) reports 0 before its read and is cancelled only
+/// after it.
+struct OpeningControl {
+  ProgressFn progress;
+  CancelToken cancel;
+};
+
 /// Opens `path` to be looked at. A sound container's samples stay in the file: one pass decodes
 /// it, checks every sample as read_recording does (the same refusals, in the same words) and
 /// builds the overview. Other formats are read whole (read_recording), their samples in SI only.
-/// Throws InputError as read_recording does.
-OpenedRecording open_recording_for_review(const std::string& path);
+/// Throws InputError as read_recording does, and OpeningCancelled when `control` was cancelled.
+OpenedRecording open_recording_for_review(const std::string& path,
+                                          const OpeningControl& control = {});
 
-/// A recording in memory (made by a program, or read by a caller), held as it is.
-OpenedRecording hold_recording(Recording recording);
+/// A recording in memory (made by a program, or read by a caller), held as it is; `control` as
+/// for open_recording_for_review (its overview's pass).
+OpenedRecording hold_recording(Recording recording, const OpeningControl& control = {});
 
-/// The overview of samples given as a pass over windows (the one builder both holders use).
-SampleOverview build_overview(const RecordingSamples& samples);
+/// The overview of samples given as a pass over windows (the one builder both holders use), with
+/// its progress and cancellation (OpeningControl).
+SampleOverview build_overview(const RecordingSamples& samples, const OpeningControl& control = {});
 
 }  // namespace oscilab::daq

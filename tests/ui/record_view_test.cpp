@@ -1,14 +1,20 @@
 // GUI tests of the record view and the main window, driving the real widgets with synthetic
 // mouse events. Run under QT_QPA_PLATFORM=offscreen (set by ctest).
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <thread>
 
 #include <QApplication>
 #include <QDir>
+#include <QElapsedTimer>
+#include <QProgressDialog>
+#include <QPushButton>
 #include <QSignalSpy>
 #include <QStatusBar>
 #include <QTest>
+#include <QTimer>
 #include <QWheelEvent>
 
 #include <qcustomplot.h>
@@ -81,6 +87,21 @@ void send_mouse(QWidget* widget, QEvent::Type type, QPointF pos, Qt::MouseButton
                 Qt::MouseButton button = Qt::NoButton) {
   QMouseEvent event(type, pos, widget->mapToGlobal(pos), button, buttons, Qt::NoModifier);
   QApplication::sendEvent(widget, &event);
+}
+
+// A loader that takes `steps` × 50 ms, reporting its progress and polling its token at each
+// step as the file loader does at each window of samples.
+MainWindow::Loader slow_loader(const Recording& recording, int steps) {
+  return [recording, steps](const std::string& path, const oscilab::daq::OpeningControl& control) {
+    for (int step = 0; step < steps; ++step) {
+      if (control.cancel.cancelled()) throw oscilab::daq::OpeningCancelled();
+      control.progress(double(step) / steps);
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    Recording read = recording;
+    read.source_path = path;
+    return oscilab::daq::hold_recording(std::move(read));
+  };
 }
 
 }  // namespace
@@ -388,10 +409,13 @@ class RecordViewTest : public QObject {
   }
 
   void any_loader_exception_is_reported_not_thrown() {
-    MainWindow window(nullptr, [](const std::string& path) -> oscilab::daq::OpenedRecording {
-      if (path == "bad.wav") throw oscilab::InputError("bad.wav.json: channels[1].unit: unknown");
-      throw std::runtime_error("disk on fire");
-    });
+    MainWindow window(nullptr,
+                      [](const std::string& path,
+                         const oscilab::daq::OpeningControl&) -> oscilab::daq::OpenedRecording {
+                        if (path == "bad.wav")
+                          throw oscilab::InputError("bad.wav.json: channels[1].unit: unknown");
+                        throw std::runtime_error("disk on fire");
+                      });
     window.set_interactive_errors(false);
     QSignalSpy errors(&window, &MainWindow::error_reported);
     QVERIFY(!window.open_recording("bad.wav"));
@@ -404,17 +428,71 @@ class RecordViewTest : public QObject {
 
   void opening_a_file_shows_it_and_names_it_in_the_title() {
     const Recording recording = *sine_recording(1.0);
-    MainWindow window(nullptr, [recording](const std::string& path) {
-      Recording read = recording;
-      read.source_path = path;
-      return oscilab::daq::hold_recording(std::move(read));
-    });
+    MainWindow window(nullptr,
+                      [recording](const std::string& path, const oscilab::daq::OpeningControl&) {
+                        Recording read = recording;
+                        read.source_path = path;
+                        return oscilab::daq::hold_recording(std::move(read));
+                      });
     QSignalSpy opened(&window, &MainWindow::recording_opened);
     QVERIFY(window.open_recording("/data/run1.wav"));
     QCOMPARE(opened.count(), 1);
     QVERIFY(window.windowTitle().startsWith("run1.wav"));
     QVERIFY(window.statusBar()->currentMessage().contains("2 channels, 512 Hz, 1.00 s"));
     QCOMPARE(window.record_view()->channel_graph(0)->data()->size(), 512);
+  }
+
+  void a_long_opening_keeps_the_window_alive_and_shows_its_progress() {
+    MainWindow window(nullptr, slow_loader(*sine_recording(1.0), 24));  // 1.2 s
+    // A timer every 20 ms: a UI thread blocked for the opening would fire it once after; one
+    // that keeps its event loop running fires it about 60 times (a loaded machine fewer).
+    int ticks = 0;
+    QTimer ticker;
+    QObject::connect(&ticker, &QTimer::timeout, [&ticks] { ++ticks; });
+    ticker.start(20);
+    // Past the 400 ms delay the progress dialog is up, part of the way.
+    bool shown = false;
+    int value = -1;
+    QTimer::singleShot(900, &window, [&] {
+      if (auto* dialog = window.findChild<QProgressDialog*>("opening_progress")) {
+        shown = dialog->isVisible();
+        value = dialog->value();
+      }
+    });
+    QElapsedTimer clock;
+    clock.start();
+    QVERIFY(window.open_recording("/data/long.wav"));
+    QVERIFY(clock.elapsed() >= 1200);
+    QVERIFY2(ticks >= 10, qPrintable(QString::number(ticks)));
+    QVERIFY(shown);
+    QVERIFY2(value > 0 && value < 1000, qPrintable(QString::number(value)));
+    QCOMPARE(window.opened_paths().size(), 1);
+    QVERIFY(window.findChild<QProgressDialog*>("opening_progress") == nullptr);
+  }
+
+  void a_cancelled_opening_opens_nothing_and_says_so() {
+    MainWindow window(nullptr, slow_loader(*sine_recording(1.0), 400));  // 20 s unless cancelled
+    window.set_interactive_errors(false);
+    QSignalSpy errors(&window, &MainWindow::error_reported);
+    QSignalSpy opened(&window, &MainWindow::recording_opened);
+    bool clicked = false;
+    QTimer::singleShot(700, &window, [&] {
+      auto* dialog = window.findChild<QProgressDialog*>("opening_progress");
+      auto* cancel = dialog ? dialog->findChild<QPushButton*>() : nullptr;
+      if (cancel) {
+        cancel->click();  // as the person at the laptop would
+        clicked = true;
+      }
+    });
+    QElapsedTimer clock;
+    clock.start();
+    QVERIFY(!window.open_recording("/data/long.wav"));
+    QVERIFY(clicked);
+    QVERIFY2(clock.elapsed() < 5000, qPrintable(QString::number(clock.elapsed())));
+    QCOMPARE(errors.count(), 0);  // a cancel is not an error: no message box
+    QCOMPARE(opened.count(), 0);
+    QVERIFY(window.opened_paths().isEmpty());
+    QCOMPARE(window.statusBar()->currentMessage(), QString("/data/long.wav: opening cancelled"));
   }
 
   void file_menu_has_open_and_quit() {

@@ -76,9 +76,11 @@ std::shared_ptr<const analysis::ChannelSource> sound_channel_source(const std::s
 /// read_recording gives); one pass builds the overview and checks every sample. Nothing when the
 /// file does not state its length (the caller reads it whole). Throws InputError for a
 /// non-finite sample outside the sidecar's invalid intervals and for a file shorter than its
-/// header, then and in any later read.
+/// header, then and in any later read; OpeningCancelled when `control` is cancelled during the
+/// overview's pass.
 std::optional<OpenedRecording> open_sound_for_review(const std::string& path,
                                                      const Sidecar& sidecar,
-                                                     const std::string& sidecar_name);
+                                                     const std::string& sidecar_name,
+                                                     const OpeningControl& control = {});
 
 }  // namespace oscilab::daq

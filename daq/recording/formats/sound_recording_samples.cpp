@@ -164,7 +164,8 @@ class SoundRecordingSamples final : public RecordingSamples {
 
 std::optional<OpenedRecording> open_sound_for_review(const std::string& path,
                                                      const Sidecar& sidecar,
-                                                     const std::string& sidecar_name) {
+                                                     const std::string& sidecar_name,
+                                                     const OpeningControl& control) {
   OpenSoundFile open = open_sound_file(path, sidecar, sidecar_name);
   const sf_count_t frames = open.info.frames;
   if (frames == std::numeric_limits<sf_count_t>::max() || frames < 0) return std::nullopt;
@@ -175,7 +176,8 @@ std::optional<OpenedRecording> open_sound_for_review(const std::string& path,
   opened.container = sound_container_name(open.info.format);
   opened.samples =
       std::make_shared<SoundRecordingSamples>(path, sidecar, sidecar_name, std::move(open));
-  opened.overview = std::make_shared<const SampleOverview>(build_overview(*opened.samples));
+  opened.overview =
+      std::make_shared<const SampleOverview>(build_overview(*opened.samples, control));
   return opened;
 }
 

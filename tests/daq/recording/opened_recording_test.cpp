@@ -2,12 +2,14 @@
 // extremes taken sample by sample, the second method; windows of a sound container read by
 // seeking against the rows read_recording gives, AC-coupled channels included; and a bad sample
 // that the opening pass meets refused in the reader's words.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -186,6 +188,36 @@ TEST(OpenedRecording, AFileCutAfterItWasOpenedIsRefusedByTheReadThatMeetsIt) {
   const std::string message = testing::input_error_of([&] { opened.samples->read(25000, 100); });
   EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
   EXPECT_EQ(opened.samples->read(100, 50), head);
+}
+
+TEST(OpenedRecording, TheOpeningReportsItsProgressAndStopsWhenCancelled) {
+  // 300 000 samples: five windows of 2^16 in the overview's pass, so five reports before the
+  // last one, each the share of the samples gone through (0, 65536/N, ...), then 1.
+  const TempDir dir;
+  constexpr Eigen::Index kSamples = 300000;
+  for (const std::string extension : {".w64", ".csv"}) {
+    const std::string path = dir.file("long" + extension);
+    write_recording(three_channels(kSamples), path);
+    std::vector<double> reports;
+    OpeningControl control;
+    control.progress = [&](double f) { reports.push_back(f); };
+    const OpenedRecording opened = open_recording_for_review(path, control);
+    EXPECT_EQ(opened.sample_count(), kSamples);
+    ASSERT_GE(reports.size(), 6u) << path;
+    EXPECT_EQ(reports.front(), 0.0) << path;
+    EXPECT_EQ(reports.back(), 1.0) << path;
+    EXPECT_TRUE(std::is_sorted(reports.begin(), reports.end())) << path;
+    EXPECT_DOUBLE_EQ(reports[reports.size() - 2], 4.0 * 65536.0 / kSamples) << path;
+
+    // Cancelled at the third window: the pass stops there and nothing is returned.
+    OpeningControl cancelled;
+    int windows = 0;
+    cancelled.progress = [&](double f) {
+      if (f > 0.0 && ++windows == 2) cancelled.cancel.cancel();
+    };
+    EXPECT_THROW(open_recording_for_review(path, cancelled), OpeningCancelled) << path;
+    EXPECT_EQ(windows, 2) << path;
+  }
 }
 
 }  // namespace
