@@ -11,12 +11,12 @@
 #include "analysis/edc/well.h"
 #include "analysis/identification/campaign_model.h"
 #include "analysis/model/model_json.h"
-#include "analysis/pipeline/cycle_table.h"
 #include "analysis/pipeline/edc_table.h"
 #include "analysis/pipeline/offline_analysis.h"
 #include "analysis/pipeline/result_units.h"
 #include "app/cli/campaign_input.h"
 #include "app/cli/commands.h"
+#include "app/cli/cycle_spool.h"
 #include "app/cli/option_parsing.h"
 #include "app/cli/output_files.h"
 #include "daq/recording/measurement_mapping.h"
@@ -160,11 +160,19 @@ void run(const AnalyzeOptions& options) {
   if (!options.model_out_path.empty()) start_model = analysis::model_from_spec(options.model);
   InputTimes times;
   // The records stay in their files and only the tables' contents are kept, so that a record
-  // of any length is analysed in bounded memory (the cycles only for --cycles).
+  // of any length is analysed in bounded memory; the cycles of --cycles go to a spool as they
+  // are fitted.
   InputStageOptions input;
   input.streamed = true;
   input.retention.motion = false;
-  input.retention.cycles = !options.cycles_path.empty();
+  input.retention.cycles = false;
+  std::optional<CycleSpool> cycles;
+  if (!options.cycles_path.empty()) {
+    cycles.emplace(options.cycles_path);
+    input.retention.each_cycle = [&cycles](std::size_t record, const analysis::CycleFit& cycle) {
+      cycles->add(record, cycle);
+    };
+  }
   const analysis::CampaignAnalysis campaign =
       run_input_stage(options.recordings, overrides, options.settings, &times, input);
   const auto output_start = std::chrono::steady_clock::now();
@@ -178,9 +186,10 @@ void run(const AnalyzeOptions& options) {
     write_table(analysis::edc_table_columns(), analysis::edc_table_rows(campaign),
                 outputs.add(options.edc_path), options.edc_path);
   }
-  if (!options.cycles_path.empty()) {
-    write_table(analysis::cycle_table_columns(), analysis::cycle_table_rows(campaign),
-                outputs.add(options.cycles_path), options.cycles_path);
+  if (cycles) {
+    std::vector<std::string> names;
+    for (const analysis::RecordAnalysis& record : campaign.records) names.push_back(record.name);
+    cycles->write(names, outputs.add(options.cycles_path));
   }
   if (!options.rfs_path.empty()) {
     if (!campaign.stiffness) throw InputError("--rfs: no stiffness slice: " + campaign.rfs_message);

@@ -19,6 +19,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/live_source_options.h"
 #include "app/cli/output_files.h"
+#include "app/cli/status_log.h"
 #include "daq/live/acquisition.h"
 
 namespace oscilab::cli {
@@ -34,6 +35,8 @@ struct RecordOptions {
   LiveSourceOptions live;
   double wait_s = 0.0;  // net: give up when no sender came within this (0: wait forever)
   int sync_ms = 1000;   // the recording goes to the disk at most this often
+  std::string status_log;
+  double status_every_s = 1.0;
 };
 
 // The status line: redrawn in place on a terminal (`final_line` false), or once at the end.
@@ -77,12 +80,29 @@ void run(const RecordOptions& o) {
     std::snprintf(text, sizeof text, "--wait: %g s must be >= 0 (0: no limit)", o.wait_s);
     throw InputError(text);
   }
+  if (!(o.status_every_s >= 0.01 && o.status_every_s <= 86400.0)) {
+    char text[120];
+    std::snprintf(text, sizeof text, "--status-every: %g s must be 0.01 to 86400",
+                  o.status_every_s);
+    throw InputError(text);
+  }
+  if (!o.status_log.empty() && o.status_log == o.out) {
+    throw InputError("--status-log: " + o.status_log + " is the recording (--out)");
+  }
   acquisition_options.recorder_sync_interval = std::chrono::milliseconds(o.sync_ms);
   auto acquisition = std::make_unique<daq::Acquisition>(make_live_source(o.source, o.live, true),
                                                         acquisition_options);
   // Recorded from the stream's first sample: at once for the rig and a replay, from the first
   // sender's first block for a network source (InputError here: a bad path or container).
-  acquisition->start_recording(o.out);
+  // The log is opened first (a bad --status-log writes nothing) and removed when the recording
+  // cannot start.
+  StatusLog status_log(o.status_log, o.status_every_s);
+  try {
+    acquisition->start_recording(o.out);
+  } catch (...) {
+    status_log.discard();
+    throw;
+  }
   std::printf("recording %s from %s\n", o.out.c_str(), acquisition->source().describe().c_str());
   std::fflush(stdout);
   acquisition->start();
@@ -104,6 +124,7 @@ void run(const RecordOptions& o) {
           refused = event.text;
         }
       }
+      status_log.discard();  // nothing was recorded: no file is left
       char waited[64];
       std::snprintf(waited, sizeof waited, "%g s", o.wait_s);
       throw InputError(o.source + (refused.empty()
@@ -111,6 +132,8 @@ void run(const RecordOptions& o) {
                                        : ": no usable sender within " + std::string(waited) +
                                              "; the last was refused: " + refused));
     }
+    status_log.maybe_write(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), status);
     if (!status.recorder_error.empty()) break;
     if (o.live.duration_s && status.stream_time_s >= *o.live.duration_s) break;
     if (terminal && std::chrono::steady_clock::now() - last_print > std::chrono::seconds(1)) {
@@ -120,6 +143,9 @@ void run(const RecordOptions& o) {
   }
   acquisition->stop();
   const daq::AcquisitionStatus status = acquisition->status();
+  status_log.maybe_write(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), status,
+      true);
   if (terminal) std::fputc('\n', stderr);
   // A failed recording (a full disk) is the one line on stderr; what it holds opens as it is.
   if (!status.recorder_error.empty()) throw InputError(status.recorder_error);
@@ -145,6 +171,7 @@ void run(const RecordOptions& o) {
     std::printf("note: %s\n", note.c_str());
   }
   if (!o.edc.empty()) write_edc(levels, o.edc);
+  status_log.throw_if_failed();
 }
 
 }  // namespace
@@ -171,6 +198,13 @@ void add_record_command(CLI::App& app) {
       ->add_option("--sync-ms", o->sync_ms,
                    "hand the samples and the event log to the disk (fdatasync) at most every N "
                    "ms; 0: after every block")
+      ->capture_default_str();
+  command->add_option("--status-log", o->status_log,
+                      "append the acquisition's status here (CSV) every --status-every seconds of "
+                      "wall time: stream time, counters, queue fill, live EDC latency");
+  command
+      ->add_option("--status-every", o->status_every_s,
+                   "seconds of wall time between two rows of --status-log (0.01 to 86400)")
       ->capture_default_str();
   add_live_source_options(*command, o->live, true);
   command->callback([o] { run(*o); });

@@ -9,7 +9,8 @@ pos=$src/samples/stepped_positive.flac
 
 # The rig, unattended, as fast as possible: a stepped sine of three levels, recorded.
 if "$cli" record --source rig --levels 0.5:0.5:1.5 --hold 6 --lead-in 1 --speed 0 \
-    --duration 20 --out "$work/rig.wav" --edc "$work/rig_edc.csv" > "$work/rig.log" 2>&1; then
+    --duration 20 --out "$work/rig.wav" --edc "$work/rig_edc.csv" \
+    --status-log "$work/rig_status.csv" --status-every 0.01 > "$work/rig.log" 2>&1; then
   pass "record --source rig exits 0"
 else
   fail "record --source rig: $(tail -3 "$work/rig.log")"
@@ -17,6 +18,24 @@ fi
 [ -f "$work/rig.json" ] && [ -f "$work/rig.events.jsonl" ] && pass "sidecar and event log written" \
   || fail "sidecar or event log missing"
 grep -q "3 level(s)" "$work/rig.log" && pass "three live levels" || fail "live levels: $(grep EDC "$work/rig.log")"
+# The status log: its header, a row at least at the start and one at the end; stream time and
+# samples never go back; the last row holds the final counts the run printed.
+status=$work/rig_status.csv
+head -1 "$status" | grep -q "^wall_s,stream_s,samples,gaps,.*,edc_latency_s,edc_latency_median_s,edc_latency_max_s$" \
+  && pass "status log: header" || fail "status log header: $(head -1 "$status")"
+rows=$(($(wc -l < "$status") - 1))
+[ "$rows" -ge 2 ] && pass "status log: $rows rows" || fail "status log: $rows rows"
+awk -F, 'NR > 2 && ($2 < s || $3 < n) { bad = 1 } NR > 1 { s = $2; n = $3 } END { exit bad }' "$status" \
+  && pass "status log: stream time and samples never go back" || fail "status log goes back: $(cat "$status")"
+recorded=$(sed -n 's/^recorded .*: \([0-9]*\) samples.*/\1/p' "$work/rig.log")
+last_samples=$(tail -1 "$status" | cut -d, -f3)
+[ -n "$recorded" ] && [ "$last_samples" -ge "$recorded" ] \
+  && pass "status log: the last row counts every recorded sample ($last_samples)" \
+  || fail "status log: last row $last_samples samples, recorded $recorded"
+live_cycles=$(sed -n 's/^live EDC: .*level(s), \([0-9]*\) cycle(s).*/\1/p' "$work/rig.log")
+[ "$(tail -1 "$status" | cut -d, -f14)" = "$live_cycles" ] \
+  && pass "status log: the last row's cycles are the live EDC's ($live_cycles)" \
+  || fail "status log cycles: $(tail -1 "$status" | cut -d, -f14) against $live_cycles"
 "$cli" analyze "$work/rig.wav" --edc "$work/rig_offline.csv" > /dev/null 2>&1
 if [ "$(cut -d, -f3 "$work/rig_edc.csv" | tail -n +2)" = "$(cut -d, -f3 "$work/rig_offline.csv" | tail -n +2)" ]; then
   pass "live EDC = offline EDC of the recording"
@@ -77,6 +96,18 @@ expect_error "no JACK server of that name" "JACK server \"oscilab-cli-test-none\
 expect_error "stream does not take a JACK source" "jack: is for record" \
   "$cli" stream jack:system:capture_1,system:capture_2 --to 127.0.0.1:1
 [ ! -e "$work/x.flac" ] && pass "nothing written for the refused FLAC" || fail "x.flac written"
+expect_error "--status-every 0 is refused" "--status-every: 0 s must be 0.01 to 86400" \
+  "$cli" record --source rig --duration 1 --speed 0 --out "$work/s0.wav" \
+  --status-log "$work/s0.csv" --status-every 0
+expect_error "a status log that cannot be written is named" "--status-log: $work/nowhere/s.csv: cannot write" \
+  "$cli" record --source rig --duration 1 --speed 0 --out "$work/s1.wav" --status-log "$work/nowhere/s.csv"
+expect_error "the status log over the recording is refused" "is the recording" \
+  "$cli" record --source rig --duration 1 --speed 0 --out "$work/s2.wav" --status-log "$work/s2.wav"
+expect_error "no sender within --wait leaves no status log" "no sender connected within" \
+  "$cli" record --source "net:127.0.0.1:$((port + 2))" --wait 0.5 --out "$work/s3.wav" \
+  --status-log "$work/s3.csv"
+ls "$work" | grep -q "^s[0-3]\." && fail "refused status-log runs left: $(ls "$work" | grep "^s[0-3]\.")" \
+  || pass "refused status-log runs leave no file"
 
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]
