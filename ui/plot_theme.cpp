@@ -22,6 +22,7 @@ constexpr const char* kTextProperty = "oscilab_palette_text";
 constexpr const char* kFollowsProperty = "oscilab_palette_follows";
 // An item drawn in the palette's colours (draw_in_palette_colours).
 constexpr const char* kPaletteItemProperty = "oscilab_palette_item";
+constexpr const char* kLegibleTextProperty = "oscilab_legible_text";
 
 // The grid: about a fifth of the way from the background to the text (light grey on white).
 QColor grid_colour(const QColor& base, const QColor& text) {
@@ -111,20 +112,22 @@ double contrast_ratio(const QColor& a, const QColor& b) {
   return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
 }
 
-// WCAG's least contrast for graphics (1.4.11): what a data line needs against its background.
+// WCAG's least contrast for graphics (1.4.11): what a data line needs against its background;
+// and for text (1.4.3), what a label in a data colour needs.
 constexpr double kLeastDataContrast = 3.0;
+constexpr double kLeastTextContrast = 4.5;
 
 // A data colour that shows on `base`: as it is when its contrast with the base is at least 3:1;
 // otherwise its HSL lightness mirrored (a dark blue on a dark background becomes a light blue of
 // the same hue, and darker shades of one colour become lighter ones, still apart), then moved
 // further from the base until it reaches 3:1. Alpha is kept.
-QColor legible_on(const QColor& colour, const QColor& base) {
-  if (contrast_ratio(colour, base) >= kLeastDataContrast) return colour;
+QColor legible_on(const QColor& colour, const QColor& base, double least = kLeastDataContrast) {
+  if (contrast_ratio(colour, base) >= least) return colour;
   const QColor hsl = colour.toHsl();
   const bool dark_base = relative_luminance(base) < 0.18;
   double lightness = 1.0 - hsl.lightnessF();
   QColor out = QColor::fromHslF(hsl.hslHueF(), hsl.hslSaturationF(), lightness, hsl.alphaF());
-  for (int i = 0; i < 20 && contrast_ratio(out, base) < kLeastDataContrast; ++i) {
+  for (int i = 0; i < 20 && contrast_ratio(out, base) < least; ++i) {
     lightness = std::clamp(lightness + (dark_base ? 0.05 : -0.05), 0.0, 1.0);
     out = QColor::fromHslF(hsl.hslHueF(), hsl.hslSaturationF(), lightness, hsl.alphaF());
   }
@@ -133,7 +136,8 @@ QColor legible_on(const QColor& colour, const QColor& base) {
 
 // The colour a plottable shows in its colour `slot` on `base`: its own colour (what the plot
 // set, remembered on the plottable so that a theme switched back restores it) made legible.
-QColor shown_colour(QObject& owner, const char* slot, const QColor& current, const QColor& base) {
+QColor shown_colour(QObject& owner, const char* slot, const QColor& current, const QColor& base,
+                    double least = kLeastDataContrast) {
   const QByteArray own_key = QByteArray("oscilab_own_") + slot;
   const QByteArray shown_key = QByteArray("oscilab_shown_") + slot;
   const QVariant shown = owner.property(shown_key.constData());
@@ -141,7 +145,7 @@ QColor shown_colour(QObject& owner, const char* slot, const QColor& current, con
   const QColor own = shown.isValid() && shown.value<QColor>() == current
                          ? owner.property(own_key.constData()).value<QColor>()
                          : current;
-  const QColor out = legible_on(own, base);
+  const QColor out = legible_on(own, base, least);
   owner.setProperty(own_key.constData(), own);
   owner.setProperty(shown_key.constData(), out);
   return out;
@@ -197,8 +201,12 @@ void recolour(QCustomPlot& plot, const QPalette& palette) {
     if (element) recolour(*element, r);
   }
   for (int i = 0; i < plot.itemCount(); ++i) {
-    if (QCPAbstractItem* item = plot.item(i); item->property(kPaletteItemProperty).toBool()) {
-      recolour(*item, r);
+    QCPAbstractItem* item = plot.item(i);
+    if (item->property(kPaletteItemProperty).toBool()) recolour(*item, r);
+    if (item->property(kLegibleTextProperty).toBool()) {
+      if (auto* text = qobject_cast<QCPItemText*>(item)) {
+        text->setColor(shown_colour(*text, "color", text->color(), r.base, kLeastTextContrast));
+      }
     }
   }
   for (int i = 0; i < plot.plottableCount(); ++i) recolour(*plot.plottable(i), r.base);
@@ -226,6 +234,14 @@ void draw_in_palette_colours(QCPAbstractItem& item) {
     r.base = plot->palette().color(QPalette::Base);
     r.text = plot->palette().color(QPalette::Text);
     recolour(item, r);
+  }
+}
+
+void draw_legibly(QCPItemText& text) {
+  text.setProperty(kLegibleTextProperty, true);
+  if (QCustomPlot* plot = text.parentPlot()) {
+    text.setColor(shown_colour(text, "color", text.color(), plot->palette().color(QPalette::Base),
+                               kLeastTextContrast));
   }
 }
 

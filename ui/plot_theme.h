@@ -4,6 +4,7 @@
 #include <QPalette>
 
 class QCPAbstractItem;
+class QCPItemText;
 class QCustomPlot;
 class QMenu;
 
@@ -25,6 +26,12 @@ void apply_palette(QCustomPlot& plot, const QPalette& palette);
 /// keeps it so through theme changes. Without it a cursor drawn dark grey vanishes on a dark
 /// theme.
 void draw_in_palette_colours(QCPAbstractItem& item);
+
+/// Draws `text` (a label in a data colour: a well's name in the well's colour) in that colour
+/// made legible on the plot's background from now on: as it is where it has WCAG's 4.5:1 for
+/// text, otherwise its mirrored lightness moved until it has; apply_palette keeps it so, and a
+/// background it shows on gets its own colour back.
+void draw_legibly(QCPItemText& text);
 
 /// Every QCustomPlot of the application follows its palette: an event filter on the application
 /// object applies it when a plot is first shown and whenever its palette changes (the system's

@@ -12,6 +12,7 @@
 #include "analysis/pipeline/result_units.h"
 #include "ui/display_units.h"
 #include "ui/plot_helpers.h"
+#include "ui/plot_theme.h"
 #include "ui/qt_text.h"
 #include "ui/review_plot_style.h"
 #include "ui/well_colours.h"
@@ -95,6 +96,7 @@ std::vector<QCPAxisRect*> ReviewLoopPlot::well_rects(const bool present[3],
     label->setColor(well_colour(g == 0   ? analysis::Well::Positive
                                 : g == 1 ? analysis::Well::Negative
                                          : analysis::Well::Unknown));
+    draw_legibly(*label);  // the well's colour, legible on a dark theme too
     labels_.push_back(label);
     rect_of[g] = rect;
     rects.push_back(rect);

@@ -363,6 +363,18 @@ class MainWindowInputTest : public QObject {
       changed += shown != own;
     }
     QVERIFY(changed > 0);
+    // The wells' names in the loop plot, in their wells' colours, read on the dark background:
+    // WCAG's 4.5:1 for text.
+    int well_labels = 0;
+    for (int i = 0; i < loops->itemCount(); ++i) {
+      if (auto* label = qobject_cast<QCPItemText*>(loops->item(i));
+          label && label->text().startsWith("around")) {
+        QVERIFY2((luminance(label->color()) + 0.05) / (base_luminance + 0.05) >= 4.5,
+                 qPrintable(label->text() + ": " + label->color().name()));
+        ++well_labels;
+      }
+    }
+    QVERIFY(well_labels > 0);
     // Back on the light palette each line has its own colour again.
     themes->actions().at(0)->trigger();
     QApplication::processEvents();
