@@ -200,8 +200,8 @@ void add_record_command(CLI::App& app) {
                    "ms; 0: after every block")
       ->capture_default_str();
   command->add_option("--status-log", o->status_log,
-                      "append the acquisition's status here (CSV) every --status-every seconds of "
-                      "wall time: stream time, counters, queue fill, live EDC latency");
+                      "write the acquisition's status here (CSV), a row every --status-every "
+                      "seconds of wall time: stream time, counters, queue fill, live EDC latency");
   command
       ->add_option("--status-every", o->status_every_s,
                    "seconds of wall time between two rows of --status-log (0.01 to 86400)")
