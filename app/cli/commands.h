@@ -20,5 +20,7 @@ void add_recover_command(CLI::App& app);
 void add_stream_command(CLI::App& app);
 void add_export_command(CLI::App& app);
 void add_adaptive_test_command(CLI::App& app);
+void add_drive_command(CLI::App& app);
+void add_plant_command(CLI::App& app);
 
 }  // namespace oscilab::cli

@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
   oscilab::cli::add_stream_command(app);
   oscilab::cli::add_export_command(app);
   oscilab::cli::add_adaptive_test_command(app);
+  oscilab::cli::add_drive_command(app);
+  oscilab::cli::add_plant_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -16,19 +16,6 @@ namespace {
 // one InputError or event instead.
 void quiet(const char*) {}
 
-jack_client_t* open_client(const std::string& name, const std::string& server,
-                           jack_status_t& status) {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    jack_set_error_function(quiet);
-    jack_set_info_function(quiet);
-  });
-  if (server.empty()) return jack_client_open(name.c_str(), JackNoStartServer, &status);
-  return jack_client_open(name.c_str(),
-                          static_cast<jack_options_t>(JackNoStartServer | JackServerName), &status,
-                          server.c_str());
-}
-
 // JACK port short names: the channel's name with what JACK treats specially replaced.
 std::string port_short_name(const std::string& channel) {
   std::string out = "in_" + channel;
@@ -60,6 +47,19 @@ void freewheel_callback(int starting, void* arg) {
 }
 
 }  // namespace
+
+jack_client_t* open_jack_client(const std::string& client_name, const std::string& server) {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    jack_set_error_function(quiet);
+    jack_set_info_function(quiet);
+  });
+  jack_status_t status{};
+  if (server.empty()) return jack_client_open(client_name.c_str(), JackNoStartServer, &status);
+  return jack_client_open(client_name.c_str(),
+                          static_cast<jack_options_t>(JackNoStartServer | JackServerName), &status,
+                          server.c_str());
+}
 
 std::string jack_server_text(const std::string& server) {
   return server.empty() ? "the default JACK server" : "JACK server \"" + server + "\"";
@@ -118,8 +118,7 @@ int JackCaptureClient::process(std::uint32_t frames) {
 
 std::string JackCaptureClient::open() {
   const std::string server = jack_server_text(options_.server);
-  jack_status_t status{};
-  client_ = open_client(options_.client_name, options_.server, status);
+  client_ = open_jack_client(options_.client_name, options_.server);
   if (client_ == nullptr) {
     return server + " is not running (or refused the client \"" + options_.client_name + "\")";
   }
@@ -203,8 +202,7 @@ void JackCaptureClient::connect_ports() {
 }
 
 std::vector<std::string> JackCaptureClient::capture_ports(const std::string& server) {
-  jack_status_t status{};
-  jack_client_t* client = open_client("oscilab-ports", server, status);
+  jack_client_t* client = open_jack_client("oscilab-ports", server);
   if (client == nullptr) throw InputError(jack_server_text(server) + " is not running");
   std::vector<std::string> names;
   if (const char** ports =

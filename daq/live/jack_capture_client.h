@@ -17,6 +17,10 @@ namespace oscilab::daq {
 /// "the default JACK server" or "JACK server \"NAME\"", for messages.
 std::string jack_server_text(const std::string& server);
 
+/// Opens a JACK client on a server (never starting one), with libjack's own printing silenced
+/// (callers report in their own words). Null when no such server runs or it refused the client.
+_jack_client* open_jack_client(const std::string& client_name, const std::string& server);
+
 /// A JACK client that captures some of a server's audio output ports: one input port per
 /// channel (`in_<channel>`), each connected to its capture port. JACK's process callback only
 /// copies the period's frames, interleaved, into a FrameSlotRing allocated before activation:
