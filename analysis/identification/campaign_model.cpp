@@ -7,6 +7,23 @@
 #include "analysis/model/polynomial_stiffness.h"
 
 namespace oscilab::analysis {
+namespace {
+
+// Whether the slice's cubic has a well on either side of z = 0.
+bool bistable_about_zero(const StiffnessSlice& slice) {
+  const Eigen::VectorXd& c = slice.fit.coefficients;
+  std::vector<std::unique_ptr<ModelTerm>> terms;
+  terms.push_back(
+      std::make_unique<PolynomialStiffness>(std::vector<double>(c.data(), c.data() + c.size())));
+  try {
+    const Model elastic(1.0, std::move(terms));
+    return elastic.well(false).z_m < 0.0 && elastic.well(true).z_m > 0.0;
+  } catch (const InputError&) {
+    return false;  // no such well
+  }
+}
+
+}  // namespace
 
 Model campaign_model(const Model& model, const CampaignAnalysis& campaign,
                      StiffnessSource stiffness, std::vector<std::string>& notes) {
@@ -29,14 +46,26 @@ Model campaign_model(const Model& model, const CampaignAnalysis& campaign,
     }
   }
   std::vector<std::unique_ptr<ModelTerm>> terms;
-  // An identified stiffness starts from the slice's cubic when there is one.
+  // An identified stiffness starts from the slice's cubic when there is one that is bistable
+  // about z = 0 (eq. (9) puts f_d(z) through both wells and z = 0). The slice of records of one
+  // well only sees that well: its cubic's other roots are an extrapolation, often not a well.
+  const bool slice_bistable = campaign.stiffness && bistable_about_zero(*campaign.stiffness);
+  if (stiffness == StiffnessSource::Rfs && campaign.stiffness && !slice_bistable) {
+    throw InputError(
+        "--stiffness rfs: the records' stiffness slice has no wells on both sides of z = 0 "
+        "(records of one well?): give --stiffness model or identified");
+  }
   const bool from_slice = stiffness == StiffnessSource::Rfs ||
-                          (stiffness == StiffnessSource::Identified && campaign.stiffness);
+                          (stiffness == StiffnessSource::Identified && slice_bistable);
   if (stiffness == StiffnessSource::Identified && !campaign.stiffness) {
     notes.push_back(
         "stiffness identified from the stepped responses, starting from the model's "
         "K(z) (the records give no stiffness slice: " +
         campaign.rfs_message + ")");
+  } else if (stiffness == StiffnessSource::Identified && !slice_bistable) {
+    notes.push_back(
+        "stiffness identified from the stepped responses, starting from the model's K(z) (the "
+        "records' stiffness slice has no wells on both sides of z = 0: records of one well?)");
   }
   for (const auto& term : model.terms()) {
     if (from_slice && term->type() == "polynomial-stiffness") {
