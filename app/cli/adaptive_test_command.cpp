@@ -1,9 +1,10 @@
-// `oscilab-cli adaptive-test --source rig --rig-model MODEL.json --out DIR`: a stepped-sine test
+// `oscilab-cli adaptive-test --source rig --rig-model MODEL.json --out DIR` (or `--source
+// jack:ACC,POS --drive jack:PORT` for a shaker driven in real time): a stepped-sine test
 // that chooses its own levels. A pilot sweep in each well, then a loop: weigh the baseline and
 // the candidate effects (BIC weights of warm refits), stop when a leader is clear at the noise or
 // the shaker time is spent, otherwise propose the setting that best tells the plausible models
-// apart per second of shaker time, run it on the virtual rig, analyse it as offline, repeat. The
-// recordings, a decision log (one JSON line per decision) and the final diagnosis report.
+// apart per second of shaker time, run it (virtual rig or shaker), analyse it as offline, repeat.
+// The recordings, a decision log (one JSON line per decision) and the final diagnosis report.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -24,8 +25,11 @@
 #include "analysis/model/model_json.h"
 #include "app/cli/commands.h"
 #include "app/cli/cost_options.h"
+#include "app/cli/drive_options.h"
 #include "app/cli/option_parsing.h"
 #include "app/cli/output_files.h"
+#include "daq/drive/drive_event_json.h"
+#include "daq/drive/jack_level_runner.h"
 #include "daq/rig/rig_level_runner.h"
 
 namespace oscilab::cli {
@@ -60,16 +64,58 @@ struct AdaptiveOptions {
   int threads = 0;
   CostOptions cost;
   double max_seconds = 120.0;
+  // --source jack:ACC,POS --drive jack:PORT: a shaker driven in real time.
+  std::string drive;
+  daq::JackDriveClient::Options jack;
+  double mass_kg = 0.0;  // 0: the base model's
+  double settle_timeout_s = 30.0;
 };
+
+bool jack_source(const AdaptiveOptions& o) { return o.source.rfind("jack:", 0) == 0; }
+
+// The ports of "jack:PORT" or "jack:A,B" (`count` of them), or InputError naming the option.
+std::vector<std::string> jack_ports(const std::string& text, std::size_t count,
+                                    const std::string& option) {
+  const std::vector<std::string> ports = split(text.substr(5), ',');
+  bool empty = false;
+  for (const std::string& port : ports) empty = empty || port.empty();
+  if (ports.size() != count || empty) {
+    throw InputError(option + " " + text + ": give " +
+                     (count == 1 ? std::string("jack:PORT")
+                                 : std::string("jack:ACCELERATION_PORT,POSITION_PORT")));
+  }
+  return ports;
+}
 
 // What only this command knows (the source, the rig's level timing, the diagnosis's time
 // bound); the rest is AdaptiveTestOptions::validate()'s, under these options' names.
 void validate(const AdaptiveOptions& o) {
-  if (o.source != "rig") {
+  if (o.source != "rig" && !jack_source(o)) {
     throw InputError("--source " + o.source +
-                     ": only rig (the virtual rig) drives an adaptive test in this version");
+                     ": rig (the virtual rig) or jack:ACCELERATION_PORT,POSITION_PORT (a shaker "
+                     "driven through --drive jack:PORT)");
   }
-  if (o.rig_model.empty()) throw InputError("--rig-model: required with --source rig");
+  if (jack_source(o)) {
+    jack_ports(o.source, 2, "--source");
+    if (o.drive.rfind("jack:", 0) != 0) {
+      throw InputError("--drive: required with --source jack:…, as jack:PLAYBACK_PORT");
+    }
+    jack_ports(o.drive, 1, "--drive");
+    if (!(o.jack.acceleration_scale_m_s2 > 0.0) || !(o.jack.position_scale_m > 0.0)) {
+      throw InputError(
+          "--acceleration-scale, --position-scale: required with --source jack:… (SI per unit of "
+          "the capture ports)");
+    }
+    if (o.wells == "both") {
+      throw InputError(
+          "--wells both: a real rig cannot move the mass between wells; give the well it sits "
+          "in (positive or negative)");
+    }
+    if (!o.rig_model.empty()) throw InputError("--rig-model: only with --source rig");
+  } else {
+    if (o.rig_model.empty()) throw InputError("--rig-model: required with --source rig");
+    if (!o.drive.empty()) throw InputError("--drive: only with --source jack:…");
+  }
   if (!(o.ramp_s >= 0.0) || !std::isfinite(o.ramp_s) || !(o.ramp_s < o.hold_s)) {
     throw InputError("--hold, --ramp: hold must be positive and longer than the ramp");
   }
@@ -143,19 +189,59 @@ analysis::AdaptiveTestOptions adaptive_test_options(const AdaptiveOptions& o) {
   return options;
 }
 
+// The runner of --source: the virtual rig, or the shaker behind the JACK drive.
+std::unique_ptr<analysis::LevelRunner> make_runner(const AdaptiveOptions& o,
+                                                   const analysis::AdaptiveTestOptions& options) {
+  const std::string folder = o.out_dir + "/recordings";
+  if (!jack_source(o)) {
+    return std::make_unique<daq::RigLevelRunner>(
+        analysis::model_from_spec(o.rig_model), folder,
+        daq::RigLevelRunner::Schedule{o.hold_s, o.ramp_s, o.lead_in_s}, o.seed);
+  }
+  daq::JackLevelRunner::Options jack;
+  jack.drive = o.jack;
+  const std::vector<std::string> inputs = jack_ports(o.source, 2, "--source");
+  jack.drive.acceleration_port = inputs[0];
+  jack.drive.position_port = inputs[1];
+  jack.drive.drive_port = jack_ports(o.drive, 1, "--drive")[0];
+  jack.drive.controller.ramp_s = o.ramp_s;
+  jack.mass_kg = o.mass_kg > 0.0 ? o.mass_kg : options.setup.base_model.mass_kg();
+  jack.positive_well = o.wells == "positive";
+  jack.hold_s = o.hold_s;
+  jack.lead_in_s = o.lead_in_s;
+  jack.settle_timeout_s = o.settle_timeout_s;
+  jack.folder = folder;
+  return std::make_unique<daq::JackLevelRunner>(jack);
+}
+
+const std::vector<std::string>& runner_paths(const analysis::LevelRunner& runner) {
+  if (const auto* jack = dynamic_cast<const daq::JackLevelRunner*>(&runner)) return jack->paths();
+  return dynamic_cast<const daq::RigLevelRunner&>(runner).paths();
+}
+
+// The drive's events of a JACK test, one JSON line each, in DIR/drive_events.jsonl.
+void write_drive_events(const analysis::LevelRunner& runner, const std::string& out_dir) {
+  const auto* jack = dynamic_cast<const daq::JackLevelRunner*>(&runner);
+  if (jack == nullptr) return;
+  std::ofstream log(out_dir + "/drive_events.jsonl");
+  for (const daq::DriveEvent& event : jack->events()) {
+    log << daq::drive_event_json(event, jack->server_rate_hz()).dump() << '\n';
+  }
+  if (!log) throw InputError(out_dir + "/drive_events.jsonl: cannot write");
+}
+
 void run(const AdaptiveOptions& o) {
   validate(o);
-  const analysis::Model truth = analysis::model_from_spec(o.rig_model);
   const analysis::AdaptiveTestOptions options = adaptive_test_options(o);
 
+  // The runner first: a JACK drive that cannot start leaves no folder behind.
+  const std::unique_ptr<analysis::LevelRunner> runner = make_runner(o, options);
   std::error_code error;
   std::filesystem::create_directories(o.out_dir + "/recordings", error);
   if (error) throw InputError(o.out_dir + ": cannot create: " + error.message());
   std::ofstream log(o.out_dir + "/decisions.jsonl");
   if (!log) throw InputError(o.out_dir + "/decisions.jsonl: cannot write");
 
-  daq::RigLevelRunner rig(truth, o.out_dir + "/recordings", {o.hold_s, o.ramp_s, o.lead_in_s},
-                          o.seed);
   const auto on_decision = [&](const analysis::AdaptiveDecision& d,
                                const std::vector<analysis::ModelHypothesis>& hypotheses) {
     if (d.index == 0) {
@@ -171,10 +257,19 @@ void run(const AdaptiveOptions& o) {
         (d.decision.stop ? "stop: " + d.decision.reason : "next: " + d.next.reason).c_str());
     std::fflush(stdout);
   };
-  const analysis::AdaptiveTestResult result =
-      analysis::run_adaptive_test(rig, options, on_decision);
+  analysis::AdaptiveTestResult result;
+  try {
+    result = analysis::run_adaptive_test(*runner, options, on_decision);
+  } catch (const daq::DriveAborted& aborted) {
+    write_drive_events(*runner, o.out_dir);
+    throw InputError(drive_abort_line(aborted.event(), o.jack.controller, "--source"));
+  } catch (const InputError&) {
+    write_drive_events(*runner, o.out_dir);  // what the drive did up to the failure
+    throw;
+  }
+  write_drive_events(*runner, o.out_dir);
 
-  const nlohmann::json report = analysis::adaptive_test_report_json(result, rig.paths());
+  const nlohmann::json report = analysis::adaptive_test_report_json(result, runner_paths(*runner));
   OutputFiles outputs;
   outputs.write(o.out_dir + "/report.json",
                 [&](std::ostream& out) { out << report.dump(2) << '\n'; });
@@ -203,13 +298,38 @@ void run(const AdaptiveOptions& o) {
 
 void add_adaptive_test_command(CLI::App& app) {
   auto o = std::make_shared<AdaptiveOptions>();
+  o->jack.acceleration_scale_m_s2 = o->jack.position_scale_m = 0.0;  // required with jack:
   CLI::App* command = app.add_subcommand(
       "adaptive-test",
       "A stepped-sine test that chooses its next level: weigh the candidate effects after each "
       "level, propose and run the setting that best tells them apart, stop when one is clear; "
       "then the diagnosis");
-  command->add_option("--source", o->source, "rig (the virtual rig, as fast as it computes)")
+  command
+      ->add_option("--source", o->source,
+                   "rig (the virtual rig, as fast as it computes) or jack:ACCELERATION_PORT,"
+                   "POSITION_PORT (a shaker in real time, driven through --drive)")
       ->capture_default_str();
+  command->add_option("--drive", o->drive,
+                      "jack:PLAYBACK_PORT: the shaker amplifier's input (with --source jack:)");
+  command->add_option("--jack-server", o->jack.server, "JACK server name (default: the default)");
+  command
+      ->add_option("--acceleration-scale", o->jack.acceleration_scale_m_s2,
+                   "m/s² per unit of the accelerometer's port (with --source jack:)")
+      ->check(positive_number());
+  command
+      ->add_option("--position-scale", o->jack.position_scale_m,
+                   "m per unit of the vibrometer's port (with --source jack:)")
+      ->check(positive_number());
+  command
+      ->add_option("--mass", o->mass_kg,
+                   "the oscillator's mass [kg] (with --source jack:; default: the model's)")
+      ->check(positive_number());
+  command
+      ->add_option("--settle-timeout", o->settle_timeout_s,
+                   "seconds after a ramp for a level to come on target (with --source jack:)")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  add_drive_controller_options(*command, o->jack.controller);
   command->add_option("--rig-model", o->rig_model, "the rig's truth: paper | MODEL.json");
   command
       ->add_option("--out", o->out_dir,

@@ -18,6 +18,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/common/job.h"
 #include "app/cli/commands.h"
+#include "app/cli/drive_options.h"
 #include "app/cli/option_parsing.h"
 #include "daq/drive/drive_event_json.h"
 #include "daq/drive/jack_drive_client.h"
@@ -38,25 +39,8 @@ struct DriveOptions {
   std::string events_path;
 };
 
-// What an abort means, in the words of the option that set the limit.
 std::string abort_text(const daq::DriveEvent& event, const DriveOptions& o) {
-  switch (event.abort) {
-    case daq::DriveAbort::DriveLimit:
-      return "--max-drive: the level needs a drive of " + std::to_string(event.value) +
-             " of full scale, above the limit " + std::to_string(o.drive.controller.max_drive_fs);
-    case daq::DriveAbort::TableAccelerationLimit:
-      return "--max-acceleration: the table acceleration reached " + std::to_string(event.value) +
-             " m/s², above the limit " +
-             std::to_string(o.drive.controller.max_table_acceleration_m_s2);
-    case daq::DriveAbort::TravelLimit:
-      return "--max-travel: the mass moved " + std::to_string(event.value) +
-             " m from rest, above the limit " + std::to_string(o.drive.controller.max_travel_m);
-    case daq::DriveAbort::InputLost:
-      return "--acceleration/--position: an input was lost (disconnected, not a number or frozen)";
-    case daq::DriveAbort::None:
-      break;
-  }
-  return "the drive aborted";
+  return drive_abort_line(event, o.drive.controller, "--acceleration/--position");
 }
 
 class EventLog {
@@ -198,35 +182,11 @@ void add_drive_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 600.0))
       ->capture_default_str();
   command
-      ->add_option("--tolerance", o->drive.controller.tolerance,
-                   "on target: the first harmonic of b̈ within this fraction of f0/m")
-      ->check(CLI::Range(1e-4, 0.49))
-      ->capture_default_str();
-  command
       ->add_option("--settle-timeout", o->settle_timeout_s,
                    "seconds after the ramp for a level to come on target")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
-  command
-      ->add_option("--gain-guess", o->drive.controller.gain_guess_m_s2_per_fs,
-                   "first guess of the table acceleration per unit of drive, m/s² (err high)")
-      ->check(positive_number())
-      ->capture_default_str();
-  command
-      ->add_option("--max-drive", o->drive.controller.max_drive_fs,
-                   "abort: drive amplitude limit, fraction of full scale")
-      ->check(CLI::Range(1e-6, 1.0))
-      ->capture_default_str();
-  command
-      ->add_option("--max-acceleration", o->drive.controller.max_table_acceleration_m_s2,
-                   "abort: |b̈| limit, m/s²")
-      ->check(positive_number())
-      ->capture_default_str();
-  command
-      ->add_option("--max-travel", o->drive.controller.max_travel_m,
-                   "abort: limit of |z| from the rest position, m")
-      ->check(positive_number())
-      ->capture_default_str();
+  add_drive_controller_options(*command, o->drive.controller);
   command->add_option("--events", o->events_path,
                       "append the drive's events to this JSON-lines log as they happen");
   command->add_option("--client-name", o->drive.client_name, "the drive's JACK client name")

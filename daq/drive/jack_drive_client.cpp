@@ -2,6 +2,7 @@
 
 #include <jack/jack.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/common/input_error.h"
@@ -71,6 +72,7 @@ int JackDriveClient::process(std::uint32_t frames) {
   if (jack_port_connected(acceleration_in_) == 0 || jack_port_connected(position_in_) == 0) {
     controller_->input_lost();
   }
+  if (options_.capture_s > 0.0) copy_to_capture(acceleration, position, frames);
   const double acceleration_scale = options_.acceleration_scale_m_s2;
   const double position_scale = options_.position_scale_m;
   for (std::uint32_t f = 0; f < frames; ++f) {
@@ -87,6 +89,30 @@ int JackDriveClient::process(std::uint32_t frames) {
   cycles_to_target_.store(controller_->cycles_to_target(), std::memory_order_relaxed);
   samples_.store(controller_->samples(), std::memory_order_release);
   return 0;
+}
+
+void JackDriveClient::copy_to_capture(const float* acceleration, const float* position,
+                                      std::uint32_t frames) {
+  std::uint32_t done = 0;
+  while (done < frames) {
+    FrameSlot* slot = capture_.begin_push();
+    if (slot == nullptr) {
+      capture_dropped_.fetch_add(frames - done, std::memory_order_relaxed);
+      return;
+    }
+    const std::uint32_t n =
+        std::min<std::uint32_t>(frames - done, static_cast<std::uint32_t>(capture_.slot_frames()));
+    slot->frame_time = static_cast<std::uint32_t>(controller_->samples() + done);
+    slot->frames = n;
+    slot->disconnected = 0;
+    float* to = slot->data.data();
+    for (std::uint32_t f = done; f < done + n; ++f) {
+      *to++ = acceleration[f];
+      *to++ = position[f];
+    }
+    capture_.end_push();
+    done += n;
+  }
 }
 
 std::string JackDriveClient::start() {
@@ -122,6 +148,17 @@ std::string JackDriveClient::start() {
   }
   rate_hz_ = jack_get_sample_rate(client_);
   period_ = jack_get_buffer_size(client_);
+  if (options_.capture_s > 0.0) {
+    if (!std::isfinite(options_.capture_s) || options_.capture_s > 600.0) {
+      stop();
+      return "drive: the capture ring must hold 0 to 600 s";
+    }
+    const std::size_t slot_frames = std::max<std::uint32_t>(period_, 64);
+    capture_.allocate(static_cast<std::size_t>(std::ceil(options_.capture_s * rate_hz_ /
+                                                         static_cast<double>(slot_frames))) +
+                          2,
+                      slot_frames, 2);
+  }
   SineControllerOptions controller = options_.controller;
   controller.sample_rate_hz = rate_hz_;
   try {
@@ -176,6 +213,9 @@ std::string JackDriveClient::set_level(double amplitude_m_s2, double frequency_h
   if (!std::isfinite(frequency_hz) || frequency_hz <= 0.0 || frequency_hz > rate_hz_ / 8.0) {
     return "drive level: the frequency must be positive and at most an eighth of the server's " +
            std::to_string(static_cast<long>(rate_hz_)) + " Hz";
+  }
+  if (const Status now = status(); now.state == DriveState::Aborted) {
+    return std::string("drive: aborted (") + drive_abort_name(now.abort) + "): rearm it first";
   }
   return send({CommandKind::Level, amplitude_m_s2, frequency_hz});
 }

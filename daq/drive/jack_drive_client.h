@@ -9,6 +9,7 @@
 #include <boost/lockfree/spsc_queue.hpp>
 
 #include "daq/drive/sine_controller.h"
+#include "daq/live/frame_slot_ring.h"
 
 struct _jack_client;  // libjack's jack_client_t (jack/types.h), kept out of this header
 struct _jack_port;    // libjack's jack_port_t
@@ -44,6 +45,10 @@ class JackDriveClient {
     double acceleration_scale_m_s2 = 1.0;  // SI per unit of the port (the sidecar's scale)
     double position_scale_m = 1.0;
     SineControllerOptions controller;  // its sample rate is the server's
+    /// > 0: the inputs' frames (acceleration, position, as the ports give them) are also copied
+    /// into a ring of this many seconds (capture()), each slot stamped with the controller's
+    /// sample count at its first frame, for a level runner that records what it drove.
+    double capture_s = 0.0;
   };
 
   struct Status {
@@ -86,6 +91,11 @@ class JackDriveClient {
   double rate_hz() const { return rate_hz_; }
   std::uint32_t period_frames() const { return period_; }
   bool shut_down() const { return shutdown_.load(std::memory_order_acquire); }
+  /// The captured frames (Options::capture_s), for one consumer thread: a slot's frame_time is
+  /// the low 32 bits of the controller's sample count at its first frame (0-based).
+  FrameSlotRing& capture() { return capture_; }
+  /// Frames the capture ring had no room for, since the client started.
+  std::uint64_t capture_dropped() const { return capture_dropped_.load(std::memory_order_relaxed); }
   /// "CLIENT:drive" etc. (the client's actual name).
   std::string port_name(const std::string& short_name) const;
 
@@ -110,6 +120,7 @@ class JackDriveClient {
     JackDriveClient& owner_;
   };
   std::string send(const Command& command);
+  void copy_to_capture(const float* acceleration, const float* position, std::uint32_t frames);
 
   Options options_;
   _jack_client* client_ = nullptr;
@@ -126,6 +137,8 @@ class JackDriveClient {
   boost::lockfree::spsc_queue<Command, boost::lockfree::capacity<64>> commands_;
   boost::lockfree::spsc_queue<TimedDriveEvent, boost::lockfree::capacity<1024>> events_;
   std::atomic<std::uint64_t> lost_events_{0};
+  FrameSlotRing capture_;
+  std::atomic<std::uint64_t> capture_dropped_{0};
   std::atomic<bool> shutdown_{false}, closing_{false};
   std::atomic<int> state_{0}, abort_{0}, cycles_to_target_{-1};
   std::atomic<double> target_m_s2_{0.0}, frequency_hz_{0.0}, measured_m_s2_{0.0}, drive_fs_{0.0};

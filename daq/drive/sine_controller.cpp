@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "analysis/common/input_error.h"
@@ -51,6 +52,32 @@ const char* drive_abort_name(DriveAbort reason) {
       return "input_lost";
   }
   return "unknown";
+}
+
+std::string drive_abort_text(const DriveEvent& event, const SineControllerOptions& limits) {
+  char text[200];
+  switch (event.abort) {
+    case DriveAbort::DriveLimit:
+      std::snprintf(text, sizeof text,
+                    "the level needs a drive of %.4g of full scale, above the limit %.4g",
+                    event.value, limits.max_drive_fs);
+      return text;
+    case DriveAbort::TableAccelerationLimit:
+      std::snprintf(text, sizeof text,
+                    "the table acceleration reached %.4g m/s², above the limit %.4g", event.value,
+                    limits.max_table_acceleration_m_s2);
+      return text;
+    case DriveAbort::TravelLimit:
+      std::snprintf(text, sizeof text, "the mass moved %.4g m from rest, above the limit %.4g",
+                    event.value, limits.max_travel_m);
+      return text;
+    case DriveAbort::InputLost:
+      return "an input was lost (a port disconnected, a value not a number, or a frozen "
+             "accelerometer)";
+    case DriveAbort::None:
+      break;
+  }
+  return "the drive aborted";
 }
 
 std::string SineControllerOptions::validate() const {
@@ -171,7 +198,12 @@ void SineController::rearm() {
   enter(DriveState::Idle);
 }
 
-void SineController::input_lost() { abort_with(DriveAbort::InputLost, 0.0); }
+void SineController::input_lost() {
+  // Idle, nothing is driven: an input without a connection yet (a client whose ports are being
+  // connected) stops nothing. A level started without it aborts on its first sample.
+  if (state_ == DriveState::Idle) return;
+  abort_with(DriveAbort::InputLost, 0.0);
+}
 
 double SineController::ramp_fraction(std::uint64_t at) const {
   if (ramp_samples_ == 0 || at >= ramp_samples_) return 1.0;

@@ -68,6 +68,10 @@ struct SineControllerOptions {
   std::string validate() const;
 };
 
+/// An abort in words, without an interface's names: "the table acceleration reached 5.2 m/s²,
+/// above the limit 5".
+std::string drive_abort_text(const DriveEvent& event, const SineControllerOptions& limits);
+
 /// A closed-loop sine controller (Oscilab's shaker drive). It plays the drive u = V sin φ and
 /// brings the first harmonic of the measured table acceleration to the level's amplitude
 /// A* = f0 / m: after each whole cycle of φ it measures A₁ = (2/N) |Σ b̈ₙ e^{iφₙ}| over that cycle
@@ -104,7 +108,7 @@ class SineController {
   void stop();
   /// Aborted → Idle (the operator's acknowledgement); nothing otherwise.
   void rearm();
-  /// An input port lost its connection: abort now.
+  /// An input port has no connection: abort now, unless idle (nothing driven).
   void input_lost();
 
   /// One sample: the measured table acceleration (m/s²) and mass position (m) in, the drive out.

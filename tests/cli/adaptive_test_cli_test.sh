@@ -24,8 +24,25 @@ PY
 
 if [ "$mode" = errors ]; then
   expect_error "no rig model" "--rig-model: required" "$cli" adaptive-test --out "$work/e1"
-  expect_error "a source other than the rig" "only rig" \
-    "$cli" adaptive-test --source jack:a,b --rig-model "$work/quad.json" --out "$work/e2"
+  expect_error "an unknown source" "^oscilab-cli: --source usb:3: rig (the virtual rig) or jack:" \
+    "$cli" adaptive-test --source usb:3 --rig-model "$work/quad.json" --out "$work/e2"
+  expect_error "a JACK source without a drive" "^oscilab-cli: --drive: required with --source jack:" \
+    "$cli" adaptive-test --source jack:a,b --out "$work/e9"
+  expect_error "a JACK source of one port" "^oscilab-cli: --source jack:a: give jack:ACCELERATION_PORT,POSITION_PORT" \
+    "$cli" adaptive-test --source jack:a --drive jack:p --out "$work/e10"
+  expect_error "a JACK source without scales" "^oscilab-cli: --acceleration-scale, --position-scale: required" \
+    "$cli" adaptive-test --source jack:a,b --drive jack:p --out "$work/e11"
+  expect_error "a JACK source in both wells" "^oscilab-cli: --wells both: a real rig cannot move the mass" \
+    "$cli" adaptive-test --source jack:a,b --drive jack:p --acceleration-scale 50 \
+    --position-scale 0.1 --out "$work/e12"
+  expect_error "a JACK source and a rig model" "^oscilab-cli: --rig-model: only with --source rig" \
+    "$cli" adaptive-test --source jack:a,b --drive jack:p --acceleration-scale 50 \
+    --position-scale 0.1 --wells positive --rig-model "$work/quad.json" --out "$work/e13"
+  expect_error "a JACK server that does not run" "^oscilab-cli: JACK server \"oscilab-none-$$\" is not running" \
+    "$cli" adaptive-test --source jack:a,b --drive jack:p --acceleration-scale 50 \
+    --position-scale 0.1 --wells positive --jack-server "oscilab-none-$$" --out "$work/e14"
+  expect_error "a drive for the rig" "^oscilab-cli: --drive: only with --source jack:" \
+    "$cli" adaptive-test --rig-model "$work/quad.json" --drive jack:p --out "$work/e15"
   expect_error "an f0 range upside down" "--f0: need 0 < A <= B" \
     "$cli" adaptive-test --rig-model "$work/quad.json" --f0 2.7:0.2 --out "$work/e3"
   expect_error "a leader weight above 1" "--leader-weight" \
@@ -39,7 +56,8 @@ if [ "$mode" = errors ]; then
     "$cli" adaptive-test --rig-model "$work/quad.json" --freq-step 0 --out "$work/e8"
   expect_error "a missing rig model file" "nothing.json" \
     "$cli" adaptive-test --rig-model "$work/nothing.json" --out "$work/e7"
-  [ ! -e "$work/e3" ] && [ ! -e "$work/e5" ] && [ ! -e "$work/e8" ] && pass "nothing written for refused options" ||
+  [ ! -e "$work/e3" ] && [ ! -e "$work/e5" ] && [ ! -e "$work/e8" ] && [ ! -e "$work/e14" ] &&
+    pass "nothing written for refused options" ||
     fail "a refused run left a folder"
 else
   out=$work/adaptive

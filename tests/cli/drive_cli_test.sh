@@ -1,19 +1,35 @@
 #!/usr/bin/env bash
 # oscilab-cli plant and drive on a real jackd (dummy backend):
-#   drive_cli_test.sh OSCILAB_CLI SOURCE_DIR
-# The plant plays the paper's oscillator on a shaker in real time; `drive` runs a stepped sine of
-# two levels through JACK ports, each on target within 10 cycles of its ramp, its events logged;
-# a crossed limit ends it with one line naming the limit's option (exit 2); absurd options and a
-# missing port are refused in one line.
+#   drive_cli_test.sh OSCILAB_CLI SOURCE_DIR [drive|adaptive]
+# `drive`: the plant plays the paper's oscillator on a shaker in real time; `drive` runs a stepped
+# sine of two levels through JACK ports, each on target within 10 cycles of its ramp, its events
+# logged; a crossed limit ends it with one line naming the limit's option (exit 2); absurd options
+# and a missing port are refused in one line.
+# `adaptive` (a study, about 4 minutes of real time): the plant plays the paper's model with a
+# hidden quadratic damping (c2 = 6 N s^2/m^2) in its positive well, and `adaptive-test --source
+# jack:` drives it through JACK: it must name quadratic-damping in less shaker time than the fixed
+# grid's one well (26 levels of 10 s).
 source "$(dirname "$0")/cli_checks.sh"
+mode=${3:-drive}
 server=oscilab-cli-drive-$$
 jackd --no-realtime -n "$server" -d dummy -r 48000 -p 256 > "$work/jackd.log" 2>&1 &
 jackd_pid=$!
 trap 'kill $(jobs -p) 2>/dev/null; wait 2>/dev/null; rm -rf "$work"' EXIT
 
 # The plant, once the server accepts clients (10 s at most).
+plant_model=paper
+if [ "$mode" = adaptive ]; then
+  "$cli" model paper --out "$work/paper.json" > /dev/null
+  python3 - "$work/paper.json" "$work/quad.json" << 'PY'
+import json, sys
+model = json.load(open(sys.argv[1]))
+model["terms"].append({"type": "quadratic-damping", "c2_ns2_m2": 6.0})
+json.dump(model, open(sys.argv[2], "w"))
+PY
+  plant_model=$work/quad.json
+fi
 for _ in $(seq 100); do
-  "$cli" plant --jack-server "$server" --duration 60 > "$work/plant.log" 2>&1 &
+  "$cli" plant --jack-server "$server" --model "$plant_model" --duration 900 > "$work/plant.log" 2>&1 &
   plant_pid=$!
   sleep 0.1
   for _ in $(seq 20); do grep -q "plant running" "$work/plant.log" && break; sleep 0.05; done
@@ -33,6 +49,38 @@ drive_on() {
     --gain-guess 63 "$@"
 }
 drive=(drive_on "$server" oscilab-plant:position 9)
+
+if [ "$mode" = adaptive ]; then
+  out=$work/adaptive
+  if "$cli" adaptive-test --source jack:oscilab-plant:acceleration,oscilab-plant:position \
+      --drive jack:oscilab-plant:drive --jack-server "$server" --acceleration-scale 50 \
+      --position-scale 0.1 --wells positive --hold 4 --lead-in 1 --gain-guess 63 \
+      --effects quadratic-damping,cubic-damping,quintic-stiffness --out "$out" > "$work/run.log" 2>&1; then
+    pass "adaptive-test through JACK ran"
+  else
+    fail "adaptive-test through JACK: $(tail -3 "$work/run.log")"
+  fi
+  python3 - "$out" << 'PY' && pass "verdict, shaker time and drive events" || fail "$(tail -5 "$work/run.log")"
+import json, sys
+out = sys.argv[1]
+report = json.load(open(out + "/report.json"))
+fixed_s = 2.5 + 26 * 10.0  # the fixed grid's stepped sine in one well, its lead-in included
+print("verdict", report["verdict"], "shaker time", report["shaker_time_s"], "s of", fixed_s,
+      "levels", report["adaptive_test"]["levels"])
+assert report["verdict"] == "quadratic-damping", report["verdict"]
+assert report["adaptive_test"]["leader"] == "quadratic-damping"
+assert report["shaker_time_s"] < fixed_s, report["shaker_time_s"]
+events = [json.loads(l) for l in open(out + "/drive_events.jsonl")]
+on = [e for e in events if e["state"] == "on_target"]
+assert len(on) >= report["adaptive_test"]["levels"], (len(on), report["adaptive_test"]["levels"])
+assert not any(e["state"] == "aborted" for e in events)
+PY
+  kill $plant_pid 2>/dev/null; wait $plant_pid 2>/dev/null
+  kill $jackd_pid 2>/dev/null; wait $jackd_pid 2>/dev/null
+  echo "$passes passed, $failures failed"
+  [ "$failures" -eq 0 ]
+  exit
+fi
 if "${drive[@]}" --levels 0.5,1.5 --hold 0.5 --events "$work/drive.jsonl" > "$work/drive.log" 2>&1; then
   pass "drive exits 0"
 else

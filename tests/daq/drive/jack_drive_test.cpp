@@ -196,9 +196,10 @@ TEST(JackDrive, ALostInputSetsTheDriveToZeroWithinOnePeriod) {
   EXPECT_GT(zeros, 10000u);   // the 300 ms after it
   EXPECT_GT(before, 10000u);  // the drive was on before
   EXPECT_EQ(loop.drive.status().state, DriveState::Aborted);
-  EXPECT_EQ(loop.drive.set_level(1.0, kDriveFrequencyHz), "");  // taken into the queue ...
+  EXPECT_EQ(loop.drive.set_level(1.0, kDriveFrequencyHz),
+            "drive: aborted (input_lost): rearm it first");
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  EXPECT_EQ(loop.drive.status().state, DriveState::Aborted);  // ... but refused while aborted
+  EXPECT_EQ(loop.drive.status().state, DriveState::Aborted);
 }
 
 // The table-acceleration limit through JACK: aborted on the sample above it, drive zero after.

@@ -250,6 +250,9 @@ TEST(SineController, AbortsWhenAnInputIsLostFrozenOrNotFinite) {
   const analysis::Model model = analysis::paper_model();
   {
     Rig rig(lab_options(), model);
+    // Idle, an input without a connection (yet) stops nothing.
+    rig.controller.input_lost();
+    EXPECT_EQ(rig.controller.state(), DriveState::Idle);
     rig.run(0.3);
     ASSERT_TRUE(rig.controller.set_level(1.0 / model.mass_kg(), kFrequencyHz));
     rig.run(0.5);
