@@ -299,11 +299,16 @@ void RecordView::load_window(TimeWindow window) {
   if (loaded_.bucket_samples == bucket_samples && loaded_.first <= first && end <= loaded_.end) {
     return;  // what was read covers the window at the resolution it wants
   }
-  // Around the window, what a pan of a few widths reaches: up to 4 windows on either side of
-  // the samples (kRawSamples in all at most), one of the overview's buckets.
+  // Around the window: on a pan (the window overlaps what was read at its resolution), what a
+  // pan of a few widths reaches, up to 4 windows on either side of the samples (kRawSamples in
+  // all at most); on a jump (a zoom, a click elsewhere), one window on either side, so that the
+  // frame that lands reads a third as much; one of the overview's buckets.
+  const bool pan =
+      loaded_.bucket_samples == bucket_samples && first < loaded_.end && end > loaded_.first;
   const Eigen::Index around =
-      bucket_samples == 1 ? std::clamp<Eigen::Index>((kRawSamples - shown) / 2, 0, 4 * shown)
-                          : shown;
+      bucket_samples == 1
+          ? std::clamp<Eigen::Index>((kRawSamples - shown) / 2, 0, (pan ? 4 : 1) * shown)
+          : shown;
   const Eigen::Index read_first = std::max<Eigen::Index>(first - around, 0);
   const Eigen::Index read_end = std::min(end + around, n);
   std::vector<QVector<QCPGraphData>> data(graphs_.size());

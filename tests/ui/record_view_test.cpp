@@ -347,11 +347,12 @@ class RecordViewTest : public QObject {
     view.set_time_window(1800.0, 3000.0);
     check_envelope(2 * (3 * RecordView::kBucketsPerPixel * width_px + 2));
     QVERIFY(view.samples_per_point() < 2 * 4096);
-    // 100 s: the samples themselves, kRawSamples around the window.
+    // A jump to 100 s: the samples themselves, the window and one on either side.
     view.set_time_window(2000.0, 2100.0);
     QCOMPARE(view.samples_per_point(), Eigen::Index(1));
     const auto* data = view.channel_graph(0)->data().data();
-    QCOMPARE(Eigen::Index(data->size()), RecordView::kRawSamples - 1);
+    const Eigen::Index window_samples = Eigen::Index(100.0 * kRateHz) + 1;
+    QCOMPARE(Eigen::Index(data->size()), 3 * window_samples);
     for (auto it = data->constBegin(); it != data->constEnd(); ++it) {
       const auto i = Eigen::Index(std::lround(it->key * kRateHz));
       QCOMPARE(it->value, hour->samples_si(i, 0));
@@ -368,6 +369,9 @@ class RecordViewTest : public QObject {
     const QCPGraphData* before = &*data->constBegin();
     view.set_time_window(2050.0, 2150.0);
     QCOMPARE(&*view.channel_graph(0)->data()->constBegin(), before);
+    // A pan past it reads what a pan reaches: kRawSamples around the window.
+    view.set_time_window(2150.0, 2250.0);
+    QCOMPARE(Eigen::Index(view.channel_graph(0)->data()->size()), RecordView::kRawSamples - 1);
   }
 
   void opens_a_sound_file_with_its_samples_left_in_it() {
