@@ -32,13 +32,14 @@ struct Measured {
 // The proposal and the stop rule's answer at this point. The proposal comes first: what the best
 // setting could still tell apart is part of the stop rule.
 AdaptiveDecision decide(const std::vector<ModelHypothesis>& hypotheses,
-                        const AdaptiveTestOptions& options, AdmissibleSettings settings,
-                        double shaker_time_s, int adaptive_levels, const CancelToken& cancel) {
+                        const AdaptiveTestOptions& options, const NextPointOptions& next,
+                        const AdmissibleSettings& settings, double shaker_time_s,
+                        int adaptive_levels, const CancelToken& cancel) {
   AdaptiveDecision d;
   d.decision = stop_decision(hypotheses, options.stop, shaker_time_s);
   if (!d.decision.stop && adaptive_levels < options.max_levels) {
     const auto proposing = std::chrono::steady_clock::now();
-    d.next = propose_next_point(hypotheses, settings, options.next, {}, cancel);
+    d.next = propose_next_point(hypotheses, settings, next, {}, cancel);
     d.proposal_s = elapsed_s(proposing);
     if (d.next.found) {
       d.decision =
@@ -115,7 +116,7 @@ void validate_as_named(const AdaptiveTestOptions& options,
 
 AdaptiveTestResult run_adaptive_test(LevelRunner& runner, const AdaptiveTestOptions& options,
                                      const DecisionFn& on_decision, const ProgressFn& progress,
-                                     const CancelToken& cancel) {
+                                     const CancelToken& cancel, const ProposalGate& gate) {
   options.validate();
   const auto started = std::chrono::steady_clock::now();
   AdaptiveTestResult result;
@@ -160,10 +161,11 @@ AdaptiveTestResult run_adaptive_test(LevelRunner& runner, const AdaptiveTestOpti
                          edc_dataset(measured.campaign), hypothesis_options, {}, cancel);
 
   double refit_s = 0.0;
+  NextPointOptions next = options.next;  // with the settings the operator skips
   for (int index = 0;; ++index) {
     if (cancel.cancelled()) return finish(JobStatus::Cancelled, "cancelled");
     settings.current_positive_well = current_positive;
-    AdaptiveDecision d = decide(result.hypotheses, options, settings, measured.shaker_time_s,
+    AdaptiveDecision d = decide(result.hypotheses, options, next, settings, measured.shaker_time_s,
                                 result.adaptive_levels, cancel);
     if (cancel.cancelled()) return finish(JobStatus::Cancelled, "cancelled");
     d.index = index;
@@ -176,6 +178,19 @@ AdaptiveTestResult run_adaptive_test(LevelRunner& runner, const AdaptiveTestOpti
     if (d.decision.stop) break;
 
     const SettingScore& p = d.next.best;
+    const ProposalAnswer answer = gate ? gate(d) : ProposalAnswer::Run;
+    if (cancel.cancelled()) return finish(JobStatus::Cancelled, "cancelled");
+    if (answer == ProposalAnswer::Skip) {
+      next.skipped.push_back({p.f0_n, p.freq_hz, p.positive_well});
+      refit_s = 0.0;  // no level, so no refit before the next decision
+      continue;
+    }
+    if (answer == ProposalAnswer::Stop) {
+      result.decision.stop = true;
+      result.decision.decided = false;
+      result.decision.reason = "stopped by the operator; " + result.decision.reason;
+      break;
+    }
     if (p.positive_well != current_positive) measured.shaker_time_s += settings.well_change_s;
     measured.add(runner.run({p.f0_n}, p.freq_hz, p.positive_well, "level"));
     current_positive = p.positive_well;

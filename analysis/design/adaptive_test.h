@@ -105,6 +105,18 @@ struct AdaptiveTestResult {
 using DecisionFn =
     std::function<void(const AdaptiveDecision&, const std::vector<ModelHypothesis>&)>;
 
+/// What the operator answers to a proposal (ProposalGate).
+enum class ProposalAnswer {
+  Run,   // run the proposed level
+  Skip,  // never this setting: the next best is proposed instead (a new decision)
+  Stop,  // stop here: the test ends as when its stop rule says so (then the final diagnosis)
+};
+
+/// Asked with every proposal before it is run, from the thread that runs the test; it may block
+/// until an operator answers (and must return when the test's token is cancelled). None: every
+/// proposal is run (auto mode).
+using ProposalGate = std::function<ProposalAnswer(const AdaptiveDecision&)>;
+
 /// An adaptive stepped-sine test: the pilot in each well, then every hypothesis (the baseline
 /// and each candidate effect, initial_hypotheses with a global search on the pilot) weighed; then
 /// until the stop rule says so (stop_decision: a leader clear at the noise, nothing left to tell
@@ -114,6 +126,11 @@ using DecisionFn =
 ///
 /// Then, unless switched off, the final diagnosis of every run (see AdaptiveTestResult).
 ///
+/// `gate` sees each proposal first (ProposalGate): a skipped setting joins
+/// NextPointOptions::skipped for the rest of the test and a new decision is made without a level;
+/// a stop sets the last decision's `stop` (not `decided`) with the reason "stopped by the
+/// operator".
+///
 /// Progress is the shaker time spent over the budget (up to 0.8), then the final diagnosis's;
 /// `cancel` is polled between steps and inside the fits, proposals and the diagnosis, and returns
 /// what was measured with status Cancelled.
@@ -122,6 +139,6 @@ using DecisionFn =
 AdaptiveTestResult run_adaptive_test(LevelRunner& runner, const AdaptiveTestOptions& options,
                                      const DecisionFn& on_decision = {},
                                      const ProgressFn& progress = {},
-                                     const CancelToken& cancel = {});
+                                     const CancelToken& cancel = {}, const ProposalGate& gate = {});
 
 }  // namespace oscilab::analysis

@@ -165,6 +165,16 @@ bool measured_already(const EdcDataset& data, const Slot& slot, double f0_n, dou
   return false;
 }
 
+// Whether the operator skipped this setting (NextPointOptions::skipped).
+bool skipped_already(const std::vector<NextPointOptions::Skipped>& skipped, const Slot& slot,
+                     double f0_n, double f0_step_n) {
+  return std::any_of(skipped.begin(), skipped.end(), [&](const NextPointOptions::Skipped& s) {
+    return s.positive_well == slot.positive_well &&
+           std::abs(s.freq_hz - slot.freq_hz) <= 1e-6 * slot.freq_hz &&
+           std::abs(s.f0_n - f0_n) < 0.5 * f0_step_n;
+  });
+}
+
 // Box–Hill's criterion of one admissible setting (docs in next_point.h), summed into `score`, with
 // the pair and quantity that contribute most. `noise`: the variances s² of what a level measures.
 class CriterionSum {
@@ -345,6 +355,9 @@ NextPoint propose_next_point(const std::vector<ModelHypothesis>& hypotheses,
       if (!options.repeat_measured && measured_already(data, slots[s], f0[k], settings.f0_step_n)) {
         score.admissible = false;
         score.why_not = "measured already";
+      } else if (skipped_already(options.skipped, slots[s], f0[k], settings.f0_step_n)) {
+        score.admissible = false;
+        score.why_not = "skipped by the operator";
       } else {
         score_setting(score, predictions, s, k, hypotheses, noise, options);
       }

@@ -51,6 +51,15 @@ struct NextPointOptions {
   /// and only its cycles' scatter averages down, not the estimator's bias floor that bounds its
   /// σ, while the fitted models already pass through it.
   bool repeat_measured = false;
+  /// Settings the operator skipped: never proposed again, nor counted in max_discrimination
+  /// (what the test could still tell apart is what it may still measure). Matched as measured
+  /// settings are: the same well and frequency, f0 within half a grid step.
+  struct Skipped {
+    double f0_n = 0.0;
+    double freq_hz = 0.0;
+    bool positive_well = true;
+  };
+  std::vector<Skipped> skipped;
   int threads = 0;  // 0: all hardware threads
 };
 

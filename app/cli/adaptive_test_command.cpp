@@ -7,7 +7,6 @@
 // The recordings, a decision log (one JSON line per decision) and the final diagnosis report.
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -16,20 +15,18 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "analysis/common/input_error.h"
 #include "analysis/design/adaptive_test.h"
-#include "analysis/design/adaptive_test_report.h"
 #include "analysis/identification/fit_setup.h"
 #include "analysis/model/model_json.h"
 #include "app/cli/commands.h"
 #include "app/cli/cost_options.h"
 #include "app/cli/drive_options.h"
 #include "app/cli/option_parsing.h"
-#include "app/cli/output_files.h"
 #include "daq/drive/drive_event_json.h"
 #include "daq/drive/jack_level_runner.h"
+#include "daq/recording/adaptive_test_folder.h"
 #include "daq/rig/rig_level_runner.h"
 
 namespace oscilab::cli {
@@ -236,11 +233,7 @@ void run(const AdaptiveOptions& o) {
 
   // The runner first: a JACK drive that cannot start leaves no folder behind.
   const std::unique_ptr<analysis::LevelRunner> runner = make_runner(o, options);
-  std::error_code error;
-  std::filesystem::create_directories(o.out_dir + "/recordings", error);
-  if (error) throw InputError(o.out_dir + ": cannot create: " + error.message());
-  std::ofstream log(o.out_dir + "/decisions.jsonl");
-  if (!log) throw InputError(o.out_dir + "/decisions.jsonl: cannot write");
+  daq::AdaptiveTestFolder folder(o.out_dir);
 
   const auto on_decision = [&](const analysis::AdaptiveDecision& d,
                                const std::vector<analysis::ModelHypothesis>& hypotheses) {
@@ -250,8 +243,7 @@ void run(const AdaptiveOptions& o) {
           "weighed in %.1f s\n",
           options.pilot_levels_n.size(), hypotheses.size() - 1, d.time_s);
     }
-    log << analysis::adaptive_decision_json(d, hypotheses).dump() << '\n';
-    log.flush();
+    folder.log(d, hypotheses);
     std::printf(
         "[%6.1f s shaker] %s\n", d.shaker_time_s,
         (d.decision.stop ? "stop: " + d.decision.reason : "next: " + d.next.reason).c_str());
@@ -269,17 +261,7 @@ void run(const AdaptiveOptions& o) {
   }
   write_drive_events(*runner, o.out_dir);
 
-  const nlohmann::json report = analysis::adaptive_test_report_json(result, runner_paths(*runner));
-  OutputFiles outputs;
-  outputs.write(o.out_dir + "/report.json",
-                [&](std::ostream& out) { out << report.dump(2) << '\n'; });
-  if (result.diagnosis.final_form) {
-    const nlohmann::json model =
-        result.diagnosis.final_form->build(result.diagnosis.final_theta).to_json();
-    outputs.write(o.out_dir + "/final_model.json",
-                  [&](std::ostream& out) { out << model.dump(2) << '\n'; });
-  }
-  outputs.commit();
+  folder.write_results(result, runner_paths(*runner));
   const std::string& verdict = result.diagnosis.verdict;
   std::printf("verdict: %s, shaker time %.1f s over %d level(s) (%d adaptive), %.1f s\n",
               verdict.c_str(), result.shaker_time_s, result.levels, result.adaptive_levels,

@@ -1,9 +1,11 @@
 // The adaptive test's loop (run_adaptive_test) on the virtual rig, small enough for the unit
 // suite: its options refused before any run, the shaker time it books against what the runs and
-// the changes of well took, the decisions it reports, and a cancel between runs.
+// the changes of well took, the decisions it reports, the operator's skip and stop, and a cancel
+// between runs.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +15,8 @@
 #include "analysis/design/adaptive_test_report.h"
 #include "analysis/model/reference_models.h"
 #include "analysis/model/velocity_power_damping.h"
+#include "daq/recording/adaptive_test_folder.h"
+#include "daq/recording/json_file.h"
 #include "daq/rig/rig_level_runner.h"
 
 namespace oscilab::analysis {
@@ -227,6 +231,115 @@ TEST(AdaptiveTest, ACancelBetweenRunsReturnsWhatWasMeasured) {
   EXPECT_EQ(result.runs.size(), 2u);
   EXPECT_FALSE(result.diagnosed);
   EXPECT_EQ(adaptive_test_report_json(result, {})["status"], "cancelled");
+}
+
+// The operator skips the first proposal: a new decision follows with no run between, proposing
+// another setting; the gate is asked once per proposal, never for a decision that stops.
+TEST(AdaptiveTest, ASkippedProposalIsNeverRunAndTheNextBestIsProposedWithoutALevel) {
+  CountingRunner runner(temporary_folder("skipped"));
+  std::vector<AdaptiveDecision> decisions;
+  std::vector<std::size_t> runs_when_asked;
+  int asked = 0;
+  const AdaptiveTestResult result = run_adaptive_test(
+      runner, small_options(),
+      [&](const AdaptiveDecision& d, const std::vector<ModelHypothesis>&) {
+        decisions.push_back(d);
+      },
+      {}, {},
+      [&](const AdaptiveDecision& d) {
+        EXPECT_FALSE(d.decision.stop);
+        EXPECT_TRUE(d.next.found);
+        runs_when_asked.push_back(runner.calls.size());
+        return asked++ == 0 ? ProposalAnswer::Skip : ProposalAnswer::Run;
+      });
+  ASSERT_EQ(result.status, JobStatus::Ok) << result.message;
+  ASSERT_GE(decisions.size(), 2u);
+  // The skip: asked after the pilot's two runs, and asked again before any other run.
+  ASSERT_GE(runs_when_asked.size(), 2u);
+  EXPECT_EQ(runs_when_asked[0], 2u);
+  EXPECT_EQ(runs_when_asked[1], 2u);
+  const SettingScore& skipped = decisions[0].next.best;
+  const SettingScore& instead = decisions[1].next.best;
+  EXPECT_FALSE(skipped.f0_n == instead.f0_n && skipped.positive_well == instead.positive_well &&
+               skipped.freq_hz == instead.freq_hz);
+  // The setting skipped is never run, and the one proposed instead is the first level run.
+  ASSERT_GE(runner.calls.size(), 3u);
+  for (std::size_t i = 2; i < runner.calls.size(); ++i) {
+    EXPECT_FALSE(runner.calls[i].levels_n[0] == skipped.f0_n &&
+                 runner.calls[i].positive_well == skipped.positive_well &&
+                 runner.calls[i].freq_hz == skipped.freq_hz);
+  }
+  EXPECT_DOUBLE_EQ(runner.calls[2].levels_n[0], instead.f0_n);
+  EXPECT_EQ(runner.calls[2].positive_well, instead.positive_well);
+  // The skip took no shaker time: both decisions stand at the pilot's.
+  EXPECT_DOUBLE_EQ(decisions[1].shaker_time_s, decisions[0].shaker_time_s);
+  EXPECT_EQ(decisions[1].levels, decisions[0].levels);
+  // Every decision that goes on was put to the gate, and only those.
+  int going_on = 0;
+  for (const AdaptiveDecision& d : decisions) going_on += d.decision.stop ? 0 : 1;
+  EXPECT_EQ(asked, going_on);
+}
+
+// The operator stops at the first proposal: nothing after the pilot is run, and the result says
+// who stopped it.
+TEST(AdaptiveTest, AStopFromTheOperatorEndsTheTestBeforeTheProposedLevel) {
+  CountingRunner runner(temporary_folder("stopped"));
+  int asked = 0;
+  const AdaptiveTestResult result =
+      run_adaptive_test(runner, small_options(), {}, {}, {}, [&](const AdaptiveDecision&) {
+        ++asked;
+        return ProposalAnswer::Stop;
+      });
+  ASSERT_EQ(result.status, JobStatus::Ok) << result.message;
+  EXPECT_EQ(asked, 1);
+  EXPECT_EQ(runner.calls.size(), 2u);
+  EXPECT_EQ(result.adaptive_levels, 0);
+  EXPECT_TRUE(result.decision.stop);
+  EXPECT_FALSE(result.decision.decided);
+  EXPECT_EQ(result.decision.reason.rfind("stopped by the operator; ", 0), 0u)
+      << result.decision.reason;
+}
+
+// The folder of a test (the CLI's and the app's): one line per decision as it is made, then the
+// report with the stop's reason; a folder that cannot be made is one line naming it.
+TEST(AdaptiveTestFolder, HoldsEveryDecisionAndTheReportAndRefusesAFolderItCannotMake) {
+  const std::string dir = temporary_folder("folder");
+  daq::AdaptiveTestFolder folder(dir + "/test");
+  CountingRunner runner(folder.recordings_dir());
+  int decisions = 0;
+  const AdaptiveTestResult result = run_adaptive_test(
+      runner, small_options(),
+      [&](const AdaptiveDecision& d, const std::vector<ModelHypothesis>& h) {
+        folder.log(d, h);
+        ++decisions;
+      },
+      {}, {}, [](const AdaptiveDecision&) { return ProposalAnswer::Stop; });
+  folder.write_results(result, {"a.wav"});
+  std::ifstream log(dir + "/test/decisions.jsonl");
+  std::string line;
+  int lines = 0;
+  while (std::getline(log, line)) {
+    EXPECT_EQ(nlohmann::json::parse(line)["decision"], lines);
+    ++lines;
+  }
+  EXPECT_EQ(lines, decisions);
+  EXPECT_EQ(lines, 1);
+  const nlohmann::json report = daq::read_json_file(dir + "/test/report.json", 1 << 20);
+  EXPECT_EQ(report["status"], "ok");
+  EXPECT_EQ(report["adaptive_test"]["stop_reason"].get<std::string>().rfind("stopped by the "
+                                                                            "operator",
+                                                                            0),
+            0u);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/test/final_model.json"));  // no diagnosis run
+
+  std::ofstream(dir + "/plain_file") << "x";
+  try {
+    daq::AdaptiveTestFolder refused(dir + "/plain_file/test");
+    ADD_FAILURE() << "a folder under a file was made";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind(dir + "/plain_file/test: cannot create: ", 0), 0u)
+        << error.what();
+  }
 }
 
 }  // namespace
