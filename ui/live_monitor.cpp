@@ -12,6 +12,7 @@
 #include <QScrollArea>
 #include <QSplitter>
 #include <QStyle>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QTimer>
 #include <QVBoxLayout>
@@ -21,6 +22,7 @@
 #include "daq/live/jack_source.h"
 #include "daq/live/net_source.h"
 #include "daq/live/replay_source.h"
+#include "ui/adaptive_test_panel.h"
 #include "ui/live_analysis_plots.h"
 #include "ui/live_edc_plot_data.h"
 #include "ui/live_prediction_job.h"
@@ -94,11 +96,22 @@ LiveMonitor::LiveMonitor(QWidget* parent)
   plots->setStretchFactor(1, 6);
   plots->setChildrenCollapsible(false);
 
+  // The signals (status strip over the plots) and the adaptive test, as tabs.
+  auto* signals_page = new QWidget;
+  auto* signals_layout = new QVBoxLayout(signals_page);
+  signals_layout->setContentsMargins(0, 0, 0, 0);
+  signals_layout->addWidget(status_strip_);
+  signals_layout->addWidget(plots, 1);
+  adaptive_panel_ = new AdaptiveTestPanel;
+  views_ = new QTabWidget;
+  views_->setDocumentMode(true);
+  views_->addTab(signals_page, tr("Signals"));
+  views_->addTab(adaptive_panel_, tr("Adaptive test"));
+
   auto* right = new QVBoxLayout;
   right->setContentsMargins(0, 0, 0, 0);
   right->addWidget(message_label_);
-  right->addWidget(status_strip_);
-  right->addWidget(plots, 1);
+  right->addWidget(views_, 1);
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(4, 4, 4, 4);
   layout->addWidget(scroll);

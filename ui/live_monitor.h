@@ -17,6 +17,7 @@
 
 class QElapsedTimer;
 class QLabel;
+class QTabWidget;
 class QTimer;
 
 namespace oscilab::daq {
@@ -27,6 +28,7 @@ class ReplaySource;
 
 namespace oscilab::ui {
 
+class AdaptiveTestPanel;
 class LiveAnalysisPlots;
 class LivePredictionJob;
 class LiveSourceControls;
@@ -49,7 +51,9 @@ class LiveTraceView;
 ///   §3.1–3.2), the force–displacement loop of the current cycle (Fig. 9), the EDC against f₀ of
 ///   both wells, level by level with ±3σ bars (Fig. 10), and the spectrum of z;
 /// - LivePredictionJob: the model's EDC (default: the paper's, Tables 1 and 3) by harmonic
-///   balance on a worker thread, drawn under the measured levels.
+///   balance on a worker thread, drawn under the measured levels;
+/// - AdaptiveTestPanel (the "Adaptive test" tab beside the signals): a stepped-sine test on a
+///   virtual rig of its own that chooses its levels, its model weights, proposals and verdict.
 ///
 /// The acquisition runs on its own threads; the monitor polls it at display rate (a 60 Hz
 /// timer: traces every frame, the rest every 100–250 ms) and never waits on the UI thread but
@@ -76,6 +80,9 @@ class LiveMonitor : public QWidget {
   daq::ReplaySource* replay() const { return replay_; }
   daq::NetSource* net() const { return net_; }
   daq::JackSource* jack() const { return jack_; }
+  AdaptiveTestPanel* adaptive_test() const { return adaptive_panel_; }
+  /// The tabs of the right column: "Signals" (traces and analysis plots), "Adaptive test".
+  QTabWidget* views() const { return views_; }
 
   /// Fills the JACK port choices with the capture ports of the server named in the controls;
   /// false and a message when no server answers.
@@ -181,6 +188,8 @@ class LiveMonitor : public QWidget {
   LiveTraceView* trace_view_ = nullptr;
   LiveAnalysisPlots* analysis_plots_ = nullptr;
   LivePredictionJob* prediction_job_ = nullptr;
+  AdaptiveTestPanel* adaptive_panel_ = nullptr;
+  QTabWidget* views_ = nullptr;
   QLabel* message_label_ = nullptr;
 };
 

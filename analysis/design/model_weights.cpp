@@ -62,12 +62,19 @@ StopDecision stop_decision(const std::vector<ModelHypothesis>& hypotheses, const
     out.gap_at_noise = out.reduced_chi2 <= out.noise_reduced_chi2;    // false for NaN
     out.nothing_left = max_discrimination < rule.min_discrimination;  // false for NaN
     out.decided = out.gap_at_noise && (out.leader_weight >= rule.leader_weight || out.nothing_left);
-    std::snprintf(text, sizeof text,
-                  "leader %s, weight %.4f (stop at %.2f), chi2/dof %.3g against the noise level "
-                  "%.3g",
-                  leader.label().c_str(), out.leader_weight, rule.leader_weight, out.reduced_chi2,
-                  out.noise_reduced_chi2);
+    std::snprintf(text, sizeof text, "leader %s, weight %.4f (stop at %.2f), ",
+                  leader.label().c_str(), out.leader_weight, rule.leader_weight);
     out.reason = text;
+    if (std::isfinite(out.noise_reduced_chi2)) {
+      std::snprintf(text, sizeof text, "chi2/dof %.3g against the noise level %.3g",
+                    out.reduced_chi2, out.noise_reduced_chi2);
+    } else {  // ν ≤ 0: no misfit to judge yet
+      std::snprintf(text, sizeof text,
+                    "its misfit cannot be judged yet (levels %d, parameters %d: it needs more "
+                    "levels than parameters)",
+                    leader.levels, leader.parameters());
+    }
+    out.reason += text;
     if (std::isfinite(max_discrimination)) {
       std::snprintf(text, sizeof text,
                     "; the best setting separates two plausible models by %.2g (stop below %.2g)",

@@ -1,15 +1,21 @@
 #include "app/gui/window_script.h"
 
 #include <cstdio>
+#include <memory>
 #include <optional>
 
 #include <QApplication>
+#include <QCheckBox>
+#include <QDir>
 #include <QEventLoop>
+#include <QLabel>
+#include <QLineEdit>
 #include <QTabWidget>
 #include <QTimer>
 
 #include <qcustomplot.h>
 
+#include "ui/adaptive_test_panel.h"
 #include "ui/channel_mapping_dialog.h"
 #include "ui/figure_dialog.h"
 #include "ui/identification_panel.h"
@@ -50,6 +56,14 @@ void WindowScript::add_options(QCommandLineParser& parser) {
        "With --screenshot: show the Live tab running <source>: rig (the virtual rig stepping "
        "0.2 to 2.7 N at 20x) or a recording to replay at 10x; the picture is taken after 7 s.",
        "source"},
+      {"adaptive",
+       "With --screenshot: run the Live tab's adaptive test on a virtual rig of <rig-model> "
+       "(paper or a model JSON) in Auto until its third decision; the picture shows the fourth "
+       "decision's proposal waiting for the operator (or the end of the test, if it comes "
+       "first). Its folder is a temporary one.",
+       "rig-model"},
+      {"effects", "With --adaptive: the candidate effects weighed, comma-separated (default: all).",
+       "list"},
   });
 }
 
@@ -60,7 +74,9 @@ WindowScript::WindowScript(const QCommandLineParser& parser)
       job_(parser.value("run")),
       dialog_(parser.value("dialog")),
       panel_tab_(parser.value("panel-tab")),
-      live_source_(parser.value("live")) {}
+      live_source_(parser.value("live")),
+      adaptive_rig_(parser.value("adaptive")),
+      adaptive_effects_(parser.value("effects")) {}
 
 void WindowScript::prepare(ui::MainWindow& window) {
   if (dialog_ != "mapping") return;
@@ -168,6 +184,37 @@ int WindowScript::run(ui::MainWindow& window, bool analysing,
     }
     ++waiting;
     QTimer::singleShot(kLiveMs, &window, done);
+  }
+  if (!adaptive_rig_.isEmpty()) {
+    ui::LiveMonitor* live = window.live_monitor();
+    window.central_tabs()->setCurrentWidget(live);
+    live->views()->setCurrentWidget(live->adaptive_test());
+    ui::AdaptiveTestPanel* test = live->adaptive_test();
+    test->rig_truth_edit()->setText(adaptive_rig_);
+    test->effects_edit()->setText(adaptive_effects_);
+    test->folder_edit()->setText(QDir::temp().filePath(
+        QStringLiteral("oscilab-adaptive-screenshot-%1").arg(QCoreApplication::applicationPid())));
+    test->auto_box()->setChecked(true);
+    // Auto until the third decision; the fourth's proposal then waits for the operator.
+    QObject::connect(test->job(), &ui::AdaptiveTestJob::decided, &window, [test] {
+      if (test->steps().size() == 3) test->auto_box()->setChecked(false);
+    });
+    const auto taken = std::make_shared<bool>(false);
+    const auto picture = [&, taken] {
+      if (*taken) return;
+      *taken = true;
+      done();
+    };
+    QObject::connect(test->job(), &ui::AdaptiveTestJob::awaiting_changed, &window,
+                     [picture](bool awaiting) {
+                       if (awaiting) picture();
+                     });
+    QObject::connect(test, &ui::AdaptiveTestPanel::test_finished, &window, picture);
+    if (!test->start()) {
+      std::fprintf(stderr, "oscilab: %s\n", qPrintable(test->verdict_label()->text()));
+      return 1;
+    }
+    ++waiting;
   }
   if (waiting == 0) save(&window);
   QApplication::exec();

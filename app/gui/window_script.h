@@ -51,6 +51,8 @@ class WindowScript {
   QString dialog_;
   QString panel_tab_;
   QString live_source_;
+  QString adaptive_rig_;
+  QString adaptive_effects_;
   bool picture_taken_ = false;
   int status_ = 0;
 };

@@ -107,6 +107,13 @@ TEST(StopRule, StopsOnAClearLeaderAtTheNoiseOrOnTheBudget) {
   d = stop_decision(h, {}, 100.0, 0.5);
   EXPECT_TRUE(d.decided);
   EXPECT_TRUE(d.nothing_left);
+  // As many parameters as levels (ν = 0): no noise level, never decided, and the reason says why.
+  for (ModelHypothesis& x : h) x.levels = 1;
+  d = stop_decision(h, {}, 100.0, 0.5);
+  EXPECT_TRUE(std::isnan(d.noise_reduced_chi2));
+  EXPECT_FALSE(d.decided);
+  EXPECT_NE(d.reason.find("cannot be judged yet (levels 1, parameters 1:"), std::string::npos)
+      << d.reason;
 }
 
 TEST(UnitCovariance, MatchesTheFitUncertaintyOfAWellMeasuredParameter) {
