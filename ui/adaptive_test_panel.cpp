@@ -27,6 +27,7 @@
 #include "analysis/common/input_error.h"
 #include "analysis/identification/fit_setup.h"
 #include "analysis/model/model_json.h"
+#include "ui/number_box.h"
 #include "ui/number_text.h"
 #include "ui/plot_helpers.h"
 #include "ui/plot_theme.h"
@@ -62,17 +63,6 @@ QWidget* with_browse_button(QLineEdit* edit, const std::function<void()>& choose
   QObject::connect(browse, &QToolButton::clicked, edit, choose);
   layout->addWidget(browse);
   return row;
-}
-
-QDoubleSpinBox* spin(double lo, double hi, double step, double value, int decimals,
-                     const QString& suffix) {
-  auto* box = new QDoubleSpinBox;
-  box->setRange(lo, hi);
-  box->setSingleStep(step);
-  box->setDecimals(decimals);
-  box->setValue(value);
-  box->setSuffix(suffix);
-  return box;
 }
 
 }  // namespace
@@ -147,8 +137,8 @@ QWidget* AdaptiveTestPanel::make_settings() {
   wells_ = new QComboBox;
   wells_->addItems({tr("both"), tr("positive"), tr("negative")});
   form->addRow(tr("Wells"), wells_);
-  f0_min_ = spin(0.05, 20.0, 0.1, 0.2, 2, tr(" N"));
-  f0_max_ = spin(0.05, 20.0, 0.1, 2.7, 2, tr(" N"));
+  f0_min_ = number_box(0.05, 20.0, 0.2, 2, 0.1, tr(" N"));
+  f0_max_ = number_box(0.05, 20.0, 2.7, 2, 0.1, tr(" N"));
   auto* f0_row = new QWidget;
   auto* f0_layout = new QHBoxLayout(f0_row);
   f0_layout->setContentsMargins(0, 0, 0, 0);
@@ -156,9 +146,9 @@ QWidget* AdaptiveTestPanel::make_settings() {
   f0_layout->addWidget(new QLabel(tr("to")));
   f0_layout->addWidget(f0_max_);
   form->addRow(tr("f₀"), f0_row);
-  freq_ = spin(0.5, 200.0, 0.25, 9.0, 2, tr(" Hz"));
+  freq_ = number_box(0.5, 200.0, 9.0, 2, 0.25, tr(" Hz"));
   form->addRow(tr("Frequency"), freq_);
-  budget_ = spin(10.0, 100000.0, 10.0, 520.0, 0, tr(" s"));
+  budget_ = number_box(10.0, 100000.0, 520.0, 0, 10.0, tr(" s"));
   budget_->setToolTip(tr("Shaker time after which the test stops if no leader is clear"));
   form->addRow(tr("Budget"), budget_);
   effects_ = new QLineEdit;

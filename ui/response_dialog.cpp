@@ -23,6 +23,7 @@
 #include "ui/bifurcation_map_job.h"
 #include "ui/branch_job.h"
 #include "ui/figure_renderer.h"
+#include "ui/number_box.h"
 #include "ui/plot_context_menu.h"
 
 namespace oscilab::ui {
@@ -31,17 +32,6 @@ namespace {
 
 // UTF-8, as the figures take their text.
 const char* well_label(bool positive) { return positive ? "z\u208a* well" : "z\u208b* well"; }
-
-QDoubleSpinBox* number_box(double low, double high, double value, int decimals, double step,
-                           const QString& suffix) {
-  auto* box = new QDoubleSpinBox;
-  box->setRange(low, high);
-  box->setDecimals(decimals);
-  box->setSingleStep(step);
-  box->setValue(value);
-  box->setSuffix(suffix);
-  return box;
-}
 
 QSpinBox* count_box(int low, int high, int value) {
   auto* box = new QSpinBox;
