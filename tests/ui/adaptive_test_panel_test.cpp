@@ -25,8 +25,8 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/model/reference_models.h"
-#include "analysis/model/velocity_power_damping.h"
 #include "daq/recording/json_file.h"
+#include "tests/analysis/design/small_adaptive_test.h"
 #include "ui/adaptive_test_panel.h"
 #include "ui/live_monitor.h"
 
@@ -46,22 +46,12 @@ std::string fresh_folder(const std::string& name) {
 // The rig hides a quadratic damping (c2 = 6 N s²/m²); the loop is the unit suite's small one.
 AdaptiveTestJob::Request small_request(const std::string& folder, bool auto_mode) {
   AdaptiveTestJob::Request r;
-  r.rig_truth.add_term(std::make_unique<oscilab::analysis::VelocityPowerDamping>(2, 6.0));
+  r.rig_truth = oscilab::testing::quadratic_damping_truth();
   r.schedule = {6.0, 1.0, 2.5};
   r.seed = 7;
   r.folder = folder;
   r.auto_mode = auto_mode;
-  oscilab::analysis::AdaptiveTestOptions& o = r.options;
-  o.settings.dwell_s = 6.0;
-  o.settings.settling_s = 2.5;
-  o.settings.f0_step_n = 0.5;
-  o.pilot_levels_n = {0.5, 1.5};
-  o.max_levels = 2;
-  o.hypotheses.effects = {"quadratic-damping"};
-  o.hypotheses.global_evaluations = 0;
-  o.hypotheses.initial_evaluations = 40;
-  o.hypotheses.refit_evaluations = 20;
-  o.final_diagnosis = false;
+  r.options = oscilab::testing::small_adaptive_test_options();
   return r;
 }
 

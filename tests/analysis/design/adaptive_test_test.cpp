@@ -14,10 +14,10 @@
 #include "analysis/design/adaptive_test.h"
 #include "analysis/design/adaptive_test_report.h"
 #include "analysis/model/reference_models.h"
-#include "analysis/model/velocity_power_damping.h"
 #include "daq/recording/adaptive_test_folder.h"
 #include "daq/recording/json_file.h"
 #include "daq/rig/rig_level_runner.h"
+#include "tests/analysis/design/small_adaptive_test.h"
 
 namespace oscilab::analysis {
 namespace {
@@ -47,11 +47,7 @@ class CountingRunner : public LevelRunner {
   std::function<void(int)> before_run;
 
  private:
-  static Model truth() {
-    Model m = paper_model();
-    m.add_term(std::make_unique<VelocityPowerDamping>(2, 6.0));  // quadratic damping, c2 = 6
-    return m;
-  }
+  static Model truth() { return testing::quadratic_damping_truth(); }
   daq::RigLevelRunner rig_;
 };
 
@@ -63,25 +59,7 @@ std::string temporary_folder(const std::string& name) {
   return folder;
 }
 
-// A small test: two pilot levels per well, one candidate, short fits, at most two adaptive
-// levels, no final diagnosis.
-AdaptiveTestOptions small_options() {
-  AdaptiveTestOptions o;
-  o.settings.dwell_s = 6.0;
-  o.settings.settling_s = 2.5;
-  o.settings.well_change_s = 10.0;
-  o.settings.f0_step_n = 0.5;
-  o.pilot_levels_n = {0.5, 1.5};
-  o.max_levels = 2;
-  o.hypotheses.effects = {"quadratic-damping"};
-  o.hypotheses.global_evaluations = 0;
-  o.hypotheses.initial_evaluations = 40;
-  o.hypotheses.refit_evaluations = 20;
-  o.hypotheses.threads = 2;
-  o.next.threads = 2;
-  o.final_diagnosis = false;
-  return o;
-}
+AdaptiveTestOptions small_options() { return testing::small_adaptive_test_options(); }
 
 TEST(AdaptiveTest, RefusesBadOptionsNamingTheFieldBeforeAnyRun) {
   CountingRunner runner(temporary_folder("refused"));
