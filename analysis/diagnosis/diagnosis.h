@@ -111,6 +111,8 @@ struct DiagnosisResult {
   /// space-filling points (1 when it was); whether a restart found a lower joint χ².
   int baseline_restarts = 0;
   bool baseline_restart_improved = false;
+  bool baseline_robust_refit = false;           // the unexplained baseline refitted robustly
+  bool baseline_robust_refit_improved = false;  // and that found a lower χ²
   /// How often a step's winning candidate had only found a deeper basin of the current model's
   /// own parameters: the current model refitted from the winner's θ without its term took the
   /// term's evidence below the threshold or itself gained more than it, so the refit became the

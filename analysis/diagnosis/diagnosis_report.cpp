@@ -190,7 +190,9 @@ nlohmann::json baseline_json(const DiagnosisResult& result) {
           {"parameters", parameters_json(parameters)},
           {"maps", maps_json(result.baseline_maps)},
           {"restarted_at_bound", result.baseline_restarts > 0},
-          {"restart_improved", result.baseline_restart_improved}};
+          {"restart_improved", result.baseline_restart_improved},
+          {"robust_refit", result.baseline_robust_refit},
+          {"robust_refit_improved", result.baseline_robust_refit_improved}};
 }
 
 // One step: the evidence before it, every candidate refitted with its outcome, and for an

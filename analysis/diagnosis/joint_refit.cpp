@@ -14,11 +14,12 @@ namespace {
 constexpr double kMissingResidual = 1e3;
 
 struct Residuals : Eigen::DenseFunctor<double> {
-  Residuals(const EdcObjective& objective, bool fingerprints, int values, const CancelToken& cancel,
-            JointRefit& best)
+  Residuals(const EdcObjective& objective, bool fingerprints, double cauchy_scale, int values,
+            const CancelToken& cancel, JointRefit& best)
       : Eigen::DenseFunctor<double>(objective.form().size(), values),
         objective_(objective),
         fingerprints_(fingerprints),
+        cauchy_scale_(cauchy_scale),
         cancel_(cancel),
         best_(best) {}
 
@@ -57,6 +58,7 @@ struct Residuals : Eigen::DenseFunctor<double> {
       best_.evaluations += 2;
       for (int j = 0; j < inputs(); ++j) {
         residual_vector(around[j], response_fingerprints(objective_.data(), around[j]), r1);
+        robust(r1);
         jacobian.col(j) = (r1 - r0) / steps[j];
       }
       return 0;
@@ -86,23 +88,38 @@ struct Residuals : Eigen::DenseFunctor<double> {
     }
   }
 
-  // r at θ's evaluation, which becomes the best if its joint χ² is the lowest seen.
+  // With a Cauchy scale c > 0, each whitened residual r becomes sign(r)·c·√ln(1 + (r/c)²), so
+  // that the least-squares sum is the Cauchy loss Σ c² ln(1 + (r/c)²) (r for |r| ≪ c).
+  void robust(Eigen::VectorXd& r) const {
+    if (!(cauchy_scale_ > 0.0)) return;
+    const double c = cauchy_scale_;
+    for (Eigen::Index k = 0; k < r.size(); ++k) {
+      r[k] = std::copysign(c * std::sqrt(std::log1p((r[k] / c) * (r[k] / c))), r[k]);
+    }
+  }
+
+  // r at θ's evaluation (robust when asked); θ becomes the best if the loss minimised (the joint
+  // χ², or its Cauchy loss) is the lowest seen.
   void keep(const Eigen::VectorXd& theta, const EdcEvaluation& e, Eigen::VectorXd& r) const {
     const ResponseFingerprints f = response_fingerprints(objective_.data(), e);
     residual_vector(e, f, r);
-    const double chi2 = joint_chi2(e, f, fingerprints_);
-    if (best_.theta.size() == 0 || chi2 < best_.joint_chi2) {
+    robust(r);
+    const double loss = cauchy_scale_ > 0.0 ? r.squaredNorm() : joint_chi2(e, f, fingerprints_);
+    if (best_.theta.size() == 0 || loss < best_loss_) {
+      best_loss_ = loss;
       best_.theta = theta;
       best_.evaluation = e;
       best_.fingerprints = f;
-      best_.joint_chi2 = chi2;
+      best_.joint_chi2 = joint_chi2(e, f, fingerprints_);
     }
   }
 
   const EdcObjective& objective_;
   bool fingerprints_;
+  double cauchy_scale_;
   const CancelToken& cancel_;
   JointRefit& best_;
+  mutable double best_loss_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace
@@ -113,12 +130,13 @@ double joint_chi2(const EdcEvaluation& evaluation, const ResponseFingerprints& f
 }
 
 JointRefit joint_refit(const EdcObjective& objective, const Eigen::VectorXd& start,
-                       bool fingerprints, int max_evaluations, const CancelToken& cancel) {
+                       bool fingerprints, int max_evaluations, const CancelToken& cancel,
+                       double cauchy_scale) {
   JointRefit best;
   best.joint_chi2 = std::numeric_limits<double>::infinity();
   int values = objective.level_count();
   if (fingerprints) values += 3 * objective.level_count();
-  Residuals residuals(objective, fingerprints, values, cancel, best);
+  Residuals residuals(objective, fingerprints, cauchy_scale, values, cancel, best);
   Eigen::VectorXd u = objective.form().to_unit(objective.form().clamp(start));
   Eigen::VectorXd r;
   if (residuals(u, r) < 0) return best;

@@ -17,6 +17,11 @@ namespace oscilab::analysis {
 /// solver's rounding of ~1e-11 relative and far below the parameters' scales), where a
 /// derivative-free method needs hundreds of evaluations to reach the same minimum.
 ///
+/// Robust refit: with `cauchy_scale` c > 0 (in σ) the solver minimises the Cauchy loss
+/// Σ c² ln(1 + (r/c)²) of the same residuals instead of their squares, so that a few levels far
+/// off (a level just across a fold from the model's, on the other branch) cannot hold θ back; the
+/// best point is then the one of least loss, and `joint_chi2` is still its plain χ².
+///
 /// Bounds: the parameters live in the unit cube of ModelForm::to_unit, clamped into [0, 1] before
 /// each evaluation. Cancellation stops the solver at its next evaluation; the best point so far
 /// is returned.
@@ -29,7 +34,8 @@ struct JointRefit {
 };
 
 JointRefit joint_refit(const EdcObjective& objective, const Eigen::VectorXd& start,
-                       bool fingerprints, int max_evaluations, const CancelToken& cancel);
+                       bool fingerprints, int max_evaluations, const CancelToken& cancel,
+                       double cauchy_scale = 0.0);
 
 /// The joint χ² of an evaluation (EDC χ², plus the fingerprints' when asked).
 double joint_chi2(const EdcEvaluation& evaluation, const ResponseFingerprints& fingerprints,

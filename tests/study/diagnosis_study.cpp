@@ -27,8 +27,11 @@
 // LEVELS: stepped-sine levels per well, 0.2 → 2.7 N evenly (26 by default). Every diagnosis is
 // run as a lab runs it, the stiffness identified from the records (`--stiffness identified`);
 // OSCILAB_STUDY_TRUE_STIFFNESS=1 gives it the truth's K(z) instead (labelled in the output);
-// OSCILAB_STUDY_HARMONICS=H sets the H of the fit's model evaluations (7 by default).
+// OSCILAB_STUDY_HARMONICS=H sets the H of the fit's model evaluations (7 by default);
+// OSCILAB_STUDY_TRACE=1 prints each phase's start time on stderr; OSCILAB_STUDY_MAX_STEPS=N
+// stops after N candidate steps (0: the baseline alone).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -185,6 +188,9 @@ BlindRun run_blind(const Model& truth, int seed, double freq, double noise, int 
   options.seed = static_cast<std::uint64_t>(seed);
   const char* seconds = std::getenv("OSCILAB_DIAGNOSE_MAX_SECONDS");
   if (seconds) options.max_seconds = std::atof(seconds);
+  if (const char* steps = std::getenv("OSCILAB_STUDY_MAX_STEPS")) {
+    options.max_steps = std::clamp(std::atoi(steps), 0, 10);
+  }
   if (const char* h = std::getenv("OSCILAB_STUDY_HARMONICS")) {
     options.cost.hbm.harmonics = std::clamp(std::atoi(h), 1, 63);
   }
@@ -193,7 +199,21 @@ BlindRun run_blind(const Model& truth, int seed, double freq, double noise, int 
   if (const char* threads = std::getenv("OMP_NUM_THREADS")) {
     options.threads = std::clamp(std::atoi(threads), 0, 1024);
   }
-  BlindRun run{diagnose(campaign, form, options), {}};
+  // OSCILAB_STUDY_TRACE=1: each change of phase or step on stderr with the seconds since the
+  // start and the evaluations spent (where a diagnosis spends its time).
+  DiagnosisProgressFn trace;
+  if (const char* flag = std::getenv("OSCILAB_STUDY_TRACE"); flag && std::string(flag) == "1") {
+    const auto start = std::chrono::steady_clock::now();
+    trace = [start, last = std::string()](const DiagnosisProgress& p) mutable {
+      const std::string now = std::string(to_string(p.phase)) + " " + std::to_string(p.step);
+      if (now == last) return;
+      last = now;
+      const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+      std::fprintf(stderr, "%7.1f s  %-16s evaluations %ld\n", elapsed.count(), now.c_str(),
+                   p.evaluations);
+    };
+  }
+  BlindRun run{diagnose(campaign, form, options, trace), {}};
   const DiagnosisResult& result = run.result;
   if (const char* path = std::getenv("OSCILAB_STUDY_REPORT")) {
     std::ofstream(path) << diagnosis_report_json(result, {"virtual rig"}).dump(2) << '\n';
