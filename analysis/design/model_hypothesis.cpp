@@ -54,10 +54,7 @@ EdcCostSettings own_cost(const ModelForm& form, const Eigen::VectorXd& theta,
   reference.budget.reset();
   reference.max_harmonics = std::min(options.cost.max_harmonics, options.correction_max_harmonics);
   const SigmaBudget calibrated = EdcObjective::calibrate_budget(form, data, reference, theta);
-  own.budget->correction_j = calibrated.correction_j;
-  own.budget->correction_z1_m = calibrated.correction_z1_m;
-  own.budget->correction_h2 = calibrated.correction_h2;
-  own.budget->correction_h3 = calibrated.correction_h3;
+  own.budget->adopt_corrections(calibrated);
   return own;
 }
 

@@ -190,10 +190,7 @@ TrialOutcome try_candidate(const EffectCandidate& c, double fingerprint_score,
     reference.max_harmonics = std::min(context.max_harmonics, 31);
     const SigmaBudget calibrated =
         EdcObjective::calibrate_budget(extended, context.data, reference, fit.theta);
-    out.own_cost.budget->correction_j = calibrated.correction_j;
-    out.own_cost.budget->correction_z1_m = calibrated.correction_z1_m;
-    out.own_cost.budget->correction_h2 = calibrated.correction_h2;
-    out.own_cost.budget->correction_h3 = calibrated.correction_h3;
+    out.own_cost.budget->adopt_corrections(calibrated);
   }
   if (!cancel.cancelled()) {
     const EdcObjective own_objective(extended, context.data, out.own_cost);

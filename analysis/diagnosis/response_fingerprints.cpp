@@ -15,7 +15,11 @@ ResponseFingerprints response_fingerprints(const EdcDataset& data,
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const EdcGroup& group : data.groups) {
     for (const MeasuredLevel& m : group.levels) {
-      const bool measured = m.harmonic_cycles > 1 && k < evaluation.z1_abs_m.size();
+      // A level whose branch the model side cannot tell at its H (SigmaBudget::branch_ambiguous)
+      // is left out: the fingerprints' σ has no model error to carry the gap.
+      const bool ambiguous =
+          k < evaluation.branch_ambiguous.size() && evaluation.branch_ambiguous[k];
+      const bool measured = m.harmonic_cycles > 1 && k < evaluation.z1_abs_m.size() && !ambiguous;
       double residuals[3] = {nan, nan, nan};
       if (measured) {
         const double sigma_amplitude = std::hypot(m.z1_abs_se_m, kAmplitudeBiasRel * m.amplitude_m);

@@ -106,6 +106,7 @@ SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDatas
   budget.correction_z1_m.assign(n, 0.0);
   budget.correction_h2.assign(n, 0.0);
   budget.correction_h3.assign(n, 0.0);
+  budget.branch_ambiguous.assign(n, false);
   if (settings.model_error_rel >= 0.0) {
     for (std::size_t k = 0; k < n; ++k) {
       budget.model_j[k] = settings.model_error_rel * std::abs(measured[k]);
@@ -169,6 +170,14 @@ SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDatas
         budget.correction_z1_m[k] = defect(s_reference.z1_abs_m, at_fit->z1_abs_m);
         budget.correction_h2[k] = defect(s_reference.h2_ratio, at_fit->h2_ratio);
         budget.correction_h3[k] = defect(s_reference.h3_ratio, at_fit->h3_ratio);
+        const double gap = std::abs(budget.correction_j[k]);
+        const double larger = std::max(std::abs(s_reference.edc_j[k]), std::abs(at_fit->edc_j[k]));
+        budget.branch_ambiguous[k] = gap > kBranchGapRel * larger;
+        if (budget.branch_ambiguous[k]) {
+          budget.correction_j[k] = budget.correction_z1_m[k] = 0.0;
+          budget.correction_h2[k] = budget.correction_h3[k] = 0.0;
+          budget.model_j[k] = std::max(budget.model_j[k], gap);
+        }
       }
       if (budget.resolved) break;
     }
@@ -181,6 +190,22 @@ SigmaBudget EdcObjective::calibrate_budget(const ModelForm& form, const EdcDatas
                   budget.model_j[k] * budget.model_j[k]);
   }
   return budget;
+}
+
+void SigmaBudget::adopt_corrections(const SigmaBudget& other) {
+  const std::size_t n = correction_j.size();
+  if (other.correction_j.size() != n) {
+    throw InputError("sigma budget: corrections of " + std::to_string(other.correction_j.size()) +
+                     " levels given for " + std::to_string(n));
+  }
+  branch_ambiguous.resize(n, false);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k < other.branch_ambiguous.size() && other.branch_ambiguous[k]) continue;
+    correction_j[k] = other.correction_j[k];
+    correction_z1_m[k] = other.correction_z1_m[k];
+    correction_h2[k] = other.correction_h2[k];
+    correction_h3[k] = other.correction_h3[k];
+  }
 }
 
 EdcObjective::EdcObjective(ModelForm form, EdcDataset data, EdcCostSettings settings)
@@ -376,6 +401,9 @@ EdcEvaluation EdcObjective::assemble(const std::vector<GroupResponse>& responses
       out.z1_abs_m.push_back(harmonics[i][0]);
       out.h2_ratio.push_back(harmonics[i][1]);
       out.h3_ratio.push_back(harmonics[i][2]);
+      const auto at = static_cast<std::size_t>(k);
+      out.branch_ambiguous.push_back(at < budget_.branch_ambiguous.size() &&
+                                     budget_.branch_ambiguous[at]);
     }
     out.edc_mod_j.push_back(std::move(predicted));
   }

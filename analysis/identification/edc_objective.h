@@ -48,7 +48,22 @@ struct SigmaBudget {
   std::vector<double> cycles_j, bias_j, model_j, total_j;             // per level, group order
   std::vector<double> correction_j;                                   // δ_k added to S_k(H)
   std::vector<double> correction_z1_m, correction_h2, correction_h3;  // the same for the response
+  /// Per level: S(H) and S(H_ref) at the calibration θ lie on different branches (a fold between
+  /// them moved by the truncation), so their difference is a branch gap, not a truncation defect:
+  /// the level gets no correction and the gap in σ_model (kBranchGapRel), and its fingerprints
+  /// are left out of the joint χ².
+  std::vector<bool> branch_ambiguous;
+  /// The defect corrections (and branch flags) of `other`, calibrated at another θ of the same
+  /// levels, where they are not ambiguous there; this budget's σ is kept, so that χ² measured
+  /// against it stay comparable. Throws InputError when the level counts differ.
+  void adopt_corrections(const SigmaBudget& other);
 };
+
+/// A level's |S(H_ref) − S(H)| beyond this share of the larger of the two is a branch gap (the
+/// EDC changes by a factor 2 to 4 across the folds of the paper's oscillator, 8 to 10.5 Hz); the
+/// truncation defects of H = 7 measured on the same campaigns are at most 6 % (diagnosis study,
+/// `defect` and the σ budgets of its controls).
+inline constexpr double kBranchGapRel = 0.25;
 
 /// How a fit weighs the levels.
 struct EdcCostSettings {
@@ -86,6 +101,8 @@ struct EdcEvaluation {
   /// The model's harmonic content per level in group order (NaN where not solved): |Z1| and the
   /// ratios |Z2|/|Z1|, |Z3|/|Z1| of its harmonic-balance solution, for the fingerprints.
   std::vector<double> z1_abs_m, h2_ratio, h3_ratio;
+  /// The budget's SigmaBudget::branch_ambiguous, per level in group order.
+  std::vector<bool> branch_ambiguous;
   /// Mean |S^mes − S^mod| / S^mes per well in %, as the paper's §5 (6 % z₊*, 12 % z₋*); NaN for
   /// a well without levels.
   double mean_deviation_pct_positive = 0.0;
