@@ -174,6 +174,58 @@ TEST(SigmaBudget, DefectCorrectionReachesTheReferenceAccuracy) {
               u.residuals.cwiseAbs().maxCoeff());
 }
 
+// A fold moved by the truncation: the paper's model at one harmonic against its reference puts
+// some levels next to a jump on different branches. Those levels (and only those) are flagged
+// branch-ambiguous: no correction, σ_model at least the gap, fingerprints left out; every other
+// level's correction is a truncation defect below the gap threshold. At H = 7 on the same data no
+// level is flagged (its largest defect is a few per cent).
+TEST(SigmaBudget, ALevelOnAnotherBranchAtTheReferenceGetsNoCorrection) {
+  HbmOptions converged;
+  converged.harmonics = 31;
+  const Model truth = paper_model();
+  const EdcDataset data = testing::twin_dataset(truth, converged);
+  EdcCostSettings coarse;
+  coarse.hbm.harmonics = 1;
+  const EdcObjective one(ModelForm::paper(truth), data, coarse);
+  const EdcObjective seven(ModelForm::paper(truth), data);
+  int flagged = 0;
+  const SigmaBudget& b = one.budget();
+  ASSERT_EQ(b.branch_ambiguous.size(), b.correction_j.size());
+  for (std::size_t k = 0; k < b.correction_j.size(); ++k) {
+    if (b.branch_ambiguous[k]) {
+      ++flagged;
+      EXPECT_EQ(b.correction_j[k], 0.0);
+      EXPECT_EQ(b.correction_z1_m[k], 0.0);
+      EXPECT_GT(b.model_j[k], 0.0);
+    }
+    EXPECT_FALSE(seven.budget().branch_ambiguous[k]) << "level " << k;
+  }
+  const EdcEvaluation e = one.evaluate(one.form().initial());
+  EXPECT_EQ(e.branch_ambiguous, b.branch_ambiguous);
+  EXPECT_GE(flagged, 1);
+  std::printf("H = 1: %d of %zu levels on another branch than at H_ref = %d\n", flagged,
+              b.correction_j.size(), b.reference_harmonics);
+}
+
+TEST(SigmaBudget, AdoptsCorrectionsOnlyWhereTheyAreNotAmbiguous) {
+  SigmaBudget own;
+  own.correction_j = {1.0, 2.0};
+  own.correction_z1_m = {1.0, 2.0};
+  own.correction_h2 = own.correction_h3 = {0.0, 0.0};
+  own.total_j = {5.0, 6.0};
+  SigmaBudget other = own;
+  other.correction_j = {10.0, 20.0};
+  other.correction_z1_m = {10.0, 20.0};
+  other.branch_ambiguous = {false, true};
+  own.adopt_corrections(other);
+  EXPECT_EQ(own.correction_j, (std::vector<double>{10.0, 2.0}));
+  EXPECT_EQ(own.correction_z1_m, (std::vector<double>{10.0, 2.0}));
+  EXPECT_EQ(own.total_j, (std::vector<double>{5.0, 6.0}));  // σ is its own
+  SigmaBudget shorter = other;
+  shorter.correction_j = {1.0};
+  EXPECT_THROW(own.adopt_corrections(shorter), InputError);
+}
+
 TEST(EdcObjective, RejectsLevelsWithNoSpreadAndNoFloor) {
   EdcCostSettings settings;
   settings.model_error_rel = 0.0;
