@@ -283,8 +283,9 @@ void DiagnosisRun::restart_at_bound() {
 // hundreds of σ off whatever θ does nearby, and the least-squares step pulls the whole θ towards
 // it rather than crossing the fold (measured on a control: one level at −1 139 σ, the rest within
 // 7 σ; there the budget's correction was itself a branch gap, SigmaBudget::branch_ambiguous, and
-// the robust refit alone took χ²/ν 3·10⁴ to 16 in one run of two). A refit under the Cauchy loss of scale kCauchyScale σ
-// lets the other levels place θ, and the plain refit from there keeps it when its χ² is lower.
+// the robust refit alone took χ²/ν 3·10⁴ to 16 in one run of two). A refit under the Cauchy loss of
+// scale kCauchyScale σ lets the other levels place θ, and the plain refit from there keeps it when
+// its χ² is lower.
 void DiagnosisRun::refit_robustly() {
   constexpr double kCauchyScale = 3.0;
   if (cancel_.cancelled() || maps_.reduced_chi2 <= noise_level(current_.size())) return;
