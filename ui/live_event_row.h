@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "daq/live/stream_event.h"
+#include "daq/sources/stream_event.h"
 #include "ui/live_faults.h"
 
 namespace oscilab::ui {

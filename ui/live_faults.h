@@ -5,7 +5,7 @@
 #include <string>
 
 #include "daq/live/acquisition.h"
-#include "daq/live/stream_event.h"
+#include "daq/sources/stream_event.h"
 
 // The fault counters of a live stream and how alarming each is.
 

@@ -19,9 +19,9 @@
 
 #include <qcustomplot.h>
 
-#include "daq/live/jack_source.h"
-#include "daq/live/net_source.h"
-#include "daq/live/replay_source.h"
+#include "daq/network/net_source.h"
+#include "daq/sources/jack_source.h"
+#include "daq/sources/replay_source.h"
 #include "ui/adaptive_test_panel.h"
 #include "ui/live_analysis_plots.h"
 #include "ui/live_edc_plot_data.h"

@@ -11,7 +11,7 @@
 
 #include "analysis/model/model.h"
 #include "daq/live/acquisition.h"
-#include "daq/live/rig_source.h"
+#include "daq/sources/rig_source.h"
 #include "ui/live_settings.h"
 #include "ui/time_window.h"
 

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "daq/live/acquisition.h"
-#include "daq/live/rig_source.h"
+#include "daq/sources/rig_source.h"
 
 // What the live monitor keeps in a session: the source, its fields and the rig's excitation,
 // and the rig's unattended stepped sine.

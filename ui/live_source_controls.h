@@ -7,7 +7,7 @@
 #include <QString>
 #include <QWidget>
 
-#include "daq/live/rig_source.h"
+#include "daq/sources/rig_source.h"
 #include "ui/live_settings.h"
 
 class QCheckBox;

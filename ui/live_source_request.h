@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "daq/live/rig_source.h"
 #include "daq/live/source_factory.h"
+#include "daq/sources/rig_source.h"
 #include "ui/live_settings.h"
 
 namespace oscilab::ui {

@@ -3,8 +3,8 @@
 #include "analysis/common/input_error.h"
 #include "analysis/edc/well.h"
 #include "app/cli/option_parsing.h"
-#include "daq/live/rig_source.h"
 #include "daq/live/source_factory.h"
+#include "daq/sources/rig_source.h"
 
 namespace oscilab::cli {
 

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "daq/live/sample_source.h"
+#include "daq/sources/sample_source.h"
 
 namespace oscilab::cli {
 

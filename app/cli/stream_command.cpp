@@ -11,8 +11,8 @@
 #include "analysis/common/job.h"
 #include "app/cli/commands.h"
 #include "app/cli/live_source_options.h"
-#include "daq/live/stream_sender.h"
-#include "daq/live/tcp_socket.h"
+#include "daq/network/stream_sender.h"
+#include "daq/network/tcp_socket.h"
 
 namespace oscilab::cli {
 namespace {

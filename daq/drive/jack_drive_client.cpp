@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "analysis/common/input_error.h"
-#include "daq/live/jack_capture_client.h"
+#include "daq/jack/jack_capture_client.h"
 
 namespace oscilab::daq {
 namespace {

@@ -9,7 +9,7 @@
 #include <boost/lockfree/spsc_queue.hpp>
 
 #include "daq/drive/sine_controller.h"
-#include "daq/live/frame_slot_ring.h"
+#include "daq/jack/frame_slot_ring.h"
 
 struct _jack_client;  // libjack's jack_client_t (jack/types.h), kept out of this header
 struct _jack_port;    // libjack's jack_port_t

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "analysis/common/input_error.h"
-#include "daq/live/interleaved_resampler.h"
+#include "daq/jack/interleaved_resampler.h"
 #include "daq/recording/measurement_mapping.h"
 #include "daq/recording/recording.h"
 

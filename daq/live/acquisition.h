@@ -14,10 +14,10 @@
 #include "analysis/edc/level_tracker.h"
 #include "analysis/pipeline/pipeline_settings.h"
 #include "daq/live/alarm_monitor.h"
-#include "daq/live/block_queue.h"
 #include "daq/live/history_ring.h"
-#include "daq/live/sample_source.h"
-#include "daq/live/stream_event.h"
+#include "daq/sources/block_queue.h"
+#include "daq/sources/sample_source.h"
+#include "daq/sources/stream_event.h"
 
 namespace oscilab::daq {
 

@@ -7,9 +7,9 @@
 
 #include <sndfile.h>
 
-#include "daq/live/raw_block.h"
-#include "daq/live/stream_event.h"
 #include "daq/recording/sidecar.h"
+#include "daq/sources/raw_block.h"
+#include "daq/sources/stream_event.h"
 
 namespace oscilab::daq {
 

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "daq/live/raw_block.h"
+#include "daq/sources/raw_block.h"
 
 namespace oscilab::daq {
 

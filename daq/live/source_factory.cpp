@@ -5,10 +5,10 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/model/model_json.h"
-#include "daq/live/jack_source.h"
-#include "daq/live/net_source.h"
-#include "daq/live/replay_source.h"
-#include "daq/live/tcp_socket.h"
+#include "daq/network/net_source.h"
+#include "daq/network/tcp_socket.h"
+#include "daq/sources/jack_source.h"
+#include "daq/sources/replay_source.h"
 
 namespace oscilab::daq {
 namespace {

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "daq/live/rig_source.h"
-#include "daq/live/sample_source.h"
 #include "daq/recording/recording.h"
 #include "daq/recording/sidecar.h"
+#include "daq/sources/rig_source.h"
+#include "daq/sources/sample_source.h"
 
 namespace oscilab::daq {
 

@@ -7,8 +7,8 @@
 
 #include "analysis/signal/ac_coupling.h"
 #include "analysis/signal/motion_quantity.h"
-#include "daq/live/raw_block.h"
 #include "daq/recording/sidecar.h"
+#include "daq/sources/raw_block.h"
 
 namespace oscilab::daq {
 

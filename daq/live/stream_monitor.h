@@ -4,8 +4,8 @@
 #include <functional>
 #include <vector>
 
-#include "daq/live/raw_block.h"
-#include "daq/live/stream_event.h"
+#include "daq/sources/raw_block.h"
+#include "daq/sources/stream_event.h"
 
 namespace oscilab::daq {
 

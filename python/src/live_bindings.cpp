@@ -12,11 +12,11 @@
 #include "analysis/model/model.h"
 #include "bindings.h"
 #include "daq/live/acquisition.h"
-#include "daq/live/net_source.h"
-#include "daq/live/replay_source.h"
-#include "daq/live/rig_source.h"
 #include "daq/live/source_factory.h"
+#include "daq/network/net_source.h"
 #include "daq/recording/sidecar.h"
+#include "daq/sources/replay_source.h"
+#include "daq/sources/rig_source.h"
 #include "python_types.h"
 
 namespace oscilab::python {

@@ -17,7 +17,7 @@
 #include "daq/drive/jack_drive_client.h"
 #include "daq/rig/jack_plant.h"
 #include "daq/rig/shaker_plant.h"
-#include "tests/daq/live/jack_test_server.h"
+#include "tests/daq/jack/jack_test_server.h"
 
 namespace {
 

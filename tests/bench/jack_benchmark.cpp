@@ -17,7 +17,7 @@
 #include <benchmark/benchmark.h>
 
 #include "daq/live/acquisition.h"
-#include "tests/daq/live/jack_test_helpers.h"
+#include "tests/daq/sources/jack_test_helpers.h"
 
 namespace {
 

@@ -16,8 +16,8 @@
 
 #include "analysis/model/reference_models.h"
 #include "daq/live/acquisition.h"
-#include "daq/live/replay_source.h"
-#include "daq/live/rig_source.h"
+#include "daq/sources/replay_source.h"
+#include "daq/sources/rig_source.h"
 
 namespace {
 

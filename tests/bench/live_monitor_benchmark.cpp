@@ -16,7 +16,7 @@
 #include <benchmark/benchmark.h>
 #include <qcustomplot.h>
 
-#include "daq/live/replay_source.h"
+#include "daq/sources/replay_source.h"
 #include "ui/live_monitor.h"
 #include "ui/live_trace_view.h"
 

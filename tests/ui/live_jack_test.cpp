@@ -12,8 +12,8 @@
 #include <QTest>
 
 #include "analysis/common/input_error.h"
-#include "daq/live/jack_source.h"
-#include "tests/daq/live/jack_test_helpers.h"
+#include "daq/sources/jack_source.h"
+#include "tests/daq/sources/jack_test_helpers.h"
 #include "ui/live_monitor.h"
 #include "ui/live_source_controls.h"
 

@@ -27,12 +27,12 @@
 #include <qcustomplot.h>
 
 #include "analysis/identification/edc_fit.h"
-#include "daq/live/net_source.h"
-#include "daq/live/replay_source.h"
-#include "daq/live/stream_protocol.h"
-#include "daq/live/tcp_socket.h"
+#include "daq/network/net_source.h"
+#include "daq/network/stream_protocol.h"
+#include "daq/network/tcp_socket.h"
 #include "daq/recording/campaign_reader.h"
 #include "daq/recording/recording.h"
+#include "daq/sources/replay_source.h"
 #include "ui/identification_panel.h"
 #include "ui/live_analysis_plots.h"
 #include "ui/live_monitor.h"

@@ -18,9 +18,9 @@
 
 #include "analysis/model/reference_models.h"
 #include "daq/drive/drive_event_json.h"
-#include "daq/live/jack_capture_client.h"
+#include "daq/jack/jack_capture_client.h"
 #include "daq/rig/jack_plant.h"
-#include "tests/daq/live/jack_test_server.h"
+#include "tests/daq/jack/jack_test_server.h"
 
 namespace oscilab::daq {
 namespace {

@@ -16,7 +16,7 @@
 #include "analysis/pipeline/offline_analysis.h"
 #include "daq/rig/jack_plant.h"
 #include "daq/rig/virtual_rig.h"
-#include "tests/daq/live/jack_test_server.h"
+#include "tests/daq/jack/jack_test_server.h"
 
 namespace oscilab::daq {
 namespace {

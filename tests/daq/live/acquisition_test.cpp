@@ -15,14 +15,14 @@
 
 #include "analysis/common/input_error.h"
 #include "analysis/model/reference_models.h"
-#include "daq/live/net_source.h"
-#include "daq/live/rig_source.h"
 #include "daq/live/stream_monitor.h"
-#include "daq/live/stream_protocol.h"
-#include "daq/live/tcp_socket.h"
+#include "daq/network/net_source.h"
+#include "daq/network/stream_protocol.h"
+#include "daq/network/tcp_socket.h"
 #include "daq/recording/campaign_reader.h"
 #include "daq/rig/virtual_rig.h"
-#include "tests/daq/live/eventually.h"
+#include "daq/sources/rig_source.h"
+#include "tests/daq/eventually.h"
 #include "tests/daq/live/scripted_source.h"
 
 namespace oscilab::daq {

@@ -9,7 +9,7 @@
 namespace oscilab::daq {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNotANumber = std::numeric_limits<double>::quiet_NaN();
 
 RawBlock block(std::uint64_t first, const std::vector<std::pair<double, double>>& rows) {
   RawBlock b;
@@ -29,7 +29,7 @@ TEST(SampleChecker, ARunOfBadSamplesAcrossBlocksIsOneRunReportedWhenItEnds) {
   SampleChecker c = checker();
   std::vector<SampleChecker::Run> closed;
   // Stored 16 → physical 9: at the range's edge, saturated; 15.9 → 8.95 is not.
-  auto counts = c.check(block(0, {{0, 0}, {16, 0}, {16, kNaN}, {15.9, 0}}), 0, closed);
+  auto counts = c.check(block(0, {{0, 0}, {16, 0}, {16, kNotANumber}, {15.9, 0}}), 0, closed);
   EXPECT_EQ(counts.saturated, 2u);
   EXPECT_EQ(counts.non_finite, 1u);
   ASSERT_EQ(closed.size(), 2u);  // both ended at row 3, reported in channel order
@@ -49,9 +49,9 @@ TEST(SampleChecker, ARunOfBadSamplesAcrossBlocksIsOneRunReportedWhenItEnds) {
   EXPECT_FALSE(c.bad_row(3));
 
   closed.clear();
-  counts = c.check(block(4, {{0, 0}, {-20, kNaN}}), 4, closed);  // −9: the low edge
-  EXPECT_TRUE(closed.empty());                                   // both runs still open
-  counts = c.check(block(6, {{-20, kNaN}, {-20, kNaN}}), 6, closed);
+  counts = c.check(block(4, {{0, 0}, {-20, kNotANumber}}), 4, closed);  // −9: the low edge
+  EXPECT_TRUE(closed.empty());                                          // both runs still open
+  counts = c.check(block(6, {{-20, kNotANumber}, {-20, kNotANumber}}), 6, closed);
   EXPECT_TRUE(closed.empty());
   c.finish(closed);  // the stream ended inside the runs
   ASSERT_EQ(closed.size(), 2u);

@@ -4,8 +4,8 @@
 #include <thread>
 #include <vector>
 
-#include "daq/live/sample_source.h"
 #include "daq/recording/recording.h"
+#include "daq/sources/sample_source.h"
 
 namespace oscilab::daq::testing {
 

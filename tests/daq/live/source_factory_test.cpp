@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include "daq/live/net_source.h"
-#include "daq/live/replay_source.h"
-#include "daq/live/rig_source.h"
+#include "daq/network/net_source.h"
+#include "daq/sources/replay_source.h"
+#include "daq/sources/rig_source.h"
 #include "tests/input_error_of.h"
 
 namespace oscilab::daq {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/daq/live/stream_test_layout.h"
+#include "tests/daq/stream_test_layout.h"
 
 namespace oscilab::daq {
 namespace {
