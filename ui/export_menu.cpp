@@ -20,13 +20,13 @@
 #include "daq/export/mat_export.h"
 #include "daq/export/uff58_export.h"
 #include "ui/background_job.h"
-#include "ui/level_table.h"
 #include "ui/main_window.h"
-#include "ui/plot_context_menu.h"
-#include "ui/plot_export.h"
-#include "ui/record_view.h"
-#include "ui/review_model.h"
-#include "ui/review_view.h"
+#include "ui/plots/plot_context_menu.h"
+#include "ui/plots/plot_export.h"
+#include "ui/review/level_table.h"
+#include "ui/review/record_view.h"
+#include "ui/review/review_model.h"
+#include "ui/review/review_view.h"
 
 namespace oscilab::ui {
 namespace {

@@ -17,8 +17,8 @@ class PlotContextMenus;
 /// mouse, else the one the mouse was over last, else the first of the current tab), the level
 /// table as CSV, the recording shown as MATLAB .mat or UFF 58, the EDC table of the analysis as
 /// .mat; and "Export plot…" in the context menu of every plot (PlotContextMenus). The writing is
-/// the libraries' (ui/plot_export.h, daq/export); the recording and EDC files are written on a
-/// worker thread. Nothing throws out of a slot: a failure is reported like the window's other
+/// the libraries' (ui/plots/plot_export.h, daq/export); the recording and EDC files are written on
+/// a worker thread. Nothing throws out of a slot: a failure is reported like the window's other
 /// errors (status bar, error_reported, a message box when interactive) and by
 /// export_finished. UI thread only.
 class ExportMenu : public QObject {

@@ -15,7 +15,7 @@
 #include "analysis/pipeline/pipeline_settings.h"
 #include "daq/recording/format_reader.h"
 #include "daq/recording/opened_recording.h"
-#include "ui/review_session.h"
+#include "ui/review/review_session.h"
 
 class QAction;
 class QDockWidget;
@@ -58,7 +58,7 @@ class MainWindow : public QMainWindow {
  public:
   /// Opens a recording at a path to be looked at, with progress and cancellation; throws
   /// oscilab::InputError on bad input and daq::OpeningCancelled when cancelled. It runs on a
-  /// worker thread (ui/recording_opener).
+  /// worker thread (ui/review/recording_opener).
   using Loader = std::function<daq::OpenedRecording(const std::string& path,
                                                     const daq::OpeningControl& control)>;
 
@@ -78,8 +78,8 @@ class MainWindow : public QMainWindow {
   /// Reads the recording at `path`, adds it to the opened recordings (opening a path again
   /// re-reads it) and shows it; the analysis restarts. The file is read on a worker thread while
   /// the window keeps repainting; a long opening shows its progress in a dialog that can cancel
-  /// it (ui/recording_opener). On failure reports the error (see the class comment) and returns
-  /// false; a cancelled opening says so in the status bar and returns false.
+  /// it (ui/review/recording_opener). On failure reports the error (see the class comment) and
+  /// returns false; a cancelled opening says so in the status bar and returns false.
   bool open_recording(const QString& path);
   /// Opens each of `paths` in order and shows the first that opened; returns how many opened.
   int open_recordings(const QStringList& paths);
@@ -157,7 +157,7 @@ class MainWindow : public QMainWindow {
 
  protected:
   /// Recordings (data files or sidecars) and sessions dropped on the window open as File ▸ Open
-  /// and File ▸ Open session would open them (ui/dropped_files).
+  /// and File ▸ Open session would open them (ui/review/dropped_files).
   void dragEnterEvent(QDragEnterEvent* event) override;
   void dropEvent(QDropEvent* event) override;
 

@@ -9,10 +9,10 @@
 
 #include "ui/export_menu.h"
 #include "ui/main_window.h"
-#include "ui/plot_theme.h"
-#include "ui/plot_zoom.h"
-#include "ui/record_view.h"
-#include "ui/review_view.h"
+#include "ui/plots/plot_theme.h"
+#include "ui/plots/plot_zoom.h"
+#include "ui/review/record_view.h"
+#include "ui/review/review_view.h"
 
 namespace oscilab::ui {
 

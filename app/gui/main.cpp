@@ -18,8 +18,8 @@
 
 #include "app/gui/window_script.h"
 #include "ui/main_window.h"
-#include "ui/record_view.h"
-#include "ui/review_view.h"
+#include "ui/review/record_view.h"
+#include "ui/review/review_view.h"
 
 namespace {
 

@@ -15,15 +15,15 @@
 
 #include <qcustomplot.h>
 
-#include "ui/adaptive_test_panel.h"
-#include "ui/channel_mapping_dialog.h"
-#include "ui/figure_dialog.h"
-#include "ui/identification_panel.h"
-#include "ui/live_monitor.h"
-#include "ui/live_settings.h"
+#include "ui/identification/figure_dialog.h"
+#include "ui/identification/identification_panel.h"
+#include "ui/identification/response_dialog.h"
+#include "ui/live/adaptive_test_panel.h"
+#include "ui/live/live_monitor.h"
+#include "ui/live/live_settings.h"
 #include "ui/main_window.h"
-#include "ui/record_view.h"
-#include "ui/response_dialog.h"
+#include "ui/review/channel_mapping_dialog.h"
+#include "ui/review/record_view.h"
 
 namespace oscilab::gui {
 namespace {

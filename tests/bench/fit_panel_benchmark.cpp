@@ -16,7 +16,7 @@
 #include <benchmark/benchmark.h>
 #include <qcustomplot.h>
 
-#include "ui/identification_panel.h"
+#include "ui/identification/identification_panel.h"
 
 namespace {
 

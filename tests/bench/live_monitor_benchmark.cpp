@@ -17,8 +17,8 @@
 #include <qcustomplot.h>
 
 #include "daq/sources/replay_source.h"
-#include "ui/live_monitor.h"
-#include "ui/live_trace_view.h"
+#include "ui/live/live_monitor.h"
+#include "ui/live/live_trace_view.h"
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include <qcustomplot.h>
 
 #include "daq/recording/opened_recording.h"
-#include "ui/record_view.h"
+#include "ui/review/record_view.h"
 
 namespace {
 

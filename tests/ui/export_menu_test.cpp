@@ -22,10 +22,10 @@
 
 #include "daq/recording/recording.h"
 #include "ui/export_menu.h"
-#include "ui/level_table.h"
 #include "ui/main_window.h"
-#include "ui/record_view.h"
-#include "ui/review_view.h"
+#include "ui/review/level_table.h"
+#include "ui/review/record_view.h"
+#include "ui/review/review_view.h"
 
 using oscilab::ui::ExportMenu;
 using oscilab::ui::MainWindow;

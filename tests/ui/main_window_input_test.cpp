@@ -34,12 +34,12 @@
 #include <qcustomplot.h>
 
 #include "ui/export_menu.h"
-#include "ui/identification_panel.h"
-#include "ui/level_table.h"
-#include "ui/live_monitor.h"
+#include "ui/identification/identification_panel.h"
+#include "ui/live/live_monitor.h"
 #include "ui/main_window.h"
-#include "ui/record_view.h"
-#include "ui/review_view.h"
+#include "ui/review/level_table.h"
+#include "ui/review/record_view.h"
+#include "ui/review/review_view.h"
 
 using oscilab::ui::MainWindow;
 

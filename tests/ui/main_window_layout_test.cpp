@@ -20,12 +20,12 @@
 
 #include <qcustomplot.h>
 
-#include "ui/diagnosis_view.h"
-#include "ui/identification_panel.h"
-#include "ui/live_monitor.h"
-#include "ui/live_settings.h"
+#include "ui/identification/diagnosis_view.h"
+#include "ui/identification/identification_panel.h"
+#include "ui/identification/response_dialog.h"
+#include "ui/live/live_monitor.h"
+#include "ui/live/live_settings.h"
 #include "ui/main_window.h"
-#include "ui/response_dialog.h"
 
 using oscilab::ui::IdentificationPanel;
 using oscilab::ui::LiveMonitor;
