@@ -159,6 +159,9 @@ class DiagnosisRun {
     return 1.0 + 3.0 * std::sqrt(2.0 / dof);
   }
   void settle();
+  // The current model becomes `form` at θ, settled (a restart, a robust refit, a rebase or an
+  // accepted candidate adopting its refit).
+  void settle_at(const ModelForm& form, const Eigen::VectorXd& theta);
   void restart_at_bound();
   void refit_robustly();
   // The nested check of a winning candidate: true when the current model, refitted from the
@@ -201,6 +204,7 @@ class DiagnosisRun {
 // global search on the EDC, which barely sees it, and freed when the model is settled on the EDC
 // and the fingerprints, which pin it.
 void DiagnosisRun::baseline() {
+  const auto start = std::chrono::steady_clock::now();
   const bool identified_stiffness = form_.identifies_stiffness();
   const ModelForm search_form =
       identified_stiffness ? form_.holding_stiffness(form_.initial()) : form_;
@@ -222,7 +226,11 @@ void DiagnosisRun::baseline() {
   progress_.phase(DiagnosisPhase::Settling, 0, result_.evaluations);
   settle();
   restart_at_bound();
+  const auto robust_start = std::chrono::steady_clock::now();
   refit_robustly();
+  const auto end = std::chrono::steady_clock::now();
+  result_.baseline_robust_refit_seconds = std::chrono::duration<double>(end - robust_start).count();
+  result_.baseline_seconds = std::chrono::duration<double>(end - start).count();
   result_.baseline.theta = theta_;
   result_.baseline.names = current_.names();
   result_.baseline.evaluation = evaluation_;
@@ -248,6 +256,12 @@ void DiagnosisRun::settle() {
   maps_ = std::move(settled.maps);
 }
 
+void DiagnosisRun::settle_at(const ModelForm& form, const Eigen::VectorXd& theta) {
+  theta_ = theta;
+  current_ = form.with_initial(theta_);
+  settle();
+}
+
 // A baseline at a bound: the weakly identified f_d(0) of §5 (or another friction parameter) can
 // be pushed onto its bound by a search that stopped in the wrong basin, and nothing after it
 // recovers. Then the refit is restarted from space-filling points of the friction's unit cube
@@ -271,9 +285,7 @@ void DiagnosisRun::restart_at_bound() {
   }
   ++result_.baseline_restarts;
   if (best.theta.size() > 0 && best.joint_chi2 < before) {
-    theta_ = best.theta;
-    current_ = current_.with_initial(theta_);
-    settle();
+    settle_at(current_, best.theta);
     result_.baseline_restart_improved = true;
   }
 }
@@ -316,9 +328,7 @@ void DiagnosisRun::refit_robustly() {
   }
   result_.baseline_robust_refit = true;
   if (best.theta.size() == 0) return;
-  theta_ = best.theta;
-  current_ = current_.with_initial(theta_);
-  settle();
+  settle_at(current_, best.theta);
   result_.baseline_robust_refit_improved = true;
 }
 
@@ -363,9 +373,7 @@ bool DiagnosisRun::rebase_from(const ModelForm& extended, const CandidateTrial& 
   const double basin_gain = (current_joint - fit.joint_chi2) / dispersion;
   const double rebased_bic = winner.delta_bic_joint + basin_gain;
   if (rebased_bic < -options_.bic_threshold && basin_gain <= options_.bic_threshold) return false;
-  theta_ = fit.theta;
-  current_ = current_.with_initial(theta_);
-  settle();
+  settle_at(current_, fit.theta);
   ++result_.rebases;
   if (accepted_effects_.empty()) {  // the baseline itself moved
     result_.baseline.theta = theta_;
@@ -482,9 +490,7 @@ void DiagnosisRun::accept(DiagnosisStep& record, std::size_t slot, const ModelFo
   const CandidateTrial accepted = record.trials[slot];
   progress_.phase(DiagnosisPhase::Accepting, static_cast<int>(result_.steps.size()) + 1,
                   result_.evaluations, candidate_label(accepted.effect, accepted.embodiment));
-  theta_ = accepted.theta;
-  current_ = extended.with_initial(theta_);
-  settle();
+  settle_at(extended, accepted.theta);
   record.effect = accepted.effect;
   record.embodiment = accepted.embodiment;
   record.can_vanish = candidate.can_vanish;

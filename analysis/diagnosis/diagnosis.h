@@ -113,6 +113,10 @@ struct DiagnosisResult {
   bool baseline_restart_improved = false;
   bool baseline_robust_refit = false;           // the unexplained baseline refitted robustly
   bool baseline_robust_refit_improved = false;  // and that found a lower χ²
+  /// Wall time of the baseline (search, settling, restarts, robust refit) and of its robust
+  /// refit alone: where an unexplained baseline spends the diagnosis's time bound.
+  double baseline_seconds = 0.0;
+  double baseline_robust_refit_seconds = 0.0;
   /// How often a step's winning candidate had only found a deeper basin of the current model's
   /// own parameters: the current model refitted from the winner's θ without its term took the
   /// term's evidence below the threshold or itself gained more than it, so the refit became the

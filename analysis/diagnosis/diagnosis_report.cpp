@@ -192,7 +192,9 @@ nlohmann::json baseline_json(const DiagnosisResult& result) {
           {"restarted_at_bound", result.baseline_restarts > 0},
           {"restart_improved", result.baseline_restart_improved},
           {"robust_refit", result.baseline_robust_refit},
-          {"robust_refit_improved", result.baseline_robust_refit_improved}};
+          {"robust_refit_improved", result.baseline_robust_refit_improved},
+          {"seconds", result.baseline_seconds},
+          {"robust_refit_seconds", result.baseline_robust_refit_seconds}};
 }
 
 // One step: the evidence before it, every candidate refitted with its outcome, and for an

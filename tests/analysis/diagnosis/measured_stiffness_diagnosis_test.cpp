@@ -79,6 +79,15 @@ TEST_P(FrictionRegimePresliding, IsNamedAndTheGapClosesToTheNoise) {
   EXPECT_EQ(r.verdict, "presliding-hysteresis");
   EXPECT_TRUE(r.gap_explained) << r.message;
   EXPECT_LE(r.final_maps.reduced_chi2, r.final_noise_reduced_chi2);
+  // The baseline (the sliding law) misses the data, so it was refitted robustly, and the report
+  // says what that cost: part of the baseline's time, which is part of the diagnosis's.
+  const nlohmann::json baseline = diagnosis_report_json(r, {"a", "b", "c"}).at("baseline");
+  EXPECT_TRUE(baseline.at("robust_refit").get<bool>());
+  const double baseline_s = baseline.at("seconds").get<double>();
+  const double robust_s = baseline.at("robust_refit_seconds").get<double>();
+  EXPECT_GT(robust_s, 0.0);
+  EXPECT_LT(robust_s, baseline_s);
+  EXPECT_LT(baseline_s, r.seconds);
 }
 
 // 30 µm, and 1 µm, where the stuck contact rings at 28 times the forcing (255 Hz, next to the
