@@ -114,7 +114,7 @@ std::optional<Raw> respond(const EdcObjective& objective, const Eigen::VectorXd&
     out.coefficients = r.coefficients;
     for (std::size_t k = 0; k < out.solved; ++k) {
       const Eigen::VectorXd& x = r.coefficients[k];
-      out.z1_m.push_back(x.size() >= 3 ? std::hypot(x[1], x[2]) : 0.0);
+      out.z1_m.push_back(harmonic_amplitude(x, 1));
     }
   } catch (const std::exception&) {
     return std::nullopt;  // θ outside a term's domain, or a model harmonic balance cannot take

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,13 @@ struct LevelResponse {
   int harmonics = 0;            // H of the responses (more than asked when a contact rings)
   int branch_switched = 0;      // levels taken from the top level's branch followed down
 };
+
+/// |Z_h| of harmonic h ≥ 1 of a solution's coefficients [a_0, a_1, b_1, …, a_H, b_H]: zero for
+/// h > H, which a truncated balance does not hold (a solution at H = 1 has no second harmonic).
+inline double harmonic_amplitude(const Eigen::VectorXd& coefficients, int h) {
+  const Eigen::Index sine = 2 * static_cast<Eigen::Index>(h);
+  return sine < coefficients.size() ? std::hypot(coefficients[sine - 1], coefficients[sine]) : 0.0;
+}
 
 /// The most harmonics level_response() raises H to for a ringing contact.
 inline constexpr int kMaxContactHarmonics = 63;

@@ -62,11 +62,11 @@ LevelQuantities model_quantities(const Model& model, const EdcDataset& data, con
         continue;
       }
       const Eigen::VectorXd& x = response.coefficients[i];
-      const double a1 = std::hypot(x[1], x[2]);
+      const double a1 = harmonic_amplitude(x, 1);
       out.edc_j.push_back(response.edc_j[i]);
       out.z1_abs_m.push_back(a1);
-      out.h2_ratio.push_back(std::hypot(x[3], x[4]) / a1);
-      out.h3_ratio.push_back(std::hypot(x[5], x[6]) / a1);
+      out.h2_ratio.push_back(harmonic_amplitude(x, 2) / a1);
+      out.h3_ratio.push_back(harmonic_amplitude(x, 3) / a1);
     }
   }
   return out;
@@ -375,10 +375,10 @@ EdcEvaluation EdcObjective::assemble(const std::vector<GroupResponse>& responses
         const std::size_t level = static_cast<std::size_t>(k) + i;
         predicted[i] = response->edc_j[i] + budget_.correction_j[level];
         const Eigen::VectorXd& x = response->coefficients[i];
-        const double a1 = std::hypot(x[1], x[2]);
+        const double a1 = harmonic_amplitude(x, 1);
         harmonics[i] = {a1 + budget_.correction_z1_m[level],
-                        std::hypot(x[3], x[4]) / a1 + budget_.correction_h2[level],
-                        std::hypot(x[5], x[6]) / a1 + budget_.correction_h3[level]};
+                        harmonic_amplitude(x, 2) / a1 + budget_.correction_h2[level],
+                        harmonic_amplitude(x, 3) / a1 + budget_.correction_h3[level]};
       }
       if (response->status != JobStatus::Ok || response->edc_j.size() < count) {
         out.ok = false;

@@ -84,8 +84,8 @@ int bias_study(int seeds) {
                 "%g,%g,%d,%s,%.6g,%.9g,%.9g,%.4g,%.9g,%.9g,%.4g,%.6g,%.6g,%.4g,%.6g,%.6g,%.4g\n",
                 freq, noise, seed, to_string(well_of(g.positive_well)).c_str(), l.f0_n, l.edc_j,
                 r.edc_j[i], l.sigma_of_mean_j(), l.amplitude_m, a1, l.z1_abs_se_m, l.h2_ratio,
-                std::hypot(x[3], x[4]) / a1, l.h2_ratio_se, l.h3_ratio, std::hypot(x[5], x[6]) / a1,
-                l.h3_ratio_se);
+                harmonic_amplitude(x, 2) / a1, l.h2_ratio_se, l.h3_ratio,
+                harmonic_amplitude(x, 3) / a1, l.h3_ratio_se);
           }
         }
         std::fflush(stdout);
