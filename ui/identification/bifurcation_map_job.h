@@ -10,10 +10,9 @@
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model.h"
 #include "analysis/simulation/bifurcation_map.h"
+#include "ui/outcome_job.h"
 
 namespace oscilab::ui {
-
-class BackgroundJob;
 
 /// What a bifurcation map hands back when it ends (finished, cancelled or failed).
 struct BifurcationMapOutcome {
@@ -25,20 +24,19 @@ struct BifurcationMapOutcome {
 
 /// The bifurcation map of a model by time simulation (analysis::bifurcation_map, Fig. 17) over
 /// its HBM branches (continue_branches, first: a tenth of the progress bar), on a worker thread
-/// (ui/background_job.h) with progress and cancel. Thread-safety: UI thread only.
+/// (ui/outcome_job.h) with progress and cancel. Thread-safety: UI thread only.
 class BifurcationMapJob : public QObject {
   Q_OBJECT
 
  public:
   explicit BifurcationMapJob(QObject* parent = nullptr);
-  ~BifurcationMapJob() override;  // cancels and joins the worker
 
   /// Returns false (and does nothing) while one runs.
   bool start(std::shared_ptr<const analysis::Model> model,
              std::vector<analysis::ContinuationOptions> continuations,
              analysis::BifurcationMapOptions map);
-  void cancel();
-  bool running() const;
+  void cancel() { work_.cancel(); }
+  bool running() const { return work_.running(); }
 
  Q_SIGNALS:
   void progress(double fraction_done);
@@ -46,8 +44,8 @@ class BifurcationMapJob : public QObject {
   void finished(std::shared_ptr<const oscilab::ui::BifurcationMapOutcome> outcome);
 
  private:
-  BackgroundJob* job_ = nullptr;
-  std::shared_ptr<BifurcationMapOutcome> outcome_;  // of the last job started; the worker writes it
+  OutcomeJob<BifurcationMapOutcome> work_{this, &BifurcationMapJob::finished,
+                                          &BifurcationMapJob::progress};
 };
 
 }  // namespace oscilab::ui

@@ -1,9 +1,5 @@
 #include "ui/identification/branch_job.h"
 
-#include <exception>
-
-#include "ui/background_job.h"
-
 namespace oscilab::ui {
 
 std::vector<analysis::Branch> continue_branches(
@@ -22,35 +18,17 @@ std::vector<analysis::Branch> continue_branches(
   return branches;
 }
 
-BranchJob::BranchJob(QObject* parent) : QObject(parent) {
-  job_ = new BackgroundJob(this);
-  connect(job_, &BackgroundJob::progress, this, &BranchJob::progress);
-  connect(job_, &BackgroundJob::finished, this, [this](bool cancelled) {
-    outcome_->cancelled = cancelled;
-    Q_EMIT finished(outcome_);
-  });
-}
-
-// The worker writes outcome_ and must end before the job goes.
-BranchJob::~BranchJob() { delete job_; }
-
-bool BranchJob::running() const { return job_->running(); }
-
-void BranchJob::cancel() { job_->cancel(); }
+BranchJob::BranchJob(QObject* parent) : QObject(parent) {}
 
 bool BranchJob::start(std::shared_ptr<const analysis::Model> model,
                       std::vector<analysis::ContinuationOptions> continuations) {
-  if (job_->running() || !model) return false;
-  auto outcome = std::make_shared<BranchOutcome>();
-  outcome_ = outcome;
-  return job_->start([outcome, model = std::move(model), continuations = std::move(continuations)](
-                         const ProgressFn& progress, const CancelToken& cancel) {
-    try {
-      outcome->branches = continue_branches(*model, continuations, progress, cancel);
-    } catch (const std::exception& error) {  // InputError: options the core rejects
-      outcome->error = error.what();
-    }
-  });
+  if (!model) return false;
+  return work_.start(
+      std::make_shared<BranchOutcome>(),
+      [model = std::move(model), continuations = std::move(continuations)](
+          BranchOutcome& outcome, const ProgressFn& progress, const CancelToken& cancel) {
+        outcome.branches = continue_branches(*model, continuations, progress, cancel);
+      });
 }
 
 }  // namespace oscilab::ui

@@ -10,10 +10,9 @@
 #include "analysis/hbm/branch.h"
 #include "analysis/hbm/continuation.h"
 #include "analysis/model/model.h"
+#include "ui/outcome_job.h"
 
 namespace oscilab::ui {
-
-class BackgroundJob;
 
 /// What a continuation of branches hands back when it ends (finished, cancelled or failed).
 struct BranchOutcome {
@@ -30,19 +29,18 @@ std::vector<analysis::Branch> continue_branches(
     const ProgressFn& progress, const CancelToken& cancel);
 
 /// The HBM branches of a model (one per well, as `oscilab-cli hbm`) on a worker thread
-/// (ui/background_job.h), with progress and cancel. Thread-safety: UI thread only.
+/// (ui/outcome_job.h), with progress and cancel. Thread-safety: UI thread only.
 class BranchJob : public QObject {
   Q_OBJECT
 
  public:
   explicit BranchJob(QObject* parent = nullptr);
-  ~BranchJob() override;  // cancels and joins the worker
 
   /// Returns false (and does nothing) while one runs.
   bool start(std::shared_ptr<const analysis::Model> model,
              std::vector<analysis::ContinuationOptions> continuations);
-  void cancel();
-  bool running() const;
+  void cancel() { work_.cancel(); }
+  bool running() const { return work_.running(); }
 
  Q_SIGNALS:
   void progress(double fraction_done);
@@ -50,8 +48,7 @@ class BranchJob : public QObject {
   void finished(std::shared_ptr<const oscilab::ui::BranchOutcome> outcome);
 
  private:
-  BackgroundJob* job_ = nullptr;
-  std::shared_ptr<BranchOutcome> outcome_;  // of the last job started; the worker writes it
+  OutcomeJob<BranchOutcome> work_{this, &BranchJob::finished, &BranchJob::progress};
 };
 
 }  // namespace oscilab::ui

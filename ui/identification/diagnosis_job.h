@@ -9,10 +9,9 @@
 #include "analysis/diagnosis/diagnosis.h"
 #include "analysis/identification/edc_objective.h"
 #include "analysis/identification/fit_setup.h"
+#include "ui/outcome_job.h"
 
 namespace oscilab::ui {
-
-class BackgroundJob;
 
 /// What a diagnosis hands back when it ends (finished, cancelled or failed).
 struct DiagnosisOutcome {
@@ -24,7 +23,7 @@ struct DiagnosisOutcome {
   std::shared_ptr<const analysis::EdcObjective> objective;
 };
 
-/// A model-gap diagnosis on a worker thread (ui/background_job.h): the recordings' analysis
+/// A model-gap diagnosis on a worker thread (ui/outcome_job.h): the recordings' analysis
 /// (daq::analyze_recordings), the paper's form of the base model (analysis::fit_form) and the
 /// diagnosis (analysis::diagnose), with progress and cancel. The computing is the analysis
 /// core's. Thread-safety: UI thread only.
@@ -33,13 +32,12 @@ class DiagnosisJob : public QObject {
 
  public:
   explicit DiagnosisJob(QObject* parent = nullptr);
-  ~DiagnosisJob() override;  // cancels and joins the worker
 
   /// Returns false (and does nothing) while a diagnosis runs.
   bool start(std::vector<std::string> recordings, analysis::FitSetup setup,
              analysis::DiagnosisOptions options);
-  void cancel();
-  bool running() const;
+  void cancel() { work_.cancel(); }
+  bool running() const { return work_.running(); }
 
  Q_SIGNALS:
   void progress(double fraction_done);
@@ -50,9 +48,7 @@ class DiagnosisJob : public QObject {
   void finished(std::shared_ptr<const oscilab::ui::DiagnosisOutcome> outcome);
 
  private:
-  BackgroundJob* job_ = nullptr;
-  std::shared_ptr<DiagnosisOutcome>
-      outcome_;  // of the last diagnosis started; the worker writes it
+  OutcomeJob<DiagnosisOutcome> work_{this, &DiagnosisJob::finished, &DiagnosisJob::progress};
 };
 
 }  // namespace oscilab::ui

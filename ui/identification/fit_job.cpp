@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <exception>
 
 #include <QMetaObject>
 #include <QPointer>
@@ -10,7 +9,6 @@
 #include "analysis/common/input_error.h"
 #include "analysis/diagnosis/campaign_fit.h"
 #include "daq/recording/campaign_reader.h"
-#include "ui/background_job.h"
 
 namespace oscilab::ui {
 namespace {
@@ -37,91 +35,69 @@ std::vector<std::vector<double>> model_edc(const analysis::EdcObjective& objecti
 
 FitJob::FitJob(QObject* parent) : QObject(parent) {
   qRegisterMetaType<std::shared_ptr<const FitPreview>>();
-  job_ = new BackgroundJob(this);
-  connect(job_, &BackgroundJob::progress, this, &FitJob::progress);
-  connect(job_, &BackgroundJob::finished, this, [this](bool cancelled) {
-    outcome_->cancelled = cancelled;
-    Q_EMIT finished(outcome_);
-  });
 }
 
-// The worker emits preview() on this object: it must have ended before the signal goes
-// (BackgroundJob's destructor cancels and joins).
-FitJob::~FitJob() { delete job_; }
-
-bool FitJob::running() const { return job_->running(); }
-
-void FitJob::cancel() { job_->cancel(); }
-
 bool FitJob::is_current(const FitPreview& preview) const {
-  return job_->running() && outcome_ && outcome_->objective == preview.objective;
+  return work_.running() && work_.current() && work_.current()->objective == preview.objective;
 }
 
 bool FitJob::start(std::vector<std::string> recordings, analysis::FitSetup setup,
                    analysis::FitOptions options) {
-  if (job_->running()) return false;
   auto outcome = std::make_shared<FitOutcome>();
   outcome->records = recordings;
-  outcome_ = outcome;
   QPointer<FitJob> self(this);
-  FitJob* job = this;  // outlives the worker (see the destructor)
-  return job_->start([outcome, paths = std::move(recordings), options, setup, self, job](
-                         const ProgressFn& progress, const CancelToken& cancel) {
-    try {
-      const analysis::CampaignAnalysis campaign =
-          daq::analyze_recordings(paths, {}, {}, {}, cancel);
-      if (campaign.status == JobStatus::Cancelled) return;  // reported as cancelled, no error
-      analysis::FitSetup fit_setup = setup;
-      fit_setup.cost.cancel = cancel;  // the σ budget's calibration stops with the job
-      analysis::PreparedFit prepared = analysis::prepare_fit(campaign, fit_setup);
-      const std::shared_ptr<const analysis::EdcObjective> objective = prepared.objective;
-      outcome->objective = objective;
-      outcome->notes = std::move(prepared.notes);
-      const auto budget = static_cast<double>(analysis::evaluation_budget(options));
-      // The convergence curve gets a point at most every 50 ms (20 redraws a second), the
-      // live EDC curve of the best θ every 200 ms. The searches call this one at a time.
-      const auto long_ago = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-      auto last_point = long_ago;
-      auto last_preview = long_ago;
-      analysis::CampaignFit result = analysis::fit_campaign(
-          prepared, campaign, options,
-          [&](const analysis::FitProgress& p) {
-            if (p.stage == analysis::FitStage::Uncertainty) return;
-            progress(std::min(0.95, static_cast<double>(p.evaluations) / budget));
-            const auto now = std::chrono::steady_clock::now();
-            if (now - last_preview >= kPreviewInterval && !cancel.cancelled() &&
-                p.best_theta.size() == objective->form().size()) {
-              auto preview = std::make_shared<FitPreview>();
-              preview->evaluations = p.evaluations;
-              preview->best_weighted_cost = p.best_weighted_cost;
-              preview->theta = p.best_theta;
-              preview->objective = objective;
-              try {
-                preview->edc_mod_j = model_edc(*objective, p.best_theta);
-                Q_EMIT job->preview(std::move(preview));
-              } catch (const InputError&) {
-                // θ outside a term's domain: no curve this time.
-              }
-              // From the end of this one, so that sent previews are ≥ 200 ms apart.
-              last_preview = std::chrono::steady_clock::now();
+  FitJob* job = this;  // outlives the worker (see work_)
+  return work_.start(std::move(outcome), [paths = std::move(recordings), options, setup, self, job](
+                                             FitOutcome& outcome, const ProgressFn& progress,
+                                             const CancelToken& cancel) {
+    const analysis::CampaignAnalysis campaign = daq::analyze_recordings(paths, {}, {}, {}, cancel);
+    if (campaign.status == JobStatus::Cancelled) return;  // reported as cancelled, no error
+    analysis::FitSetup fit_setup = setup;
+    fit_setup.cost.cancel = cancel;  // the σ budget's calibration stops with the job
+    analysis::PreparedFit prepared = analysis::prepare_fit(campaign, fit_setup);
+    const std::shared_ptr<const analysis::EdcObjective> objective = prepared.objective;
+    outcome.objective = objective;
+    outcome.notes = std::move(prepared.notes);
+    const auto budget = static_cast<double>(analysis::evaluation_budget(options));
+    // The convergence curve gets a point at most every 50 ms (20 redraws a second), the
+    // live EDC curve of the best θ every 200 ms. The searches call this one at a time.
+    const auto long_ago = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+    auto last_point = long_ago;
+    auto last_preview = long_ago;
+    analysis::CampaignFit result = analysis::fit_campaign(
+        prepared, campaign, options,
+        [&](const analysis::FitProgress& p) {
+          if (p.stage == analysis::FitStage::Uncertainty) return;
+          progress(std::min(0.95, static_cast<double>(p.evaluations) / budget));
+          const auto now = std::chrono::steady_clock::now();
+          if (now - last_preview >= kPreviewInterval && !cancel.cancelled() &&
+              p.best_theta.size() == objective->form().size()) {
+            auto preview = std::make_shared<FitPreview>();
+            preview->evaluations = p.evaluations;
+            preview->best_weighted_cost = p.best_weighted_cost;
+            preview->theta = p.best_theta;
+            preview->objective = objective;
+            try {
+              preview->edc_mod_j = model_edc(*objective, p.best_theta);
+              Q_EMIT job->preview(std::move(preview));
+            } catch (const InputError&) {
+              // θ outside a term's domain: no curve this time.
             }
-            if (now - last_point < std::chrono::milliseconds(50)) return;
-            last_point = now;
-            QMetaObject::invokeMethod(
-                self.data(),
-                [self, evaluations = p.evaluations, cost = p.best_weighted_cost] {
-                  if (self) Q_EMIT self->convergence_point(evaluations, cost);
-                },
-                Qt::QueuedConnection);
-          },
-          cancel);
-      outcome->fit = std::move(result.fit);
-      outcome->objective = std::move(result.objective);  // the settled one, K(z) identified
-    } catch (const InputError& error) {
-      outcome->error = error.what();
-    } catch (const std::exception& error) {
-      outcome->error = std::string("internal error: ") + error.what();
-    }
+            // From the end of this one, so that sent previews are ≥ 200 ms apart.
+            last_preview = std::chrono::steady_clock::now();
+          }
+          if (now - last_point < std::chrono::milliseconds(50)) return;
+          last_point = now;
+          QMetaObject::invokeMethod(
+              self.data(),
+              [self, evaluations = p.evaluations, cost = p.best_weighted_cost] {
+                if (self) Q_EMIT self->convergence_point(evaluations, cost);
+              },
+              Qt::QueuedConnection);
+        },
+        cancel);
+    outcome.fit = std::move(result.fit);
+    outcome.objective = std::move(result.objective);  // the settled one, K(z) identified
   });
 }
 

@@ -10,10 +10,9 @@
 #include "analysis/identification/edc_fit.h"
 #include "analysis/identification/edc_objective.h"
 #include "analysis/identification/fit_setup.h"
+#include "ui/outcome_job.h"
 
 namespace oscilab::ui {
-
-class BackgroundJob;
 
 /// The best model of a running fit so far, made on the fit's worker thread and handed to the UI
 /// thread by a queued signal: its EDC at every measured level (live progress).
@@ -37,7 +36,7 @@ struct FitOutcome {
   analysis::FitResult fit;
 };
 
-/// A friction fit on a worker thread (ui/background_job.h): the recordings' analysis
+/// A friction fit on a worker thread (ui/outcome_job.h): the recordings' analysis
 /// (daq::analyze_recordings), the objective (analysis::prepare_fit) and the search
 /// (analysis::fit_edc), with progress and cancel. While the search runs it reports the best χ² so
 /// far (at most every 50 ms) and the model EDC of the best θ so far (at most 5 times a second);
@@ -49,13 +48,12 @@ class FitJob : public QObject {
 
  public:
   explicit FitJob(QObject* parent = nullptr);
-  ~FitJob() override;  // cancels and joins the worker
 
   /// Returns false (and does nothing) while a fit runs.
   bool start(std::vector<std::string> recordings, analysis::FitSetup setup,
              analysis::FitOptions options);
-  void cancel();
-  bool running() const;
+  void cancel() { work_.cancel(); }
+  bool running() const { return work_.running(); }
   /// Whether `preview` is of the fit that runs (one queued before an older fit ended is not).
   bool is_current(const FitPreview& preview) const;
 
@@ -69,8 +67,9 @@ class FitJob : public QObject {
   void finished(std::shared_ptr<const oscilab::ui::FitOutcome> outcome);
 
  private:
-  BackgroundJob* job_ = nullptr;
-  std::shared_ptr<FitOutcome> outcome_;  // of the last fit started; the worker writes it
+  // The worker emits preview() on this object: it ends before the signal goes (work_ is
+  // destroyed first, and its destructor cancels and joins).
+  OutcomeJob<FitOutcome> work_{this, &FitJob::finished, &FitJob::progress};
 };
 
 }  // namespace oscilab::ui

@@ -2,14 +2,11 @@
 
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <utility>
 
 #include <QMetaObject>
 
-#include "analysis/common/input_error.h"
 #include "daq/recording/adaptive_test_folder.h"
-#include "ui/background_job.h"
 
 namespace oscilab::ui {
 
@@ -34,23 +31,10 @@ AdaptiveTestStep adaptive_test_step(const analysis::AdaptiveDecision& decision,
   return step;
 }
 
-AdaptiveTestJob::AdaptiveTestJob(QObject* parent) : QObject(parent) {
-  job_ = new BackgroundJob(this);
-  connect(job_, &BackgroundJob::progress, this, &AdaptiveTestJob::progress);
-  connect(job_, &BackgroundJob::finished, this, [this](bool cancelled) {
-    outcome_->cancelled = cancelled;
-    Q_EMIT finished(outcome_);
-  });
-}
+AdaptiveTestJob::AdaptiveTestJob(QObject* parent) : QObject(parent) {}
 
-// The worker writes outcome_ and may wait for an answer: release it, then join.
-AdaptiveTestJob::~AdaptiveTestJob() {
-  job_->cancel();
-  answered_.notify_all();
-  delete job_;
-}
-
-bool AdaptiveTestJob::running() const { return job_->running(); }
+// The worker may wait for an answer: release it; work_, destroyed next, joins it.
+AdaptiveTestJob::~AdaptiveTestJob() { cancel(); }
 
 bool AdaptiveTestJob::awaiting_answer() const {
   const std::lock_guard lock(mutex_);
@@ -58,7 +42,7 @@ bool AdaptiveTestJob::awaiting_answer() const {
 }
 
 void AdaptiveTestJob::cancel() {
-  job_->cancel();
+  work_.cancel();
   answered_.notify_all();
 }
 
@@ -102,7 +86,7 @@ analysis::ProposalAnswer AdaptiveTestJob::wait_for_answer(const CancelToken& can
 }
 
 bool AdaptiveTestJob::start(Request request) {
-  if (job_->running()) return false;
+  if (work_.running()) return false;
   {
     const std::lock_guard lock(mutex_);
     auto_mode_ = request.auto_mode;
@@ -111,33 +95,28 @@ bool AdaptiveTestJob::start(Request request) {
   }
   auto outcome = std::make_shared<AdaptiveTestOutcome>();
   outcome->folder = request.folder;
-  outcome_ = outcome;
-  return job_->start([this, outcome, request = std::move(request)](const ProgressFn& progress,
-                                                                   const CancelToken& cancel) {
-    try {
-      daq::AdaptiveTestFolder folder(request.folder);
-      daq::RigLevelRunner rig(request.rig_truth, folder.recordings_dir(), request.schedule,
-                              request.seed);
-      // Each decision reaches the UI thread queued; the job is joined before this object goes,
-      // and a queued call to a destroyed object is dropped.
-      const auto on_decision = [&](const analysis::AdaptiveDecision& d,
-                                   const std::vector<analysis::ModelHypothesis>& hypotheses) {
-        folder.log(d, hypotheses);
-        QMetaObject::invokeMethod(
-            this, [this, step = adaptive_test_step(d, hypotheses)] { Q_EMIT decided(step); },
-            Qt::QueuedConnection);
-      };
-      outcome->result = analysis::run_adaptive_test(
-          rig, request.options, on_decision, progress, cancel,
-          [&](const analysis::AdaptiveDecision&) { return wait_for_answer(cancel); });
-      outcome->recordings = rig.paths();
-      folder.write_results(outcome->result, outcome->recordings);  // a cancelled one's too
-    } catch (const InputError& error) {
-      outcome->error = error.what();
-    } catch (const std::exception& error) {
-      outcome->error = std::string("internal error: ") + error.what();
-    }
-  });
+  return work_.start(
+      std::move(outcome),
+      [this, request = std::move(request)](AdaptiveTestOutcome& outcome, const ProgressFn& progress,
+                                           const CancelToken& cancel) {
+        daq::AdaptiveTestFolder folder(request.folder);
+        daq::RigLevelRunner rig(request.rig_truth, folder.recordings_dir(), request.schedule,
+                                request.seed);
+        // Each decision reaches the UI thread queued; the job is joined before this object goes,
+        // and a queued call to a destroyed object is dropped.
+        const auto on_decision = [&](const analysis::AdaptiveDecision& d,
+                                     const std::vector<analysis::ModelHypothesis>& hypotheses) {
+          folder.log(d, hypotheses);
+          QMetaObject::invokeMethod(
+              this, [this, step = adaptive_test_step(d, hypotheses)] { Q_EMIT decided(step); },
+              Qt::QueuedConnection);
+        };
+        outcome.result = analysis::run_adaptive_test(
+            rig, request.options, on_decision, progress, cancel,
+            [&](const analysis::AdaptiveDecision&) { return wait_for_answer(cancel); });
+        outcome.recordings = rig.paths();
+        folder.write_results(outcome.result, outcome.recordings);  // a cancelled one's too
+      });
 }
 
 }  // namespace oscilab::ui

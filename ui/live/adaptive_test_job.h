@@ -13,10 +13,9 @@
 #include "analysis/model/model.h"
 #include "analysis/model/reference_models.h"
 #include "daq/rig/rig_level_runner.h"
+#include "ui/outcome_job.h"
 
 namespace oscilab::ui {
-
-class BackgroundJob;
 
 /// One decision of a running adaptive test as the app shows it (copied off the worker).
 struct AdaptiveTestStep {
@@ -66,7 +65,7 @@ class AdaptiveTestJob : public QObject {
   /// Returns false (and does nothing) while a test runs.
   bool start(Request request);
   void cancel();
-  bool running() const;
+  bool running() const { return work_.running(); }
   /// Whether the worker waits for an answer to the last proposal.
   bool awaiting_answer() const;
   /// The operator's answer to the proposal waited on (ignored when none is).
@@ -86,13 +85,14 @@ class AdaptiveTestJob : public QObject {
  private:
   analysis::ProposalAnswer wait_for_answer(const CancelToken& cancel);
 
-  BackgroundJob* job_ = nullptr;
-  std::shared_ptr<AdaptiveTestOutcome> outcome_;  // of the last test started; the worker writes it
-  mutable std::mutex mutex_;                      // guards the three below
+  mutable std::mutex mutex_;  // guards the three below
   std::condition_variable answered_;
   bool auto_mode_ = true;
   bool awaiting_ = false;
   std::optional<analysis::ProposalAnswer> answer_;
+  // Last, so that it goes first: its destructor joins the worker, which waits on the above.
+  OutcomeJob<AdaptiveTestOutcome> work_{this, &AdaptiveTestJob::finished,
+                                        &AdaptiveTestJob::progress};
 };
 
 /// The step the app shows of a decision and the hypotheses as weighed for it.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <QObject>
@@ -8,10 +9,9 @@
 
 #include "analysis/hbm/level_response.h"
 #include "analysis/model/model.h"
+#include "ui/outcome_job.h"
 
 namespace oscilab::ui {
-
-class BackgroundJob;
 
 /// The model's EDC against f₀ in both wells at the live frequency (the curve drawn over the
 /// measured levels, Fig. 15), by harmonic balance on a worker thread (BackgroundJob). One job
@@ -33,7 +33,7 @@ class LivePredictionJob : public QObject {
   bool needed(double frequency_hz, double max_measured_f0_n) const;
   /// Predicts at ν over prediction_levels(max_measured_f0_n); nothing without a ν > 0.
   void start(double frequency_hz, double max_measured_f0_n);
-  bool running() const;
+  bool running() const { return work_.running(); }
   /// A start() came while the job ran: start again with the current ν and levels.
   bool again() const { return again_; }
 
@@ -47,17 +47,24 @@ class LivePredictionJob : public QObject {
   void finished();
 
  private:
-  struct Prediction;
-  void on_job_finished(bool cancelled);
+  /// The model's EDC at the prediction levels, both wells (written by the worker).
+  struct Prediction {
+    std::shared_ptr<const analysis::Model> model;
+    double frequency_hz = 0.0;
+    std::vector<double> levels_n;
+    analysis::LevelResponse wells[2];  // positive, negative
+    bool cancelled = false;
+    std::string error;
+  };
+  void on_job_finished(std::shared_ptr<const Prediction> prediction);
 
-  BackgroundJob* job_ = nullptr;
-  std::shared_ptr<Prediction> running_;      // written by the worker
   std::shared_ptr<const Prediction> shown_;  // the last one finished
   std::shared_ptr<const analysis::Model> model_;
   QString label_;
   double frequency_hz_ = 0.0;  // of the prediction drawn or running
   double top_n_ = 0.0;         // its largest level
   bool again_ = false;
+  OutcomeJob<Prediction> work_{this, &LivePredictionJob::on_job_finished};
 };
 
 }  // namespace oscilab::ui
