@@ -38,18 +38,21 @@ FitJob::FitJob(QObject* parent) : QObject(parent) {
 }
 
 bool FitJob::is_current(const FitPreview& preview) const {
-  return work_.running() && work_.current() && work_.current()->objective == preview.objective;
+  return work_.running() && preview.fit_number == fits_started_;
 }
 
 bool FitJob::start(std::vector<std::string> recordings, analysis::FitSetup setup,
                    analysis::FitOptions options) {
+  if (work_.running()) return false;
+  const long fit_number = ++fits_started_;
   auto outcome = std::make_shared<FitOutcome>();
   outcome->records = recordings;
   QPointer<FitJob> self(this);
   FitJob* job = this;  // outlives the worker (see work_)
-  return work_.start(std::move(outcome), [paths = std::move(recordings), options, setup, self, job](
-                                             FitOutcome& outcome, const ProgressFn& progress,
-                                             const CancelToken& cancel) {
+  return work_.start(std::move(outcome), [paths = std::move(recordings), options, setup, self, job,
+                                          fit_number](FitOutcome& outcome,
+                                                      const ProgressFn& progress,
+                                                      const CancelToken& cancel) {
     const analysis::CampaignAnalysis campaign = daq::analyze_recordings(paths, {}, {}, {}, cancel);
     if (campaign.status == JobStatus::Cancelled) return;  // reported as cancelled, no error
     analysis::FitSetup fit_setup = setup;
@@ -73,6 +76,7 @@ bool FitJob::start(std::vector<std::string> recordings, analysis::FitSetup setup
           if (now - last_preview >= kPreviewInterval && !cancel.cancelled() &&
               p.best_theta.size() == objective->form().size()) {
             auto preview = std::make_shared<FitPreview>();
+            preview->fit_number = fit_number;
             preview->evaluations = p.evaluations;
             preview->best_weighted_cost = p.best_weighted_cost;
             preview->theta = p.best_theta;

@@ -17,6 +17,7 @@ namespace oscilab::ui {
 /// The best model of a running fit so far, made on the fit's worker thread and handed to the UI
 /// thread by a queued signal: its EDC at every measured level (live progress).
 struct FitPreview {
+  long fit_number = 0;  // which fit of its job sent it (FitJob::is_current)
   long evaluations = 0;
   double best_weighted_cost = 0.0;  // χ² of the best θ so far
   Eigen::VectorXd theta;            // the best θ so far
@@ -54,7 +55,8 @@ class FitJob : public QObject {
              analysis::FitOptions options);
   void cancel() { work_.cancel(); }
   bool running() const { return work_.running(); }
-  /// Whether `preview` is of the fit that runs (one queued before an older fit ended is not).
+  /// Whether `preview` is of the fit that runs (one queued before an older fit ended is not);
+  /// reads nothing the worker writes.
   bool is_current(const FitPreview& preview) const;
 
  Q_SIGNALS:
@@ -67,6 +69,7 @@ class FitJob : public QObject {
   void finished(std::shared_ptr<const oscilab::ui::FitOutcome> outcome);
 
  private:
+  long fits_started_ = 0;  // UI thread only: the number of the fit running or last run
   // The worker emits preview() on this object: it ends before the signal goes (work_ is
   // destroyed first, and its destructor cancels and joins).
   OutcomeJob<FitOutcome> work_{this, &FitJob::finished, &FitJob::progress};
