@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "analysis/common/input_error.h"
-#include "daq/jack/jack_capture_client.h"
+#include "daq/jack/jack_client.h"
 
 namespace oscilab::daq {
 namespace {
@@ -167,7 +167,7 @@ std::string JackDriveClient::start() {
     stop();
     return error.what();
   }
-  shutdown_.store(false);
+  shutdown_.clear();
   closing_.store(false);
   jack_set_process_callback(client_, drive_process_callback, this);
   jack_on_info_shutdown(client_, drive_shutdown_callback, this);
@@ -194,8 +194,7 @@ std::string JackDriveClient::start() {
 void JackDriveClient::stop() {
   if (client_ == nullptr) return;
   closing_.store(true, std::memory_order_release);
-  if (!shutdown_.load(std::memory_order_acquire)) jack_deactivate(client_);
-  jack_client_close(client_);
+  close_jack_client(client_, shutdown_);
   client_ = nullptr;
   drive_out_ = acceleration_in_ = position_in_ = nullptr;
 }

@@ -10,6 +10,7 @@
 
 #include "daq/drive/sine_controller.h"
 #include "daq/jack/frame_slot_ring.h"
+#include "daq/jack/jack_client.h"
 
 struct _jack_client;  // libjack's jack_client_t (jack/types.h), kept out of this header
 struct _jack_port;    // libjack's jack_port_t
@@ -90,7 +91,7 @@ class JackDriveClient {
   std::uint64_t lost_events() const { return lost_events_.load(std::memory_order_relaxed); }
   double rate_hz() const { return rate_hz_; }
   std::uint32_t period_frames() const { return period_; }
-  bool shut_down() const { return shutdown_.load(std::memory_order_acquire); }
+  bool shut_down() const { return shutdown_.happened(); }
   /// The captured frames (Options::capture_s), for one consumer thread: a slot's frame_time is
   /// the low 32 bits of the controller's sample count at its first frame (0-based).
   FrameSlotRing& capture() { return capture_; }
@@ -101,7 +102,7 @@ class JackDriveClient {
 
   // JACK's callbacks (through trampolines in the .cpp).
   int process(std::uint32_t frames);
-  void on_shutdown() { shutdown_.store(true, std::memory_order_release); }
+  void on_shutdown() { shutdown_.report(); }
 
  private:
   enum class CommandKind : std::uint8_t { Level, RampDown, Rearm };
@@ -139,7 +140,8 @@ class JackDriveClient {
   std::atomic<std::uint64_t> lost_events_{0};
   FrameSlotRing capture_;
   std::atomic<std::uint64_t> capture_dropped_{0};
-  std::atomic<bool> shutdown_{false}, closing_{false};
+  JackShutdown shutdown_;
+  std::atomic<bool> closing_{false};
   std::atomic<int> state_{0}, abort_{0}, cycles_to_target_{-1};
   std::atomic<double> target_m_s2_{0.0}, frequency_hz_{0.0}, measured_m_s2_{0.0}, drive_fs_{0.0};
   std::atomic<std::uint64_t> samples_{0};

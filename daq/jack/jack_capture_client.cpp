@@ -4,17 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <thread>
 
 #include "analysis/common/input_error.h"
 
 namespace oscilab::daq {
 namespace {
-
-// libjack prints its errors (no server, ...) on stderr itself; the source reports them as
-// one InputError or event instead.
-void quiet(const char*) {}
 
 // JACK port short names: the channel's name with what JACK treats specially replaced.
 std::string port_short_name(const std::string& channel) {
@@ -47,23 +42,6 @@ void freewheel_callback(int starting, void* arg) {
 }
 
 }  // namespace
-
-jack_client_t* open_jack_client(const std::string& client_name, const std::string& server) {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    jack_set_error_function(quiet);
-    jack_set_info_function(quiet);
-  });
-  jack_status_t status{};
-  if (server.empty()) return jack_client_open(client_name.c_str(), JackNoStartServer, &status);
-  return jack_client_open(client_name.c_str(),
-                          static_cast<jack_options_t>(JackNoStartServer | JackServerName), &status,
-                          server.c_str());
-}
-
-std::string jack_server_text(const std::string& server) {
-  return server.empty() ? "the default JACK server" : "JACK server \"" + server + "\"";
-}
 
 void JackCaptureClient::on_xrun() {
   xrun_frame_.store(jack_frame_time(client_), std::memory_order_relaxed);
@@ -156,7 +134,7 @@ std::string JackCaptureClient::open() {
 }
 
 std::string JackCaptureClient::activate() {
-  shutdown_.store(false);
+  shutdown_.clear();
   closing_.store(false);
   changed_rate_.store(0);
   freewheeling_.store(false);
@@ -178,14 +156,14 @@ void JackCaptureClient::deactivate() {
   closing_.store(true, std::memory_order_release);
   // A server that shut down (or was killed) took the client's activation with it: libjack's
   // jack_deactivate then talks to a server that is gone and can crash inside libjack (seen
-  // under AddressSanitizer after a SIGKILL). jack_client_close alone releases the client.
-  if (client_ != nullptr && !shutdown_.load(std::memory_order_acquire)) jack_deactivate(client_);
+  // under AddressSanitizer after a SIGKILL). close_jack_client alone releases the client.
+  if (client_ != nullptr && !shutdown_.happened()) jack_deactivate(client_);
 }
 
 void JackCaptureClient::close() {
   if (client_ != nullptr) {
-    deactivate();
-    jack_client_close(client_);
+    closing_.store(true, std::memory_order_release);
+    close_jack_client(client_, shutdown_);
     client_ = nullptr;
   }
   ports_.clear();
@@ -210,7 +188,7 @@ std::vector<std::string> JackCaptureClient::capture_ports(const std::string& ser
     for (const char** p = ports; *p != nullptr; ++p) names.emplace_back(*p);
     jack_free(ports);
   }
-  jack_client_close(client);
+  close_jack_client(client, JackShutdown{});
   return names;
 }
 

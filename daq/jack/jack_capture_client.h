@@ -8,18 +8,12 @@
 #include <vector>
 
 #include "daq/jack/frame_slot_ring.h"
+#include "daq/jack/jack_client.h"
 
 struct _jack_client;  // libjack's jack_client_t (jack/types.h), kept out of this header
 struct _jack_port;    // libjack's jack_port_t
 
 namespace oscilab::daq {
-
-/// "the default JACK server" or "JACK server \"NAME\"", for messages.
-std::string jack_server_text(const std::string& server);
-
-/// Opens a JACK client on a server (never starting one), with libjack's own printing silenced
-/// (callers report in their own words). Null when no such server runs or it refused the client.
-_jack_client* open_jack_client(const std::string& client_name, const std::string& server);
 
 /// A JACK client that captures some of a server's audio output ports: one input port per
 /// channel (`in_<channel>`), each connected to its capture port. JACK's process callback only
@@ -71,7 +65,9 @@ class JackCaptureClient {
   std::chrono::steady_clock::time_point last_connect_try() const { return last_connect_try_; }
 
   bool freewheeling() const { return freewheeling_.load(std::memory_order_acquire); }
-  bool shut_down() const { return shutdown_.load(std::memory_order_acquire); }
+  bool shut_down() const { return shutdown_.happened(); }
+  /// When the server's shutdown was reported (meaningful when shut_down()).
+  std::chrono::steady_clock::time_point shut_down_at() const { return shutdown_.at(); }
   /// Nonzero: the server switched to this rate.
   std::uint32_t changed_rate() const { return changed_rate_.load(std::memory_order_acquire); }
   /// Whether connections changed since the last call.
@@ -84,7 +80,7 @@ class JackCaptureClient {
 
   // JACK's callbacks (through trampolines in the .cpp).
   int process(std::uint32_t frames);
-  void on_shutdown() { shutdown_.store(true, std::memory_order_release); }
+  void on_shutdown() { shutdown_.report(); }
   void on_xrun();
   void on_rate(std::uint32_t rate);
   void on_connections_changed() { connections_changed_.store(true, std::memory_order_release); }
@@ -99,7 +95,8 @@ class JackCaptureClient {
   std::vector<_jack_port*> ports_;
   std::vector<float*> buffers_;  // the process callback's port buffers (sized before activation)
   FrameSlotRing ring_;
-  std::atomic<bool> freewheeling_{false}, shutdown_{false}, connections_changed_{false};
+  std::atomic<bool> freewheeling_{false}, connections_changed_{false};
+  JackShutdown shutdown_;
   std::atomic<bool> closing_{false};  // the client is being deactivated: the callback never waits
   std::atomic<std::uint32_t> changed_rate_{0};
   std::atomic<std::uint64_t> xrun_count_{0};

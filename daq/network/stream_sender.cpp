@@ -13,7 +13,7 @@
 namespace oscilab::daq {
 namespace {
 
-constexpr int kPollMs = 50;  // how long a send waits for the receiver before looking at cancel
+constexpr int kSendPollMs = 50;  // how long a send waits for the receiver before looking at cancel
 constexpr std::chrono::milliseconds kRetryEvery{200};
 constexpr std::chrono::milliseconds kIdle{1};  // waiting for the source's next block
 
@@ -176,7 +176,7 @@ StreamSender::Sent StreamSender::send_frame(const std::vector<std::uint8_t>& fra
                                             const CancelToken& cancel) {
   std::size_t done = 0;
   while (done < frame.size()) {
-    const long sent = socket_.send_for(frame.data() + done, frame.size() - done, kPollMs);
+    const long sent = socket_.send_for(frame.data() + done, frame.size() - done, kSendPollMs);
     if (sent == -1) {
       if (!cancel.cancelled()) continue;
       if (done > 0) {  // the receiver would read a frame cut short: no more frames on this one

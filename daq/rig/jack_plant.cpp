@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "analysis/common/input_error.h"
-#include "daq/jack/jack_capture_client.h"
+#include "daq/jack/jack_client.h"
 
 namespace oscilab::daq {
 namespace {
@@ -77,7 +77,7 @@ std::string JackPlant::start() {
     stop();
     return error.what();
   }
-  shutdown_.store(false);
+  shutdown_.clear();
   jack_set_process_callback(client_, plant_process_callback, this);
   jack_on_info_shutdown(client_, plant_shutdown_callback, this);
   if (jack_activate(client_) != 0) {
@@ -89,8 +89,7 @@ std::string JackPlant::start() {
 
 void JackPlant::stop() {
   if (client_ == nullptr) return;
-  if (!shutdown_.load(std::memory_order_acquire)) jack_deactivate(client_);
-  jack_client_close(client_);
+  close_jack_client(client_, shutdown_);
   client_ = nullptr;
   drive_port_ = acceleration_port_ = position_port_ = nullptr;
 }

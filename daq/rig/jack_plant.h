@@ -6,6 +6,7 @@
 #include <string>
 
 #include "analysis/model/model.h"
+#include "daq/jack/jack_client.h"
 #include "daq/rig/shaker_plant.h"
 
 struct _jack_client;  // libjack's jack_client_t (jack/types.h), kept out of this header
@@ -52,10 +53,10 @@ class JackPlant {
   std::uint64_t frames() const { return frames_.load(std::memory_order_acquire); }
   /// The relative displacement z at the end of the last period (the truth, for tests).
   double z_m() const { return z_m_.load(std::memory_order_acquire); }
-  bool shut_down() const { return shutdown_.load(std::memory_order_acquire); }
+  bool shut_down() const { return shutdown_.happened(); }
 
   int process(std::uint32_t frames);
-  void on_shutdown() { shutdown_.store(true, std::memory_order_release); }
+  void on_shutdown() { shutdown_.report(); }
 
  private:
   analysis::Model model_;
@@ -68,7 +69,7 @@ class JackPlant {
   double rate_hz_ = 0.0;
   std::atomic<std::uint64_t> frames_{0};
   std::atomic<double> z_m_{0.0};
-  std::atomic<bool> shutdown_{false};
+  JackShutdown shutdown_;
 };
 
 }  // namespace oscilab::daq

@@ -14,7 +14,7 @@
 namespace oscilab::ui {
 
 /// The model's EDC against f₀ in both wells at the live frequency (the curve drawn over the
-/// measured levels, Fig. 15), by harmonic balance on a worker thread (BackgroundJob). One job
+/// measured levels, Fig. 15), by harmonic balance on a worker thread (an OutcomeJob). One job
 /// runs at a time: a start() while one runs is remembered and done once it finishes. Used from
 /// the UI thread only.
 class LivePredictionJob : public QObject {

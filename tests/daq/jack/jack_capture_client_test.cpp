@@ -1,9 +1,13 @@
 // The JACK capture client against a real jackd (dummy backend): a ring nobody drains fills, and
-// the real-time callback drops the frames it has no room for and counts them.
+// the real-time callback drops the frames it has no room for and counts them; a client whose
+// server was killed is closed only once libjack's thread that reported it has settled, and the
+// process opens clients again when the server is back.
 #include "daq/jack/jack_capture_client.h"
 
 #include <chrono>
+#include <csignal>
 #include <cstdint>
+#include <memory>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -44,6 +48,39 @@ TEST(JackCaptureClient, ARingNobodyDrainsFillsAndTheFramesWithoutRoomAreCounted)
   }
   EXPECT_GT(held, 0u);
   client.close();
+}
+
+TEST(JackCaptureClient, AClientWhoseServerDiedClosesOnlyAfterTheShutdownSettled) {
+  JackTestServer server(48000, 256);
+  auto player = std::make_unique<JackTestPlayer>(server.name(), 1);
+  JackCaptureClient::Options options;
+  options.server = server.name();
+  options.client_name = "capture-test";
+  options.capture_ports = {player->port(0)};
+  options.channel_names = {"base"};
+  options.ring_s = 1.0;
+  JackCaptureClient client(options);
+  ASSERT_EQ(client.open(), "");
+  ASSERT_EQ(client.activate(), "");
+  player.reset();
+  server.stop(SIGKILL);  // no goodbye: libjack's threads find the server gone
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  while (!client.shut_down() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(client.shut_down()) << "the shutdown callback never came";
+  const auto reported = client.shut_down_at();
+  EXPECT_LE(reported, std::chrono::steady_clock::now());
+  client.close();
+  EXPECT_GE(std::chrono::steady_clock::now(), reported + kJackShutdownSettle);
+  // The process can open a client again once the server is back (it hung here when a lock of a
+  // killed libjack thread stayed held).
+  server.start();
+  JackTestPlayer back(server.name(), 1);
+  options.capture_ports = {back.port(0)};
+  JackCaptureClient again(options);
+  EXPECT_EQ(again.open(), "");
+  again.close();
 }
 
 }  // namespace
