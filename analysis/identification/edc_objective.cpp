@@ -37,13 +37,43 @@ std::vector<double> measured_z1(const EdcGroup& group) {
   return out;
 }
 
+// Runs group(g) for every group, the groups side by side when each is long work: a model with a
+// stuck contact (hysteresis) is solved at the H that resolves its ringing (up to 0.3 s a group at
+// δ = 1 µm), while the sliding law's few milliseconds would not pay for a thread.
+void for_each_group(std::size_t groups, bool long_work,
+                    const std::function<void(std::size_t)>& group) {
+  if (!long_work || groups < 2) {
+    for (std::size_t g = 0; g < groups; ++g) group(g);
+    return;
+  }
+  std::vector<std::future<void>> others;
+  for (std::size_t g = 1; g < groups; ++g) {
+    others.push_back(std::async(std::launch::async, group, g));
+  }
+  group(0);
+  for (std::future<void>& other : others) other.get();
+}
+
+// A model whose θ leaves it without a well is not long work: its levels fail at once (the
+// groups' own solves say why).
+bool has_stuck_contact(const Model& model) {
+  try {
+    return small_loop_stiffness_n_m(model, model.well(true).z_m) > 0.0 ||
+           small_loop_stiffness_n_m(model, model.well(false).z_m) > 0.0;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
 LevelQuantities model_quantities(const Model& model, const EdcDataset& data, const HbmOptions& hbm,
                                  bool& ok, const CancelToken& cancel) {
-  LevelQuantities out;
-  ok = true;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (const EdcGroup& group : data.groups) {
-    if (cancel.cancelled()) ok = false;
+  // The groups are independent continuations: side by side for a model with a stuck contact,
+  // as respond() solves them (the calibration of such a model solves every level at two H).
+  std::vector<LevelQuantities> per_group(data.groups.size());
+  std::vector<char> group_ok(data.groups.size(), 1);
+  for_each_group(data.groups.size(), has_stuck_contact(model), [&](std::size_t g) {
+    const EdcGroup& group = data.groups[g];
     std::vector<double> f0;
     for (const MeasuredLevel& level : group.levels) f0.push_back(level.f0_n);
     LevelResponse response;
@@ -55,7 +85,8 @@ LevelQuantities model_quantities(const Model& model, const EdcDataset& data, con
     } catch (const InputError&) {
       response.status = JobStatus::NoConvergence;
     }
-    if (response.status != JobStatus::Ok) ok = false;
+    if (cancel.cancelled() || response.status != JobStatus::Ok) group_ok[g] = 0;
+    LevelQuantities& out = per_group[g];
     for (std::size_t i = 0; i < f0.size(); ++i) {
       if (i >= response.edc_j.size()) {
         for (auto* v : {&out.edc_j, &out.z1_abs_m, &out.h2_ratio, &out.h3_ratio}) v->push_back(nan);
@@ -68,6 +99,14 @@ LevelQuantities model_quantities(const Model& model, const EdcDataset& data, con
       out.h2_ratio.push_back(harmonic_amplitude(x, 2) / a1);
       out.h3_ratio.push_back(harmonic_amplitude(x, 3) / a1);
     }
+  });
+  ok = std::find(group_ok.begin(), group_ok.end(), 0) == group_ok.end();
+  LevelQuantities out;
+  for (const LevelQuantities& group : per_group) {
+    out.edc_j.insert(out.edc_j.end(), group.edc_j.begin(), group.edc_j.end());
+    out.z1_abs_m.insert(out.z1_abs_m.end(), group.z1_abs_m.begin(), group.z1_abs_m.end());
+    out.h2_ratio.insert(out.h2_ratio.end(), group.h2_ratio.begin(), group.h2_ratio.end());
+    out.h3_ratio.insert(out.h3_ratio.end(), group.h3_ratio.begin(), group.h3_ratio.end());
   }
   return out;
 }
@@ -300,38 +339,6 @@ std::vector<double> EdcObjective::edc_at(const Model& model, bool positive_well,
   }
   return out;
 }
-
-namespace {
-
-// Runs group(g) for every group, the groups side by side when each is long work: a model with a
-// stuck contact (hysteresis) is solved at the H that resolves its ringing (up to 0.3 s a group at
-// δ = 1 µm), while the sliding law's few milliseconds would not pay for a thread.
-void for_each_group(std::size_t groups, bool long_work,
-                    const std::function<void(std::size_t)>& group) {
-  if (!long_work || groups < 2) {
-    for (std::size_t g = 0; g < groups; ++g) group(g);
-    return;
-  }
-  std::vector<std::future<void>> others;
-  for (std::size_t g = 1; g < groups; ++g) {
-    others.push_back(std::async(std::launch::async, group, g));
-  }
-  group(0);
-  for (std::future<void>& other : others) other.get();
-}
-
-// A model whose θ leaves it without a well is not long work: its levels fail at once (the
-// groups' own solves say why).
-bool has_stuck_contact(const Model& model) {
-  try {
-    return small_loop_stiffness_n_m(model, model.well(true).z_m) > 0.0 ||
-           small_loop_stiffness_n_m(model, model.well(false).z_m) > 0.0;
-  } catch (const InputError&) {
-    return false;
-  }
-}
-
-}  // namespace
 
 std::vector<EdcObjective::GroupResponse> EdcObjective::respond(const Eigen::VectorXd& theta,
                                                                std::optional<Model>& model) const {
