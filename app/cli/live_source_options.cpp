@@ -49,31 +49,31 @@ std::unique_ptr<daq::SampleSource> make_live_source(const std::string& spec,
                      " is for record; stream sends to one");
   }
   daq::SourceOptions source;
-  source.model = o.model;
-  source.positive_well = analysis::well_from_string(o.well) == analysis::Well::Positive;
-  source.seed = o.seed;
-  source.frequency_hz = o.freq_hz;
-  source.speed = o.speed;
-  source.duration_s = o.duration_s;
+  source.rig.model = o.model;
+  source.rig.well = analysis::well_from_string(o.well);
+  source.rig.seed = o.seed;
+  source.rig.frequency_hz = o.freq_hz;
+  source.rig.speed = source.replay.speed = o.speed;
+  source.rig.duration_s = o.duration_s;
   if (kind == daq::SourceKind::Rig && !o.levels.empty()) {
     const std::vector<double> levels = parse_levels(o.levels, "--levels");
     if (!(o.hold_s > 0) || !(o.lead_in_s >= 0)) {
       throw InputError("--hold must be positive and --lead-in >= 0");
     }
-    source.schedule = daq::rig_schedule(levels, o.hold_s, o.lead_in_s, o.freq_hz);
+    source.rig.schedule = daq::rig_schedule(levels, o.hold_s, o.lead_in_s, o.freq_hz);
   }
   if (kind == daq::SourceKind::Network && !o.sidecar.empty()) {
-    source.expected = daq::read_sidecar(o.sidecar);
+    source.network.expected = daq::read_sidecar(o.sidecar);
   }
   if (kind == daq::SourceKind::Jack) {
     if (o.sidecar.empty()) {
       throw InputError("--source " + spec +
                        ": give the calibration with --sidecar CAL.json (one channel per port)");
     }
-    source.calibration = daq::read_sidecar(o.sidecar);
-    source.jack_server = o.jack_server;
-    source.jack_client = o.jack_client;
-    source.analysis_rate_hz = o.rate_hz;
+    source.jack.calibration = daq::read_sidecar(o.sidecar);
+    source.jack.server = o.jack_server;
+    source.jack.client = o.jack_client;
+    source.jack.analysis_rate_hz = o.rate_hz;
   }
   return daq::make_source(spec, source);
 }

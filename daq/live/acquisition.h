@@ -50,10 +50,9 @@ struct AcquisitionStatus {
   std::uint64_t gaps = 0, gap_samples = 0, lost_blocks = 0, duplicates = 0, reordered = 0, late = 0,
                 discontinuities = 0;
   std::uint64_t non_finite_samples = 0, saturated_samples = 0;
-  std::uint64_t overflowed_blocks = 0, malformed_frames = 0, layout_mismatches = 0, connections = 0;
-  // Sound-card (JACK) sources: SourceCounters of the same names.
-  std::uint64_t xruns = 0, server_losses = 0, port_disconnections = 0, rate_changes = 0,
-                dropped_frames = 0, clipped_samples = 0, reconnections = 0, failed_reconnects = 0;
+  std::uint64_t overflowed_blocks = 0;
+  NetworkCounters network;  // a network receiver's (zero for other sources)
+  JackCounters jack;        // a sound card's (zero for other sources)
   std::size_t queue_fill = 0, queue_capacity = 0;
   bool recording = false;
   std::string recording_path;

@@ -47,8 +47,8 @@ std::string scheme_of(const std::string& spec) {
 
 ReplaySource::Options replay_options(const SourceOptions& o) {
   ReplaySource::Options replay;
-  replay.speed = o.speed;
-  replay.loop = o.loop;
+  replay.speed = o.replay.speed;
+  replay.loop = o.replay.loop;
   return replay;
 }
 
@@ -64,15 +64,20 @@ SourceKind source_kind(const std::string& spec) {
 std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceOptions& o) {
   switch (source_kind(spec)) {
     case SourceKind::Rig: {
+      if (o.rig.well != analysis::Well::Positive && o.rig.well != analysis::Well::Negative) {
+        throw InputError(o.what +
+                         " rig: the rig starts in the positive or the negative well, not \"" +
+                         analysis::to_string(o.rig.well) + "\"");
+      }
       RigSource::Options rig;
-      rig.rig.positive_well = o.positive_well;
-      rig.rig.seed = o.seed;
-      rig.frequency_hz = o.frequency_hz;
-      rig.speed = o.speed;
-      rig.schedule = o.schedule;
-      rig.duration_s = o.duration_s;
+      rig.rig.positive_well = o.rig.well == analysis::Well::Positive;
+      rig.rig.seed = o.rig.seed;
+      rig.frequency_hz = o.rig.frequency_hz;
+      rig.speed = o.rig.speed;
+      rig.schedule = o.rig.schedule;
+      rig.duration_s = o.rig.duration_s;
       return std::make_unique<RigSource>(
-          o.rig_model ? *o.rig_model : analysis::model_from_spec(o.model), rig);
+          o.rig.model_value ? *o.rig.model_value : analysis::model_from_spec(o.rig.model), rig);
     }
     case SourceKind::Network: {
       NetSource::Options net;
@@ -82,7 +87,7 @@ std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceO
       } else {
         parse_host_port(address, o.what, net.host, net.port);
       }
-      net.expected = o.expected;
+      net.expected = o.network.expected;
       return std::make_unique<NetSource>(net);
     }
     case SourceKind::Jack: {
@@ -94,15 +99,15 @@ std::unique_ptr<SampleSource> make_source(const std::string& spec, const SourceO
                            " is empty (jack:PORT_BASE,PORT_MASS[,...])");
         }
       }
-      if (!o.calibration) {
+      if (!o.jack.calibration) {
         throw InputError(o.what + " " + spec +
                          ": a JACK source needs its calibration (a sidecar with one channel "
                          "per port)");
       }
-      jack.server = o.jack_server;
-      jack.client_name = o.jack_client;
-      jack.calibration = *o.calibration;
-      jack.analysis_rate_hz = o.analysis_rate_hz.value_or(o.calibration->sample_rate_hz);
+      jack.server = o.jack.server;
+      jack.client_name = o.jack.client;
+      jack.calibration = *o.jack.calibration;
+      jack.analysis_rate_hz = o.jack.analysis_rate_hz.value_or(o.jack.calibration->sample_rate_hz);
       return std::make_unique<JackSource>(jack);
     }
     case SourceKind::Replay:

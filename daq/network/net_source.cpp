@@ -95,6 +95,12 @@ std::string NetSource::describe() const {
 
 void NetSource::interrupt() { listener_.shutdown(); }
 
+void NetSource::kind_counters(SourceCounters& counters) const {
+  counters.network.connections = connections_.load(std::memory_order_relaxed);
+  counters.network.malformed_frames = malformed_frames_.load(std::memory_order_relaxed);
+  counters.network.layout_mismatches = layout_mismatches_.load(std::memory_order_relaxed);
+}
+
 void NetSource::run() {
   while (!stop_requested()) {
     TcpSocket peer = listener_.accept_for(kPollMs);

@@ -48,6 +48,7 @@ class NetSource final : public SampleSource {
  private:
   void run() override;
   void interrupt() override;
+  void kind_counters(SourceCounters& counters) const override;
   /// Serves one sender; true when it ended the stream (BYE).
   bool serve(TcpSocket& peer);
   bool accept_hello(const stream_protocol::Hello& hello);
@@ -60,6 +61,7 @@ class NetSource final : public SampleSource {
   TcpSocket listener_;
   std::uint16_t port_ = 0;
   std::atomic<bool> connected_{false};
+  std::atomic<std::uint64_t> connections_{0}, malformed_frames_{0}, layout_mismatches_{0};
   // Stream clock across senders (touched by the source thread only).
   std::string stream_id_;
   std::uint64_t next_sample_ = 0, next_sequence_ = 0;  // one past the furthest seen

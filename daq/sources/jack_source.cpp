@@ -459,6 +459,18 @@ std::vector<std::string> JackSource::capture_ports(const std::string& server) {
   return JackCaptureClient::capture_ports(server);
 }
 
+void JackSource::kind_counters(SourceCounters& counters) const {
+  JackCounters& c = counters.jack;
+  c.xruns = xruns_.load(std::memory_order_relaxed);
+  c.server_losses = server_losses_.load(std::memory_order_relaxed);
+  c.port_disconnections = port_disconnections_.load(std::memory_order_relaxed);
+  c.rate_changes = rate_changes_.load(std::memory_order_relaxed);
+  c.dropped_frames = dropped_frames_.load(std::memory_order_relaxed);
+  c.clipped_samples = clipped_samples_.load(std::memory_order_relaxed);
+  c.reconnections = reconnections_.load(std::memory_order_relaxed);
+  c.failed_reconnects = failed_reconnects_.load(std::memory_order_relaxed);
+}
+
 std::vector<double> JackSource::peaks() {
   std::vector<double> out;
   for (auto& peak : impl_->peaks) out.push_back(100.0 * peak.exchange(0.0));

@@ -102,11 +102,15 @@ class JackSource final : public SampleSource {
  private:
   struct Impl;  // the client, the resampler and the stream's clock (jack_source.cpp)
   void run() override;
+  void kind_counters(SourceCounters& counters) const override;
 
   Options options_;
   std::unique_ptr<Impl> impl_;
   std::atomic<double> server_rate_hz_{0.0};
   std::atomic<int> reach_{0};
+  std::atomic<std::uint64_t> xruns_{0}, server_losses_{0}, port_disconnections_{0},
+      rate_changes_{0}, dropped_frames_{0}, clipped_samples_{0}, reconnections_{0},
+      failed_reconnects_{0};
 };
 
 }  // namespace oscilab::daq

@@ -51,17 +51,7 @@ SourceCounters SampleSource::counters() const {
   c.blocks_delivered = blocks_.load(std::memory_order_relaxed);
   c.samples_delivered = samples_.load(std::memory_order_relaxed);
   c.blocks_overflowed = overflowed_.load(std::memory_order_relaxed);
-  c.connections = connections_.load(std::memory_order_relaxed);
-  c.malformed_frames = malformed_frames_.load(std::memory_order_relaxed);
-  c.layout_mismatches = layout_mismatches_.load(std::memory_order_relaxed);
-  c.xruns = xruns_.load(std::memory_order_relaxed);
-  c.server_losses = server_losses_.load(std::memory_order_relaxed);
-  c.port_disconnections = port_disconnections_.load(std::memory_order_relaxed);
-  c.rate_changes = rate_changes_.load(std::memory_order_relaxed);
-  c.dropped_frames = dropped_frames_.load(std::memory_order_relaxed);
-  c.clipped_samples = clipped_samples_.load(std::memory_order_relaxed);
-  c.reconnections = reconnections_.load(std::memory_order_relaxed);
-  c.failed_reconnects = failed_reconnects_.load(std::memory_order_relaxed);
+  kind_counters(c);
   return c;
 }
 

@@ -15,22 +15,33 @@
 
 namespace oscilab::daq {
 
-/// Counters of a source, read from any thread.
+/// A network receiver's counters (NetSource).
+struct NetworkCounters {
+  std::uint64_t connections = 0;        // senders accepted
+  std::uint64_t malformed_frames = 0;   // frames rejected
+  std::uint64_t layout_mismatches = 0;  // senders refused for their layout
+};
+
+/// A sound card's counters (JackSource).
+struct JackCounters {
+  std::uint64_t xruns = 0;                // xruns the server reported
+  std::uint64_t server_losses = 0;        // the server shut down (or dropped the client)
+  std::uint64_t port_disconnections = 0;  // a capture port lost its connection
+  std::uint64_t rate_changes = 0;         // the server's sample rate changed
+  std::uint64_t dropped_frames = 0;       // frames the ring had no room for
+  std::uint64_t clipped_samples = 0;      // input samples at the interface's full scale
+  std::uint64_t reconnections = 0;        // the server came back and the source with it
+  std::uint64_t failed_reconnects = 0;    // tries to reopen a gone server that failed
+};
+
+/// Counters of a source, read from any thread: every source's, then its kind's (zero for the
+/// other kinds).
 struct SourceCounters {
   std::uint64_t blocks_delivered = 0;
   std::uint64_t samples_delivered = 0;
-  std::uint64_t blocks_overflowed = 0;    // dropped because the queue was full
-  std::uint64_t connections = 0;          // network: senders accepted
-  std::uint64_t malformed_frames = 0;     // network: frames rejected
-  std::uint64_t layout_mismatches = 0;    // network: senders refused for their layout
-  std::uint64_t xruns = 0;                // JACK: xruns the server reported
-  std::uint64_t server_losses = 0;        // JACK: the server shut down (or dropped the client)
-  std::uint64_t port_disconnections = 0;  // JACK: a capture port lost its connection
-  std::uint64_t rate_changes = 0;         // JACK: the server's sample rate changed
-  std::uint64_t dropped_frames = 0;       // JACK: frames the ring had no room for
-  std::uint64_t clipped_samples = 0;      // JACK: input samples at the interface's full scale
-  std::uint64_t reconnections = 0;        // JACK: the server came back and the source with it
-  std::uint64_t failed_reconnects = 0;    // JACK: tries to reopen a gone server that failed
+  std::uint64_t blocks_overflowed = 0;  // dropped because the queue was full
+  NetworkCounters network;
+  JackCounters jack;
 };
 
 /// One live source of samples (virtual rig, file replay, network stream), running on its own
@@ -72,6 +83,8 @@ class SampleSource {
   virtual void run() = 0;
   /// Called by stop() before joining, to wake a blocking run() (e.g. close a socket).
   virtual void interrupt() {}
+  /// Fills in the counters of the source's kind (counters() calls it from any thread).
+  virtual void kind_counters(SourceCounters&) const {}
 
   bool stop_requested() const { return stop_.load(std::memory_order_acquire); }
   void set_layout(const Sidecar& sidecar);
@@ -88,11 +101,6 @@ class SampleSource {
   void end_block(RawBlock& block);
   /// Counts a block the queue had no room for (and posts an overflow event once in a while).
   void count_overflow(std::uint64_t first_sample);
-
-  std::atomic<std::uint64_t> connections_{0}, malformed_frames_{0}, layout_mismatches_{0};
-  std::atomic<std::uint64_t> xruns_{0}, server_losses_{0}, port_disconnections_{0},
-      rate_changes_{0}, dropped_frames_{0}, clipped_samples_{0}, reconnections_{0},
-      failed_reconnects_{0};
 
  private:
   void thread_main();

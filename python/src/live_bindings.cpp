@@ -77,9 +77,9 @@ py::dict status_dict(const daq::AcquisitionStatus& s) {
   d["non_finite_samples"] = s.non_finite_samples;
   d["saturated_samples"] = s.saturated_samples;
   d["overflowed_blocks"] = s.overflowed_blocks;
-  d["malformed_frames"] = s.malformed_frames;
-  d["layout_mismatches"] = s.layout_mismatches;
-  d["connections"] = s.connections;
+  d["malformed_frames"] = s.network.malformed_frames;
+  d["layout_mismatches"] = s.network.layout_mismatches;
+  d["connections"] = s.network.connections;
   d["queue_fill"] = s.queue_fill;
   d["queue_capacity"] = s.queue_capacity;
   d["recording"] = s.recording;
@@ -264,21 +264,20 @@ void bind_live_function(py::module_& m) {
         // Python adds only a Recording object as a source and a Model object as the rig's model.
         daq::SourceOptions options;
         options.what = "source";
-        options.speed = speed;
+        options.rig.speed = options.replay.speed = speed;
         std::unique_ptr<daq::SampleSource> src;
         if (py::isinstance<daq::Recording>(source)) {
           src = daq::make_source(source.cast<daq::Recording>(), options);
         } else {
           const std::string spec = path_string(source);
           if (daq::source_kind(spec) == daq::SourceKind::Rig) {
-            const analysis::Well rig_well = well_argument(well);
-            options.rig_model = model_argument(model);
-            options.positive_well = rig_well == analysis::Well::Positive;
-            options.seed = seed;
-            options.frequency_hz = freq_hz;
-            options.duration_s = session->duration_s;
+            options.rig.model_value = model_argument(model);
+            options.rig.well = well_argument(well);
+            options.rig.seed = seed;
+            options.rig.frequency_hz = freq_hz;
+            options.rig.duration_s = session->duration_s;
             if (!levels_n.is_none()) {
-              options.schedule =
+              options.rig.schedule =
                   daq::rig_schedule(levels_argument(levels_n), hold_s, lead_in_s, freq_hz);
             }
           }
@@ -288,11 +287,11 @@ void bind_live_function(py::module_& m) {
                        : daq::read_sidecar(path_string(value));
           };
           if (!expected_sidecar.is_none()) {
-            options.expected = sidecar_argument(expected_sidecar, "expected_sidecar");
+            options.network.expected = sidecar_argument(expected_sidecar, "expected_sidecar");
           }
           if (!calibration.is_none())
-            options.calibration = sidecar_argument(calibration, "calibration");
-          options.jack_server = jack_server;
+            options.jack.calibration = sidecar_argument(calibration, "calibration");
+          options.jack.server = jack_server;
           py::gil_scoped_release release;  // a replay reads its whole file here
           src = daq::make_source(spec, options);
         }

@@ -59,7 +59,7 @@ void run_jack(benchmark::State& state, bool freewheel) {
     acquisition.stop();
     state.counters["cpu_pct_per_signal_s"] = 100.0 * cpu / done_s;
     state.counters["x_real_time"] = done_s / wall;
-    state.counters["xruns"] = static_cast<double>(acquisition.status().xruns);
+    state.counters["xruns"] = static_cast<double>(acquisition.status().jack.xruns);
     for (const char* suffix : {".wav", ".json", ".events.jsonl"}) {
       std::filesystem::remove(std::filesystem::path(path).replace_extension("").string() + suffix);
     }
@@ -83,7 +83,7 @@ void BM_JackStopWhileReconnecting(benchmark::State& state) {
     source->start(queue);
     wait_for([&] { return source->counters().samples_delivered > 0; }, 60);
     server.stop(SIGTERM);
-    wait_for([&] { return source->counters().failed_reconnects >= 2; }, 60);
+    wait_for([&] { return source->counters().jack.failed_reconnects >= 2; }, 60);
     const auto stop0 = Clock::now();
     source->stop();
     state.counters["stop_s"] = std::chrono::duration<double>(Clock::now() - stop0).count();

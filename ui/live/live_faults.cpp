@@ -53,9 +53,9 @@ FaultCounts FaultCounts::merged(const daq::AcquisitionStatus& s) const {
   m.saturated_samples = std::max(saturated_samples, s.saturated_samples);
   m.overflowed_blocks = std::max(overflowed_blocks, s.overflowed_blocks);
   m.alarms = std::max(alarms, s.alarms);
-  m.errors = std::max(errors, s.malformed_frames + s.layout_mismatches);
-  m.sound_card =
-      std::max(sound_card, s.xruns + s.server_losses + s.port_disconnections + s.rate_changes);
+  m.errors = std::max(errors, s.network.malformed_frames + s.network.layout_mismatches);
+  m.sound_card = std::max(sound_card, s.jack.xruns + s.jack.server_losses +
+                                          s.jack.port_disconnections + s.jack.rate_changes);
   return m;
 }
 

@@ -1,6 +1,7 @@
 #include "ui/live/live_source_request.h"
 
 #include "analysis/common/input_error.h"
+#include "analysis/edc/well.h"
 #include "daq/recording/sidecar.h"
 
 namespace oscilab::ui {
@@ -11,12 +12,12 @@ LiveSourceRequest live_source_request(const LiveSettings& s,
   LiveSourceRequest request;
   daq::SourceOptions& o = request.options;
   o.what = "source";
-  o.positive_well = s.rig_positive_well;
-  o.frequency_hz = s.rig_frequency_hz;
-  o.speed = s.speed;
-  o.schedule = schedule;
-  o.duration_s = duration_s;
-  o.loop = s.replay_loop;
+  o.rig.well = analysis::well_of(s.rig_positive_well);
+  o.rig.frequency_hz = s.rig_frequency_hz;
+  o.rig.speed = o.replay.speed = s.speed;
+  o.rig.schedule = schedule;
+  o.rig.duration_s = duration_s;
+  o.replay.loop = s.replay_loop;
   switch (s.source) {
     case LiveSourceKind::Rig:
       request.spec = "rig";
@@ -33,8 +34,8 @@ LiveSourceRequest live_source_request(const LiveSettings& s,
         throw InputError("JACK: choose the calibration sidecar (base and mass channels)");
       }
       request.spec = "jack:" + s.jack_base_port + "," + s.jack_mass_port;
-      o.jack_server = s.jack_server;
-      o.calibration = daq::read_sidecar(s.jack_calibration);
+      o.jack.server = s.jack_server;
+      o.jack.calibration = daq::read_sidecar(s.jack_calibration);
       break;
   }
   return request;

@@ -86,11 +86,13 @@ std::vector<StatusField> status_fields(const daq::AcquisitionStatus& s, const Fa
   const bool sound_card = s.source.rfind("JACK", 0) == 0;
   add("card", "card",
       sound_card || faults.sound_card > 0 ? count_text(faults.sound_card) : "\u2014", fault("card"),
-      "Sound card (JACK) faults: " + count_text(s.xruns) + " xrun(s), " +
-          count_text(s.server_losses) + " server loss(es), " + count_text(s.port_disconnections) +
-          " port(s) disconnected, " + count_text(s.rate_changes) + " rate change(s); " +
-          count_text(s.dropped_frames) + " frame(s) dropped, " + count_text(s.clipped_samples) +
-          " input sample(s) clipped, " + count_text(s.reconnections) + " reconnection(s)");
+      "Sound card (JACK) faults: " + count_text(s.jack.xruns) + " xrun(s), " +
+          count_text(s.jack.server_losses) + " server loss(es), " +
+          count_text(s.jack.port_disconnections) + " port(s) disconnected, " +
+          count_text(s.jack.rate_changes) + " rate change(s); " +
+          count_text(s.jack.dropped_frames) + " frame(s) dropped, " +
+          count_text(s.jack.clipped_samples) + " input sample(s) clipped, " +
+          count_text(s.jack.reconnections) + " reconnection(s)");
   return fields;
 }
 

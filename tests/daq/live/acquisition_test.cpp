@@ -437,9 +437,9 @@ TEST(Acquisition, NetworkStreamSurvivesReconnectsHostileFramesAndWrongLayouts) {
                                   "the acquisition finished after the sender's BYE"));
   acquisition.stop();
   const AcquisitionStatus s = acquisition.status();
-  EXPECT_EQ(s.connections, 4u);
-  EXPECT_EQ(s.malformed_frames, 1u);
-  EXPECT_EQ(s.layout_mismatches, 1u);
+  EXPECT_EQ(s.network.connections, 4u);
+  EXPECT_EQ(s.network.malformed_frames, 1u);
+  EXPECT_EQ(s.network.layout_mismatches, 1u);
   EXPECT_EQ(s.gaps, 1u);
   EXPECT_EQ(s.gap_samples, 10u * 32u);
   EXPECT_EQ(s.samples, static_cast<std::uint64_t>(clean.sample_count()) - 320u);

@@ -22,8 +22,8 @@ TEST(SourceFactory, NamesTheKindOfEveryDescription) {
 
 TEST(SourceFactory, MakesTheRigAReplayAndAReceiver) {
   SourceOptions o;
-  o.frequency_hz = 7.0;
-  o.schedule = rig_schedule({0.5}, 2.0, 0.5, 7.0);
+  o.rig.frequency_hz = 7.0;
+  o.rig.schedule = rig_schedule({0.5}, 2.0, 0.5, 7.0);
   const auto rig = make_source("rig", o);
   ASSERT_NE(dynamic_cast<RigSource*>(rig.get()), nullptr);
   EXPECT_EQ(rig->layout()->excitation->frequency_hz, 7.0);
@@ -49,6 +49,12 @@ TEST(SourceFactory, RefusesBadDescriptionsNamingTheOption) {
   EXPECT_EQ(input_error_of([&] { make_source("jack:a,b", o); }),
             "source jack:a,b: a JACK source needs its calibration (a sidecar with one channel per "
             "port)");
+  // The rig starts in a well, not across them.
+  o.rig.well = analysis::Well::CrossWell;
+  EXPECT_EQ(input_error_of([&] { make_source("rig", o); }),
+            "source rig: the rig starts in the positive or the negative well, not \"cross-well\"");
+  o.rig.well = analysis::Well::Negative;
+  EXPECT_NE(dynamic_cast<RigSource*>(make_source("rig", o).get()), nullptr);
   // A kind it does not know is named as such, not taken for a missing file.
   o.what = "--source";
   EXPECT_EQ(input_error_of([&] { make_source("usb:3", o); }),

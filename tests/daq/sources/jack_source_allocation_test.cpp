@@ -54,8 +54,10 @@ TEST(JackSourceAllocations, TheProcessCallbackAndTheResamplerAllocateNothingOnce
     counted = drain(queue, static_cast<std::uint64_t>(kRateHz));
     seen = allocation_counter.stop();
     const SourceCounters after = source->counters();
-    if (after.xruns == before.xruns && after.dropped_frames == before.dropped_frames &&
-        after.server_losses == before.server_losses && after.port_disconnections == 0) {
+    if (after.jack.xruns == before.jack.xruns &&
+        after.jack.dropped_frames == before.jack.dropped_frames &&
+        after.jack.server_losses == before.jack.server_losses &&
+        after.jack.port_disconnections == 0) {
       break;
     }
     ++faulty_windows;

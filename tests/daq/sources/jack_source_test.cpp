@@ -152,10 +152,10 @@ TEST(JackSource, AnalysisSamplesSitOnTheServerClockWithTheSameDelayOnEveryChanne
   const double s0 = server_frame_of_sample0(c.events);
   ASSERT_GT(c.drain.index.size(), 2u * 512u) << "at least 2 s of samples";
   const ClockError error = server_clock_error(c.drain, s0, c.a, c.b);
-  EXPECT_LT(error.worst, 2e-6) << "at sample " << error.at << ", xruns " << c.counters.xruns
+  EXPECT_LT(error.worst, 2e-6) << "at sample " << error.at << ", xruns " << c.counters.jack.xruns
                                << "; events:" << events_text(c.events);
   EXPECT_EQ(c.reach, 24);  // the design's impulse response, ±47 ms
-  EXPECT_EQ(c.counters.dropped_frames, 0u);
+  EXPECT_EQ(c.counters.jack.dropped_frames, 0u);
 }
 
 // After an xrun (the player stalled for 50 ms, nine periods) JACK 2 may run a period again with
@@ -168,7 +168,7 @@ TEST(JackSource, SamplesAfterAnXrunStayOnTheServerClock) {
   capture_sines(c, 512);
   const double s0 = server_frame_of_sample0(c.events);
   ASSERT_GT(c.drain.index.size(), 2u * 512u) << "at least 2 s of samples";
-  EXPECT_GE(c.counters.xruns, 1u) << events_text(c.events);
+  EXPECT_GE(c.counters.jack.xruns, 1u) << events_text(c.events);
   EXPECT_EQ(count_events(c.events, "discontinuity"), 0u) << events_text(c.events);
   const ClockError error = server_clock_error(c.drain, s0, c.a, c.b);
   EXPECT_LT(error.worst, 2e-6) << "at sample " << error.at << "; events:" << events_text(c.events);
@@ -258,7 +258,7 @@ TEST(JackSource, LiveEdcOfTheRigThroughJackMatchesTheSameSignalsAt512Hz) {
   player.set_freewheel(false);
   live.stop();
   const AcquisitionStatus status = live.status();
-  EXPECT_EQ(status.dropped_frames, 0u);
+  EXPECT_EQ(status.jack.dropped_frames, 0u);
   const auto measured = by_level(live.levels());
   ASSERT_EQ(measured.size(), expected.size());
   for (std::size_t i = 0; i < measured.size(); ++i) {
@@ -292,14 +292,14 @@ TEST(JackSource, XrunsAreCountedLoggedAndLeftOutOfTheStream) {
   ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 256; },
                          "the source delivered 256 samples"));
   player.stall(std::chrono::milliseconds(50));
-  ASSERT_TRUE(eventually([&] { return source->counters().xruns > 0; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.xruns > 0; },
                          "the stalled player made the server report an xrun"));
   const std::uint64_t before = source->counters().samples_delivered;
   ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > before + 256; },
                          "samples after the xrun: the source goes on"));
   live.stop();
   const AcquisitionStatus status = live.status();
-  EXPECT_GE(status.xruns, 1u);
+  EXPECT_GE(status.jack.xruns, 1u);
   EXPECT_GE(status.gaps, 1u) << "the samples around the xrun are left out";
   const auto events = live.events_since(0);
   EXPECT_GE(count_events(events, "xrun"), 1u);
@@ -319,27 +319,27 @@ TEST(JackSource, AKilledServerIsReportedAndTheSourceReconnectsWhenItComesBack) {
   ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 256; },
                          "the source delivered 256 samples"));
   server.stop(SIGKILL);  // no goodbye: the clients find the server gone
-  ASSERT_TRUE(eventually([&] { return source->counters().server_losses == 1; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.server_losses == 1; },
                          "the source saw the server killed"));
   EXPECT_TRUE(eventually([&] { return source->server_rate_hz() == 0.0; },
                          "the source closed its client of the killed server"));
   ASSERT_TRUE(eventually([&] { return player->gone(); }, "the player found its server gone"));
   player.reset();  // its server is gone
   // The source keeps trying while the server is away: it comes back after a failed try.
-  ASSERT_TRUE(eventually([&] { return source->counters().failed_reconnects >= 1; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.failed_reconnects >= 1; },
                          "the source tried to reopen the server while it was away"));
   server.start();
   JackTestPlayer back(server.name(), 2);
   back.play_sines({{0.5, 9.0, 0.0}, {0.5, 9.0, 1.0}});
-  ASSERT_TRUE(eventually([&] { return source->counters().reconnections == 1; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.reconnections == 1; },
                          "the source reconnected to the server back"));
   const std::uint64_t before = source->counters().samples_delivered;
   ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > before + 256; },
                          "samples from the server back"));
   live.stop();
   const AcquisitionStatus status = live.status();
-  EXPECT_EQ(status.server_losses, 1u);
-  EXPECT_EQ(status.reconnections, 1u);
+  EXPECT_EQ(status.jack.server_losses, 1u);
+  EXPECT_EQ(status.jack.reconnections, 1u);
   EXPECT_GE(status.gaps, 1u) << "the time away is a gap of the stream";
   const auto events = live.events_since(0);
   EXPECT_EQ(count_events(events, "server-shutdown"), 1u);
@@ -390,7 +390,7 @@ TEST(JackSource, AServerBackAtAnotherRateIsResampledFromItsNewRate) {
       "3 s of samples from the first server"));
   EXPECT_NEAR(frequency_of_newest(before, 1024), 9.0, 0.01);
   server.stop(SIGKILL);
-  ASSERT_TRUE(eventually([&] { return source->counters().server_losses == 1; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.server_losses == 1; },
                          "the source saw the server killed"));
   // The source has closed its client (its rate reads 0) before a server of the same name comes
   // back: libjack 1.9.21 can crash closing a client of a killed server once a new one runs.
@@ -402,7 +402,7 @@ TEST(JackSource, AServerBackAtAnotherRateIsResampledFromItsNewRate) {
   server.start();
   JackTestPlayer back(server.name(), 2);
   back.play_sines({{0.5, 9.0, 0.0}, {0.5, 9.0, 1.0}});
-  ASSERT_TRUE(eventually([&] { return source->counters().reconnections == 1; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.reconnections == 1; },
                          "the source reconnected to the server back at 44.1 kHz"));
   EXPECT_EQ(source->server_rate_hz(), 44100.0);
   Drain after;
@@ -439,13 +439,13 @@ TEST(JackSource, AServerGoneForGoodEndsCleanlyOnStop) {
   // CI); with it closed first, in none of 40.
   player.close();
   server.stop(SIGTERM);
-  ASSERT_TRUE(eventually([&] { return source->counters().server_losses == 1; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.server_losses == 1; },
                          "the source saw the server stopped"));
-  ASSERT_TRUE(eventually([&] { return source->counters().failed_reconnects >= 3; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.failed_reconnects >= 3; },
                          "three failed tries to reopen the stopped server"));
   // Stopped while it keeps trying, it ends: stop() returns, with no reconnection.
   ASSERT_TRUE(testing::returns([&] { source->stop(); }, "stop() of a source that is reconnecting"));
-  EXPECT_EQ(source->counters().reconnections, 0u);
+  EXPECT_EQ(source->counters().jack.reconnections, 0u);
   EXPECT_EQ(source->server_rate_hz(), 0.0);
 }
 
@@ -462,7 +462,7 @@ TEST(JackSource, APulledCableIsCountedAndTheSourceReconnectsThePort) {
   ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 256; },
                          "the source delivered 256 samples"));
   ASSERT_EQ(jack_disconnect(player.client(), player.port(1).c_str(), "oscilab:in_y"), 0);
-  ASSERT_TRUE(eventually([&] { return source->counters().port_disconnections == 1; },
+  ASSERT_TRUE(eventually([&] { return source->counters().jack.port_disconnections == 1; },
                          "the source saw the cable pulled"));
   ASSERT_TRUE(eventually(
       [&] {
@@ -497,7 +497,7 @@ TEST(JackSource, ClippedInputIsCountedAndRecordedAsInvalid) {
   ASSERT_TRUE(eventually([&] { return source->counters().samples_delivered > 1024; },
                          "the source delivered 1024 samples"));
   live.stop();
-  EXPECT_GT(live.status().clipped_samples, 0u);
+  EXPECT_GT(live.status().jack.clipped_samples, 0u);
   EXPECT_GE(count_events(live.events_since(0), "clipped"), 1u);
   const Sidecar sidecar = read_sidecar((dir / "clip.json").string());
   ASSERT_FALSE(sidecar.invalid_intervals.empty());
@@ -621,19 +621,19 @@ TEST(SourceFactory, MakesAJackSourceFromItsDescriptionAndRefusesBadOnes) {
   JackTestServer server;
   JackTestPlayer player(server.name(), 2);
   SourceOptions o;
-  o.jack_server = server.name();
-  o.calibration = calibration();
+  o.jack.server = server.name();
+  o.jack.calibration = calibration();
   const std::string spec = "jack:" + player.port(0) + ", " + player.port(1);
   EXPECT_EQ(source_kind(spec), SourceKind::Jack);
   const std::unique_ptr<SampleSource> source = make_source(spec, o);
   ASSERT_NE(dynamic_cast<JackSource*>(source.get()), nullptr);
   EXPECT_EQ(source->layout()->sample_rate_hz, 512.0);
   EXPECT_EQ(source->layout()->extra.at("jack").at("server_rate_hz"), 48000.0);
-  o.analysis_rate_hz = 1024.0;
+  o.jack.analysis_rate_hz = 1024.0;
   EXPECT_EQ(make_source(spec, o)->layout()->sample_rate_hz, 1024.0);
   EXPECT_EQ(input_error_of([&] { make_source("jack:a,,b", o); }),
             "--source jack:a,,b: port 2 is empty (jack:PORT_BASE,PORT_MASS[,...])");
-  o.calibration.reset();
+  o.jack.calibration.reset();
   EXPECT_EQ(input_error_of([&] { make_source(spec, o); }),
             "--source " + spec +
                 ": a JACK source needs its calibration (a sidecar with one channel per port)");

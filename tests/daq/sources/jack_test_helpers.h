@@ -159,7 +159,7 @@ inline void soak(double signal_s) {
   ASSERT_TRUE(s0_known);
   EXPECT_GE(samples, target);
   EXPECT_EQ(discontinuities, 0u) << "consecutive sample indices: nothing dropped";
-  EXPECT_EQ(source->counters().dropped_frames, 0u);
+  EXPECT_EQ(source->counters().jack.dropped_frames, 0u);
   EXPECT_EQ(source->counters().blocks_overflowed, 0u);
   EXPECT_LT(worst / kFullScaleV, 2e-6) << "no drift of the sample clock, to the last sample";
   EXPECT_LT(rss_late - rss_early, 2e6) << "memory flat";

@@ -23,11 +23,12 @@ TEST(LiveSourceRequest, NamesEachKindAsTheSourceFactoryReadsIt) {
   const LiveSourceRequest rig = live_source_request(s, schedule, 30.0);
   EXPECT_EQ(rig.spec, "rig");
   EXPECT_EQ(daq::source_kind(rig.spec), daq::SourceKind::Rig);
-  EXPECT_FALSE(rig.options.positive_well);
-  EXPECT_EQ(rig.options.frequency_hz, 8.5);
-  EXPECT_EQ(rig.options.speed, 10.0);
-  EXPECT_EQ(rig.options.schedule.size(), schedule.size());
-  EXPECT_EQ(rig.options.duration_s, 30.0);
+  EXPECT_EQ(rig.options.rig.well, analysis::Well::Negative);
+  EXPECT_EQ(rig.options.rig.frequency_hz, 8.5);
+  EXPECT_EQ(rig.options.rig.speed, 10.0);
+  EXPECT_EQ(rig.options.replay.speed, 10.0);
+  EXPECT_EQ(rig.options.rig.schedule.size(), schedule.size());
+  EXPECT_EQ(rig.options.rig.duration_s, 30.0);
 
   s.source = LiveSourceKind::Replay;
   s.replay_path = "/data/run 1.flac";
@@ -35,7 +36,7 @@ TEST(LiveSourceRequest, NamesEachKindAsTheSourceFactoryReadsIt) {
   const LiveSourceRequest replay = live_source_request(s, {}, std::nullopt);
   EXPECT_EQ(replay.spec, "file:/data/run 1.flac");
   EXPECT_EQ(daq::source_kind(replay.spec), daq::SourceKind::Replay);
-  EXPECT_TRUE(replay.options.loop);
+  EXPECT_TRUE(replay.options.replay.loop);
 
   s.source = LiveSourceKind::Network;
   s.port = 0;  // any free port
