@@ -58,8 +58,33 @@ const FileSignal& find_signal(const FileContents& contents, const std::string& n
 
 }  // namespace
 
+Recording FormatReader::read_controlled(const std::string& path, const Sidecar& sidecar,
+                                        const std::string& sidecar_name,
+                                        const OpeningControl& control) const {
+  if (control.cancel.cancelled()) throw OpeningCancelled();
+  Recording recording = read(path, sidecar, sidecar_name);
+  if (control.cancel.cancelled()) throw OpeningCancelled();
+  if (control.progress) control.progress(1.0);
+  return recording;
+}
+
 Recording SignalFileReader::read(const std::string& path, const Sidecar& sidecar,
                                  const std::string& sidecar_name) const {
+  return read_controlled(path, sidecar, sidecar_name, {});
+}
+
+Recording SignalFileReader::read_controlled(const std::string& path, const Sidecar& sidecar,
+                                            const std::string& sidecar_name,
+                                            const OpeningControl& control) const {
+  // One step per signal read: the time's (when the sidecar maps one), then each channel's.
+  const double steps = static_cast<double>(sidecar.channels.size() + (sidecar.time ? 1 : 0));
+  double done = 0.0;
+  const auto step_done = [&] {
+    if (control.cancel.cancelled()) throw OpeningCancelled();
+    done += 1.0;
+    if (control.progress) control.progress(done / steps);
+  };
+  if (control.cancel.cancelled()) throw OpeningCancelled();
   const FileContents contents = describe(path);
   const auto channels = static_cast<Eigen::Index>(sidecar.channels.size());
   std::vector<const FileSignal*> mapped;
@@ -107,6 +132,7 @@ Recording SignalFileReader::read(const std::string& path, const Sidecar& sidecar
                          ": " + problem);
       }
     }
+    step_done();
   }
 
   StoredSamples stored;
@@ -119,6 +145,7 @@ Recording SignalFileReader::read(const std::string& path, const Sidecar& sidecar
                        std::to_string(rows));
     }
     for (Eigen::Index r = 0; r < rows; ++r) stored.values[r * channels + c] = values[r];
+    step_done();
   }
 
   Recording recording;

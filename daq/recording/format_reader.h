@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "daq/recording/opening_control.h"
 #include "daq/recording/recording.h"
 
 namespace oscilab::daq {
@@ -52,6 +53,12 @@ class FormatReader {
   /// messages. Throws InputError naming the file and the problem.
   virtual Recording read(const std::string& path, const Sidecar& sidecar,
                          const std::string& sidecar_name) const = 0;
+  /// read() with `control`: its progress as the share of the read done, its token polled as it
+  /// goes (throws OpeningCancelled). A format read in one piece (this default) polls before and
+  /// after, and reports 1 at the end.
+  virtual Recording read_controlled(const std::string& path, const Sidecar& sidecar,
+                                    const std::string& sidecar_name,
+                                    const OpeningControl& control) const;
 };
 
 /// A format whose files hold named signals (TDMS, MATLAB, HDF5, UFF 58): it only lists and reads
@@ -64,6 +71,10 @@ class SignalFileReader : public FormatReader {
                                           int column) const = 0;
   Recording read(const std::string& path, const Sidecar& sidecar,
                  const std::string& sidecar_name) const override;
+  /// Reports the share of the mapped signals read, polls the token between signals.
+  Recording read_controlled(const std::string& path, const Sidecar& sidecar,
+                            const std::string& sidecar_name,
+                            const OpeningControl& control) const override;
 };
 
 /// Every format Oscilab reads, most specific signature first.

@@ -78,7 +78,20 @@ OpenedRecording open_recording_for_review(const std::string& path, const Opening
     }
   }
   if (control.progress) control.progress(0.0);
-  return hold_recording(file.format->read(path, file.sidecar, file.sidecar_path), control);
+  // The read's share of the progress first, then the overview's pass over the samples in memory.
+  OpeningControl reading{nullptr, control.cancel};
+  if (control.progress) {
+    reading.progress = [&control](double f) { control.progress(kReadShare * f); };
+  }
+  Recording recording =
+      file.format->read_controlled(path, file.sidecar, file.sidecar_path, reading);
+  OpeningControl overview{nullptr, control.cancel};
+  if (control.progress) {
+    overview.progress = [&control](double f) {
+      control.progress(kReadShare + (1.0 - kReadShare) * f);
+    };
+  }
+  return hold_recording(std::move(recording), overview);
 }
 
 }  // namespace oscilab::daq

@@ -8,6 +8,7 @@
 
 #include "analysis/common/job.h"
 #include "analysis/pipeline/measurement_channels.h"
+#include "daq/recording/opening_control.h"
 #include "daq/recording/recording.h"
 #include "daq/recording/sample_overview.h"
 #include "daq/recording/sidecar.h"
@@ -47,28 +48,20 @@ struct OpenedRecording {
   double duration_s() const;
 };
 
-/// Thrown by open_recording_for_review when its token was cancelled: nothing was opened.
-class OpeningCancelled : public std::exception {
- public:
-  const char* what() const noexcept override { return "opening cancelled"; }
-};
-
-/// How far an opening has gone and whether to stop it: `progress` gets the fraction of the
-/// samples the overview's pass has gone through (from the opening's thread); `cancel` is polled
-/// between its windows of 2^16 samples, so a cancelled opening stops within one window's read.
-/// A format read whole (not a sound container) reports 0 before its read and is cancelled only
-/// after it.
-struct OpeningControl {
-  ProgressFn progress;
-  CancelToken cancel;
-};
-
 /// Opens `path` to be looked at. A sound container's samples stay in the file: one pass decodes
 /// it, checks every sample as read_recording does (the same refusals, in the same words) and
-/// builds the overview. Other formats are read whole (read_recording), their samples in SI only.
-/// Throws InputError as read_recording does, and OpeningCancelled when `control` was cancelled.
+/// builds the overview; `control` gets the share of the samples gone through and is polled
+/// between the pass's windows of 2^16 samples. Other formats are read whole (read_recording),
+/// their samples in SI only: the read reports [0, kReadShare] as it goes (FormatReader::
+/// read_controlled: a CSV by its bytes, a file of named signals by its signals), the overview's
+/// pass the rest. Throws InputError as read_recording does, and OpeningCancelled when `control`
+/// was cancelled.
 OpenedRecording open_recording_for_review(const std::string& path,
                                           const OpeningControl& control = {});
+
+/// The share of a whole-read format's opening its read is reported as (the overview's pass, of
+/// samples in memory, is the rest).
+inline constexpr double kReadShare = 0.8;
 
 /// A recording in memory (made by a program, or read by a caller), held as it is; `control` as
 /// for open_recording_for_review (its overview's pass).

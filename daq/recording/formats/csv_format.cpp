@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string_view>
@@ -93,8 +94,18 @@ std::string parse_number(std::string_view cell, double& value) {
 
 class CsvLineReader {
  public:
-  explicit CsvLineReader(const std::string& path) : in_(path, std::ios::binary) {}
+  explicit CsvLineReader(const std::string& path) : in_(path, std::ios::binary) {
+    std::error_code error;
+    size_bytes_ = static_cast<double>(std::filesystem::file_size(path, error));
+    if (error) size_bytes_ = 0.0;
+  }
   bool is_open() const { return static_cast<bool>(in_); }
+  /// The share of the file read so far (0 when its size is unknown).
+  double share_read() {
+    const auto at = in_.tellg();
+    if (!(size_bytes_ > 0.0) || at < 0) return 0.0;
+    return std::min(1.0, static_cast<double>(at) / size_bytes_);
+  }
   bool bad() const { return in_.bad(); }
   long line_number() const { return line_number_; }
   const std::string& line() const { return line_; }
@@ -111,7 +122,11 @@ class CsvLineReader {
   std::ifstream in_;
   std::string line_;
   long line_number_ = 0;
+  double size_bytes_ = 0.0;
 };
+
+// Lines between two looks at the opening's control: a few milliseconds of parsing.
+constexpr long kLinesPerPoll = 4096;
 
 // Where each channel and the time are in a row, and how many cells a row has.
 struct ColumnMap {
@@ -201,7 +216,8 @@ void read_header(CsvLineReader& reader, const std::string& path, const Sidecar& 
 // cells, every channel's cell a number, the time column (when there is one) on the sidecar's
 // rate. Throws InputError naming the line and column.
 StoredSamples read_rows(CsvLineReader& reader, const std::string& path, const Sidecar& sidecar,
-                        const std::string& sidecar_name, const CsvLayout& layout, ColumnMap& map) {
+                        const std::string& sidecar_name, const CsvLayout& layout, ColumnMap& map,
+                        const OpeningControl& control) {
   StoredSamples stored;
   TimeAxisCheck time_check(sidecar.sample_rate_hz, sidecar_name);
   const auto cell_error = [&](std::size_t index, const std::string& what,
@@ -211,6 +227,10 @@ StoredSamples read_rows(CsvLineReader& reader, const std::string& path, const Si
   };
   std::vector<std::string_view> cells;
   while (reader.next()) {
+    if (reader.line_number() % kLinesPerPoll == 0) {
+      if (control.cancel.cancelled()) throw OpeningCancelled();
+      if (control.progress) control.progress(reader.share_read());
+    }
     if (blank_line(reader.line())) continue;
     split(reader.line(), layout.delimiter, cells);
     if (map.expected_cells == 0) {
@@ -247,8 +267,8 @@ StoredSamples read_rows(CsvLineReader& reader, const std::string& path, const Si
   return stored;
 }
 
-Recording read_csv(const std::string& path, const Sidecar& sidecar,
-                   const std::string& sidecar_name) {
+Recording read_csv(const std::string& path, const Sidecar& sidecar, const std::string& sidecar_name,
+                   const OpeningControl& control) {
   CsvLayout layout;
   if (sidecar.csv) {
     layout = *sidecar.csv;
@@ -267,7 +287,7 @@ Recording read_csv(const std::string& path, const Sidecar& sidecar,
   map.column.assign(sidecar.channels.size(), 0);
   map.time_column = layout.time_column;
   if (layout.header) read_header(reader, path, sidecar, sidecar_name, layout, map);
-  const StoredSamples stored = read_rows(reader, path, sidecar, sidecar_name, layout, map);
+  const StoredSamples stored = read_rows(reader, path, sidecar, sidecar_name, layout, map, control);
 
   Recording recording;
   recording.sidecar = sidecar;
@@ -279,6 +299,8 @@ Recording read_csv(const std::string& path, const Sidecar& sidecar,
                                                     : in_quotes(std::string(1, layout.delimiter));
   recording.container = std::string("CSV, ") + (layout.header ? "with" : "without") +
                         " header, delimiter " + delimiter;
+  if (control.cancel.cancelled()) throw OpeningCancelled();
+  if (control.progress) control.progress(1.0);
   return recording;
 }
 
@@ -346,7 +368,14 @@ class CsvFormat final : public FormatReader {
 
   Recording read(const std::string& path, const Sidecar& sidecar,
                  const std::string& sidecar_name) const override {
-    return read_csv(path, sidecar, sidecar_name);
+    return read_csv(path, sidecar, sidecar_name, {});
+  }
+  /// Reports the share of the file's bytes read and polls the token every 4096 lines.
+  Recording read_controlled(const std::string& path, const Sidecar& sidecar,
+                            const std::string& sidecar_name,
+                            const OpeningControl& control) const override {
+    if (control.cancel.cancelled()) throw OpeningCancelled();
+    return read_csv(path, sidecar, sidecar_name, control);
   }
 };
 

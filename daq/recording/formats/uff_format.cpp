@@ -222,15 +222,21 @@ class UffFormat final : public SignalFileReader {
     return contents;
   }
 
-  // "dataset <k>" also names the time response in dataset k when its name is its DOF.
   Recording read(const std::string& path, const Sidecar& sidecar,
                  const std::string& sidecar_name) const override {
+    return read_controlled(path, sidecar, sidecar_name, {});
+  }
+
+  // "dataset <k>" also names the time response in dataset k when its name is its DOF.
+  Recording read_controlled(const std::string& path, const Sidecar& sidecar,
+                            const std::string& sidecar_name,
+                            const OpeningControl& control) const override {
     const auto is_alias = [](const std::string& name) { return name.rfind(kAliasPrefix, 0) == 0; };
     bool aliases = sidecar.time && is_alias(sidecar.time->source);
     for (const ChannelInfo& channel : sidecar.channels) {
       aliases = aliases || is_alias(channel.source.empty() ? channel.name : channel.source);
     }
-    if (!aliases) return SignalFileReader::read(path, sidecar, sidecar_name);
+    if (!aliases) return SignalFileReader::read_controlled(path, sidecar, sidecar_name, control);
     const FileContents contents = describe(path);
     const auto resolve = [&](const std::string& name) {
       for (const FileSignal& signal : contents.file_signals) {
@@ -243,7 +249,7 @@ class UffFormat final : public SignalFileReader {
       channel.source = resolve(channel.source.empty() ? channel.name : channel.source);
     }
     if (resolved.time) resolved.time->source = resolve(resolved.time->source);
-    Recording recording = SignalFileReader::read(path, resolved, sidecar_name);
+    Recording recording = SignalFileReader::read_controlled(path, resolved, sidecar_name, control);
     recording.sidecar = sidecar;
     return recording;
   }

@@ -190,6 +190,27 @@ TEST(UffFormat, ReadsBinaryDataFollowedByANewline) {
   EXPECT_EQ(column(recording, 0), (std::vector<double>{1.5, -2.0}));
 }
 
+// Read under an opening's control (the app's review): one report per signal the sidecar maps, and
+// a cancelled token stops the read before its first signal.
+TEST(UffFormat, AControlledReadReportsEachSignalAndStopsWhenCancelled) {
+  Uff58Header h;
+  h.count = "2";
+  const TempDir dir;
+  write_file(dir.file("c.uff"),
+             binary_uff58(h, 1, ieee_bytes<float>(1.5F, 1) + ieee_bytes<float>(-2.0F, 1)));
+  const Sidecar sidecar = volts_sidecar(1000.0, "mic:3:-Y");
+  OpeningControl control;
+  std::vector<double> reports;
+  control.progress = [&](double f) { reports.push_back(f); };
+  const Recording recording =
+      uff_format().read_controlled(dir.file("c.uff"), sidecar, "the sidecar", control);
+  EXPECT_EQ(column(recording, 0), (std::vector<double>{1.5, -2.0}));
+  EXPECT_EQ(reports, (std::vector<double>{1.0}));
+  control.cancel.cancel();
+  EXPECT_THROW(uff_format().read_controlled(dir.file("c.uff"), sidecar, "the sidecar", control),
+               OpeningCancelled);
+}
+
 // A file as a modal test program writes it: header 151, units 164, a frequency response (58,
 // function type 4, complex), two time responses (one binary, CRLF), nodes 2411, and a binary FRF
 // whose data happen to hold the bytes of a "-1" line.
