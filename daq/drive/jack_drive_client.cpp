@@ -121,12 +121,10 @@ std::string JackDriveClient::start() {
       !std::isfinite(options_.position_scale_m) || options_.position_scale_m <= 0) {
     return "drive: the input ports' scales must be positive and finite";
   }
-  client_ = open_jack_client(options_.client_name, options_.server);
-  if (client_ == nullptr) {
-    return server + " is not running (or refused the client \"" + options_.client_name + "\")";
-  }
-  std::string why =
-      check_port(client_, options_.acceleration_port, JackPortIsOutput, "a capture port", server);
+  std::string why;
+  client_ = open_jack_client(options_.client_name, options_.server, why);
+  if (client_ == nullptr) return why;
+  why = check_port(client_, options_.acceleration_port, JackPortIsOutput, "a capture port", server);
   if (why.empty()) {
     why = check_port(client_, options_.position_port, JackPortIsOutput, "a capture port", server);
   }

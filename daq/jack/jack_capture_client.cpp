@@ -96,10 +96,9 @@ int JackCaptureClient::process(std::uint32_t frames) {
 
 std::string JackCaptureClient::open() {
   const std::string server = jack_server_text(options_.server);
-  client_ = open_jack_client(options_.client_name, options_.server);
-  if (client_ == nullptr) {
-    return server + " is not running (or refused the client \"" + options_.client_name + "\")";
-  }
+  std::string why;
+  client_ = open_jack_client(options_.client_name, options_.server, why);
+  if (client_ == nullptr) return why;
   for (const std::string& name : options_.capture_ports) {
     jack_port_t* port = jack_port_by_name(client_, name.c_str());
     if (port == nullptr) {
@@ -180,8 +179,9 @@ void JackCaptureClient::connect_ports() {
 }
 
 std::vector<std::string> JackCaptureClient::capture_ports(const std::string& server) {
-  jack_client_t* client = open_jack_client("oscilab-ports", server);
-  if (client == nullptr) throw InputError(jack_server_text(server) + " is not running");
+  std::string why;
+  jack_client_t* client = open_jack_client("oscilab-ports", server, why);
+  if (client == nullptr) throw InputError(why);
   std::vector<std::string> names;
   if (const char** ports =
           jack_get_ports(client, nullptr, JACK_DEFAULT_AUDIO_TYPE, JackPortIsOutput)) {

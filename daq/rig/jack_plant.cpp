@@ -55,10 +55,9 @@ int JackPlant::process(std::uint32_t frames) {
 
 std::string JackPlant::start() {
   const std::string server = jack_server_text(options_.server);
-  client_ = open_jack_client(options_.client_name, options_.server);
-  if (client_ == nullptr) {
-    return server + " is not running (or refused the client \"" + options_.client_name + "\")";
-  }
+  std::string why;
+  client_ = open_jack_client(options_.client_name, options_.server, why);
+  if (client_ == nullptr) return why;
   drive_port_ = jack_port_register(client_, "drive", JACK_DEFAULT_AUDIO_TYPE, JackPortIsInput, 0);
   acceleration_port_ =
       jack_port_register(client_, "acceleration", JACK_DEFAULT_AUDIO_TYPE, JackPortIsOutput, 0);

@@ -9,6 +9,7 @@
 # with three rivals (another damping law, a stiffness term) about a minute of CPU; with the whole
 # vocabulary (no EFFECTS) about four minutes, every hypothesis's global search on the pilot.
 source "$(dirname "$0")/cli_checks.sh"
+repair_jack_metadata
 mode=${3:-errors}
 effects=()
 [ -n "${4:-}" ] && effects=(--effects "$4")

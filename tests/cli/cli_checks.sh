@@ -23,3 +23,11 @@ expect_error() {
     fail "$what: status $status, $(head -c 300 "$work/err.log")"
   fi
 }
+# repair_jack_metadata: a JACK metadata database (libjack's Berkeley DB in /dev/shm/jack_db-UID)
+# with an empty region file, as a JACK program killed while opening it leaves it (these tests
+# kill servers and clients), makes every later JACK client refuse; on a test machine it is
+# removed, and the next client makes a new one.
+repair_jack_metadata() {
+  local db="/dev/shm/jack_db-$(id -u)"
+  if [ -n "$(find "$db" -name '__db.*' -empty 2> /dev/null)" ]; then rm -rf "$db"; fi
+}

@@ -10,6 +10,7 @@
 # jack:` drives it through JACK: it must name quadratic-damping in less shaker time than the fixed
 # grid's one well (26 levels of 10 s).
 source "$(dirname "$0")/cli_checks.sh"
+repair_jack_metadata
 mode=${3:-drive}
 server=oscilab-cli-drive-$$
 jackd --no-realtime -n "$server" -d dummy -r 48000 -p 256 > "$work/jackd.log" 2>&1 &

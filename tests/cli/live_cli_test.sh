@@ -5,6 +5,7 @@
 # itself (lossless); the rig records unattended; SIGTERM ends a recording cleanly; bad input
 # ends with one line and exit status 2.
 source "$(dirname "$0")/cli_checks.sh"
+repair_jack_metadata
 pos=$src/samples/stepped_positive.flac
 
 # The rig, unattended, as fast as possible: a stepped sine of three levels, recorded.

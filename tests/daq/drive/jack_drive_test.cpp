@@ -199,8 +199,9 @@ TEST(JackDrive, ALostInputSetsTheDriveToZeroWithinOnePeriod) {
   Tap tap(server.name(), {"oscilab-plant:acceleration", "oscilab-drive:drive"});
   ASSERT_EQ(loop.drive.set_level(1.5 / analysis::paper_model().mass_kg(), kDriveFrequencyHz), "");
   loop.wait_for(DriveState::OnTarget);
-  jack_client_t* hand = open_jack_client("hand", server.name());
-  ASSERT_NE(hand, nullptr);
+  std::string why;
+  jack_client_t* hand = open_jack_client("hand", server.name(), why);
+  ASSERT_NE(hand, nullptr) << why;
   ASSERT_EQ(jack_disconnect(hand, "oscilab-plant:acceleration", "oscilab-drive:acceleration"), 0);
   const jack_nframes_t pulled = jack_frame_time(hand);
   const TimedDriveEvent aborted = loop.wait_for(DriveState::Aborted);

@@ -7,8 +7,12 @@
 #include <chrono>
 #include <csignal>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <thread>
+
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -81,6 +85,28 @@ TEST(JackCaptureClient, AClientWhoseServerDiedClosesOnlyAfterTheShutdownSettled)
   JackCaptureClient again(options);
   EXPECT_EQ(again.open(), "");
   again.close();
+}
+
+// libjack's metadata database with an empty region file (a JACK program killed while opening it)
+// would fault inside jack_client_open; it is seen first and named. Checked on a folder of its own
+// (the machine's real one is shared by every JACK test running beside this one).
+TEST(JackMetadata, AnEmptyRegionFileIsSeenAndNamed) {
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("oscilab-jack-db-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(folder);
+  EXPECT_EQ(damaged_jack_metadata(folder.string()), "");  // no folder: nothing to see
+  std::filesystem::create_directories(folder);
+  for (const char* name : {"__db.001", "__db.002", "metadata.db"}) {
+    std::ofstream(folder / name) << std::string(4096, 'x');
+  }
+  EXPECT_EQ(damaged_jack_metadata(folder.string()), "");  // a sound database
+  std::ofstream(folder / "__db.003").close();             // its region file left empty
+  EXPECT_EQ(damaged_jack_metadata(folder.string()),
+            "JACK's metadata database " + folder.string() +
+                " is damaged (__db.003 is empty, as a JACK program killed while opening it "
+                "leaves it): remove that folder while no JACK program runs");
+  std::filesystem::remove_all(folder);
+  EXPECT_EQ(jack_metadata_folder(), "/dev/shm/jack_db-" + std::to_string(::getuid()));
 }
 
 }  // namespace

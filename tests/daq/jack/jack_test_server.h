@@ -25,6 +25,8 @@
 #include <thread>
 #include <vector>
 
+#include "daq/jack/jack_client.h"
+
 namespace oscilab::daq::testing {
 
 /// `jackd --no-realtime -n NAME -d dummy -r RATE -p PERIOD`, up until a client can open on it;
@@ -72,6 +74,13 @@ class JackTestServer {
   void set_rate_hz(int rate_hz) { rate_hz_ = rate_hz; }
 
   void start() {
+    // A metadata database with an empty region file (a server or client killed while opening it,
+    // as these tests do) makes every later client refuse: on a test machine it is removed, and
+    // the next server makes a new one.
+    if (!daq::damaged_jack_metadata().empty()) {
+      std::error_code ignored;
+      std::filesystem::remove_all(daq::jack_metadata_folder(), ignored);
+    }
     const std::string rate = std::to_string(rate_hz_), period = std::to_string(period_);
     std::vector<std::string> args = {
         "/usr/bin/jackd", "--no-realtime", "-n", name_, "-d", "dummy", "-r", rate, "-p", period};

@@ -614,7 +614,8 @@ TEST(JackSource, RefusesWhatItCannotUseNamingTheServerOrThePort) {
               "below the analysis Nyquist frequency");
   }
   EXPECT_EQ(input_error_of([] { JackSource::capture_ports("oscilab-no-such-server"); }),
-            "JACK server \"oscilab-no-such-server\" is not running");
+            "JACK server \"oscilab-no-such-server\" is not running (or refused the client "
+            "\"oscilab-ports\")");
 }
 
 TEST(SourceFactory, MakesAJackSourceFromItsDescriptionAndRefusesBadOnes) {
